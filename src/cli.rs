@@ -1,0 +1,128 @@
+//! The command line (cli.md), as clap derive types. `whitted [render options]` is
+//! `whitted render [render options]`, so the course's `--input/--output/--bounces` just work.
+
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand};
+
+/// Most reflection bounces accepted: each bounce is a layer in the EXR, and past this depth a
+/// mirror chain's contribution is far below what a float image can show.
+pub const MAX_BOUNCES: u32 = 100;
+
+/// Largest image side accepted.
+pub const MAX_SIDE: u32 = 65_535;
+
+#[derive(Debug, Parser)]
+#[command(
+    name = "whitted",
+    version,
+    about = "A Whitted ray tracer: the course's tick-exact PNG, plus HDR OpenEXR AOVs",
+    args_conflicts_with_subcommands = true
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+    /// With no subcommand, whitted renders (the course's Tick2 command line).
+    #[command(flatten)]
+    pub render: RenderArgs,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Render a scene to a PNG (the default when no subcommand is given).
+    Render(RenderArgs),
+}
+
+#[derive(Debug, Clone, Args)]
+pub struct RenderArgs {
+    /// Scene XML file [default: the embedded course tick2.xml]
+    #[arg(short, long, value_name = "SCENE")]
+    pub input: Option<PathBuf>,
+
+    /// Tone-mapped PNG to write; `-` writes it to standard output
+    #[arg(short, long, value_name = "OUT.png", default_value = "output.png")]
+    pub output: PathBuf,
+
+    /// Write no PNG
+    #[arg(long)]
+    pub no_png: bool,
+
+    /// Mirror reflection bounces after the primary hit
+    #[arg(short, long, value_name = "N", default_value_t = 2,
+          value_parser = parse_bounces, allow_negative_numbers = true)]
+    pub bounces: u32,
+
+    /// Image width in pixels (the field of view stays 45 degrees horizontal)
+    #[arg(long, value_name = "W", default_value_t = 640, value_parser = parse_side)]
+    pub width: u32,
+
+    /// Image height in pixels
+    #[arg(long, value_name = "H", default_value_t = 480, value_parser = parse_side)]
+    pub height: u32,
+
+    /// Ignore occlusion: every light reaches every point
+    #[arg(long)]
+    pub no_shadows: bool,
+
+    /// Worker threads [default: all cores]; the output is identical for any number
+    #[arg(long, value_name = "N", value_parser = parse_threads)]
+    pub threads: Option<usize>,
+
+    /// No progress bar and no summary line
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+fn parse_bounces(s: &str) -> Result<u32, String> {
+    let n: i64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("expected a whole number of bounces, got `{s}`"))?;
+    if n < 0 {
+        return Err(format!("bounces must be >= 0, got {n}"));
+    }
+    u32::try_from(n)
+        .ok()
+        .filter(|&n| n <= MAX_BOUNCES)
+        .ok_or_else(|| format!("at most {MAX_BOUNCES} bounces are supported, got {n}"))
+}
+
+fn parse_side(s: &str) -> Result<u32, String> {
+    let n: u64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("expected a whole number of pixels, got `{s}`"))?;
+    u32::try_from(n)
+        .ok()
+        .filter(|&n| (1..=MAX_SIDE).contains(&n))
+        .ok_or_else(|| format!("must be between 1 and {MAX_SIDE} pixels, got {n}"))
+}
+
+fn parse_threads(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(n) if n >= 1 => Ok(n),
+        _ => Err(format!("expected a number of threads >= 1, got `{s}`")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::CommandFactory;
+
+    #[test]
+    fn clap_definition_is_consistent() {
+        Cli::command().debug_assert();
+    }
+
+    #[test]
+    fn bounds_are_enforced() {
+        assert_eq!(parse_bounces("3"), Ok(3));
+        assert!(parse_bounces("-1").unwrap_err().contains(">= 0"));
+        assert!(parse_bounces("101").is_err());
+        assert!(parse_side("0").is_err());
+        assert!(parse_side("70000").is_err());
+        assert_eq!(parse_side("640"), Ok(640));
+        assert!(parse_threads("0").is_err());
+    }
+}

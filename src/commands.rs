@@ -1,0 +1,3 @@
+//! One file per subcommand: each turns parsed arguments into work and outputs.
+
+pub mod render;

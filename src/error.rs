@@ -1,0 +1,49 @@
+//! One error type for everything a user can get wrong, so `main` has exactly one place that
+//! turns failures into a message and an exit status.
+
+use std::path::PathBuf;
+
+/// Everything that can stop a run. Every variant is the user's input or environment, never a
+/// bug: bugs panic, user mistakes come back as one of these and exit with status 2.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// A scene file that does not say what the scene format allows. `line` and `col` are 1-based;
+    /// `col` counts characters, not bytes, so editors jump to the right place.
+    #[error("{file}:{line}:{col}: {msg}")]
+    Scene {
+        file: String,
+        line: usize,
+        col: usize,
+        msg: String,
+    },
+    /// A file that cannot be read or written.
+    #[error("{}: {what}: {source}", path.display())]
+    Io {
+        path: PathBuf,
+        what: &'static str,
+        source: std::io::Error,
+    },
+    /// An OpenEXR file that cannot be read or written.
+    #[error("{}: {msg}", path.display())]
+    Exr { path: PathBuf, msg: String },
+    /// A PNG file that cannot be encoded or decoded.
+    #[error("{}: {msg}", path.display())]
+    Png { path: PathBuf, msg: String },
+    /// A command line that asks for something impossible.
+    #[error("{0}")]
+    Usage(String),
+}
+
+/// The crate's result type.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+impl Error {
+    /// Shorthand for an I/O failure on `path` while doing `what` ("cannot read", ...).
+    pub fn io(path: impl Into<PathBuf>, what: &'static str, source: std::io::Error) -> Self {
+        Error::Io {
+            path: path.into(),
+            what,
+            source,
+        }
+    }
+}

@@ -1,0 +1,256 @@
+//! Rays, the closed set of shapes, and ray-shape intersection, with the exact operation order of
+//! rendering.md (Intersections): the tick reference is matched bit for bit, so every formula
+//! here is evaluated the way the course evaluates it.
+
+use glam::DVec3;
+
+use crate::scene::Object;
+
+/// How far secondary rays start off the surface they leave, so they do not re-hit it.
+pub const EPSILON: f64 = 0.0001;
+
+/// A half-line `origin + s * direction`, `s > 0`. `direction` is unit length for every ray the
+/// renderer casts, but the intersection formulas do not assume it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ray {
+    pub origin: DVec3,
+    pub direction: DVec3,
+}
+
+/// The shapes a scene can hold. A closed set, so a `match` rather than trait objects.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Shape {
+    Sphere {
+        centre: DVec3,
+        radius: f64,
+    },
+    /// `normal` is unit length (the loader normalises it) and is never flipped: a plane seen
+    /// from behind is shaded with the normal facing away.
+    Plane {
+        point: DVec3,
+        normal: DVec3,
+    },
+}
+
+/// The nearest surface along a ray.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Hit {
+    /// Index into `Scene::objects`.
+    pub object: usize,
+    /// Ray parameter `s` of the hit point.
+    pub distance: f64,
+}
+
+/// `v` divided by its length, component by component. The course divides; glam's `normalize`
+/// multiplies by the reciprocal, which differs in the last bit and changes tick pixels.
+pub fn normalise(v: DVec3) -> DVec3 {
+    let length = v.length();
+    DVec3::new(v.x / length, v.y / length, v.z / length)
+}
+
+impl Ray {
+    pub fn new(origin: DVec3, direction: DVec3) -> Self {
+        Ray { origin, direction }
+    }
+
+    /// The point at parameter `s`.
+    pub fn at(&self, s: f64) -> DVec3 {
+        self.origin + self.direction * s
+    }
+
+    /// A ray leaving `point` along `direction`, started `EPSILON` along it so that it does not
+    /// find the surface it leaves.
+    pub fn offset_from(point: DVec3, direction: DVec3) -> Self {
+        Ray::new(point + direction * EPSILON, direction)
+    }
+}
+
+impl Shape {
+    /// Ray parameter of the hit, or `None`.
+    ///
+    /// Spheres use only the near root, and only when it is positive: a ray that starts inside a
+    /// sphere does not hit it (the reference's behaviour, which keeps spheres from shadowing
+    /// their own unlit side). Planes hit from either side.
+    pub fn intersect(&self, ray: &Ray) -> Option<f64> {
+        match *self {
+            Shape::Sphere { centre, radius } => {
+                let to_origin = ray.origin - centre;
+                let a = ray.direction.dot(ray.direction);
+                let b = 2.0 * ray.direction.dot(to_origin);
+                let c = to_origin.dot(to_origin) - radius * radius;
+                let disc = b * b - 4.0 * a * c;
+                if disc < 0.0 {
+                    return None;
+                }
+                let s = (-b - disc.sqrt()) / (2.0 * a);
+                (s > 0.0).then_some(s)
+            }
+            Shape::Plane { point, normal } => {
+                let s = (point - ray.origin).dot(normal) / ray.direction.dot(normal);
+                (s.is_finite() && s >= 0.0).then_some(s)
+            }
+        }
+    }
+
+    /// Unit surface normal at a point `p` on the shape.
+    pub fn normal_at(&self, p: DVec3) -> DVec3 {
+        match *self {
+            Shape::Sphere { centre, .. } => normalise(p - centre),
+            Shape::Plane { normal, .. } => normal,
+        }
+    }
+}
+
+/// The nearest hit along `ray`. Objects are tried in file order and a later object wins only
+/// when strictly nearer, so ties go to the earlier object (`min_by` keeps the first minimum).
+pub fn closest_hit(objects: &[Object], ray: &Ray) -> Option<Hit> {
+    objects
+        .iter()
+        .enumerate()
+        .filter_map(|(object, o)| {
+            o.shape
+                .intersect(ray)
+                .map(|distance| Hit { object, distance })
+        })
+        .min_by(|a, b| a.distance.total_cmp(&b.distance))
+}
+
+/// Whether anything lies along `ray` strictly nearer than `max_distance`: the shadow test. The
+/// same answer as `closest_hit(..).distance < max_distance`, but stops at the first blocker.
+pub fn occluded(objects: &[Object], ray: &Ray, max_distance: f64) -> bool {
+    objects
+        .iter()
+        .any(|o| o.shape.intersect(ray).is_some_and(|s| s < max_distance))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Material;
+
+    fn sphere(centre: DVec3, radius: f64) -> Shape {
+        Shape::Sphere { centre, radius }
+    }
+
+    fn plane(point: DVec3, normal: DVec3) -> Shape {
+        Shape::Plane { point, normal }
+    }
+
+    #[test]
+    fn sphere_hit_distance_and_normal_match_the_analytic_answer() {
+        let s = sphere(DVec3::new(0.0, 0.0, 5.0), 1.0);
+        let ray = Ray::new(DVec3::ZERO, DVec3::Z);
+        assert_eq!(s.intersect(&ray), Some(4.0));
+        assert_eq!(s.normal_at(ray.at(4.0)), DVec3::new(0.0, 0.0, -1.0));
+
+        // Off-axis: the ray y = 0.6 meets the unit sphere at z = 5 - 0.8.
+        let ray = Ray::new(DVec3::new(0.0, 0.6, 0.0), DVec3::Z);
+        let hit = s.intersect(&ray).expect("hits");
+        assert!((hit - 4.2).abs() < 1e-12, "{hit}");
+        let n = s.normal_at(ray.at(hit));
+        assert!((n - DVec3::new(0.0, 0.6, -0.8)).length() < 1e-12, "{n}");
+    }
+
+    #[test]
+    fn sphere_missed_and_behind_gives_no_hit() {
+        let s = sphere(DVec3::new(0.0, 0.0, 5.0), 1.0);
+        assert_eq!(
+            s.intersect(&Ray::new(DVec3::new(0.0, 1.5, 0.0), DVec3::Z)),
+            None
+        );
+        assert_eq!(s.intersect(&Ray::new(DVec3::ZERO, -DVec3::Z)), None);
+    }
+
+    #[test]
+    fn ray_starting_inside_a_sphere_does_not_hit_it() {
+        let s = sphere(DVec3::new(0.0, 0.0, 5.0), 1.0);
+        for dir in [
+            DVec3::Z,
+            -DVec3::Z,
+            DVec3::X,
+            DVec3::new(0.3, -0.4, 0.5).normalize(),
+        ] {
+            assert_eq!(
+                s.intersect(&Ray::new(DVec3::new(0.0, 0.0, 5.2), dir)),
+                None,
+                "{dir}"
+            );
+        }
+    }
+
+    #[test]
+    fn plane_in_front_behind_parallel_and_from_behind() {
+        let floor = plane(DVec3::new(0.0, -1.0, 0.0), DVec3::Y);
+        // In front, seen from above.
+        let down = Ray::new(DVec3::ZERO, DVec3::new(0.0, -1.0, 0.0));
+        assert_eq!(floor.intersect(&down), Some(1.0));
+        // Behind the ray.
+        assert_eq!(floor.intersect(&Ray::new(DVec3::ZERO, DVec3::Y)), None);
+        // Parallel: D.N = 0 gives an infinite or NaN parameter, never a hit.
+        assert_eq!(floor.intersect(&Ray::new(DVec3::ZERO, DVec3::X)), None);
+        assert_eq!(
+            floor.intersect(&Ray::new(DVec3::new(0.0, -1.0, 0.0), DVec3::X)),
+            None
+        );
+        // Seen from behind: still hit, and the normal is not flipped.
+        let up = Ray::new(DVec3::new(0.0, -3.0, 0.0), DVec3::Y);
+        assert_eq!(floor.intersect(&up), Some(2.0));
+        assert_eq!(floor.normal_at(up.at(2.0)), DVec3::Y);
+    }
+
+    #[test]
+    fn ties_go_to_the_earlier_object() {
+        let m = Material::sphere(DVec3::ONE);
+        let objects = vec![
+            Object {
+                shape: plane(DVec3::new(0.0, 0.0, 4.0), -DVec3::Z),
+                material: m,
+            },
+            Object {
+                shape: sphere(DVec3::new(0.0, 0.0, 5.0), 1.0),
+                material: m,
+            },
+            Object {
+                shape: plane(DVec3::new(0.0, 0.0, 4.0), DVec3::Z),
+                material: m,
+            },
+        ];
+        let hit = closest_hit(&objects, &Ray::new(DVec3::ZERO, DVec3::Z)).expect("hits");
+        assert_eq!(
+            hit,
+            Hit {
+                object: 0,
+                distance: 4.0
+            }
+        );
+    }
+
+    #[test]
+    fn a_ray_spawned_off_a_sphere_does_not_rehit_it() {
+        let s = sphere(DVec3::new(0.2, -0.1, 4.0), 0.7);
+        let objects = vec![Object {
+            shape: s,
+            material: Material::sphere(DVec3::ONE),
+        }];
+        for i in 0..100 {
+            let t = i as f64 * 0.173;
+            let dir = normalise(DVec3::new(t.sin(), (2.0 * t).cos(), -0.5 - t.cos().abs()));
+            let hit = s.intersect(&Ray::new(DVec3::ZERO, dir));
+            let Some(d) = hit else { continue };
+            let p = dir * d;
+            let n = s.normal_at(p);
+            let out = normalise(n + DVec3::new(0.1 * t.cos(), 0.1 * t.sin(), 0.0));
+            assert!(
+                closest_hit(&objects, &Ray::offset_from(p, out)).is_none(),
+                "ray {i}"
+            );
+        }
+    }
+
+    #[test]
+    fn normalise_divides_each_component() {
+        let v = DVec3::new(0.1, 0.7, 1.0);
+        let l = (0.1f64 * 0.1 + 0.7 * 0.7 + 1.0).sqrt();
+        assert_eq!(normalise(v), DVec3::new(0.1 / l, 0.7 / l, 1.0 / l));
+    }
+}

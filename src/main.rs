@@ -1,0 +1,52 @@
+//! The `whitted` binary: parse the command line, run it, turn any error into one line on stderr
+//! and exit status 2 (cli.md, Exit status and errors).
+
+use std::process::ExitCode;
+
+use clap::error::ErrorKind;
+use clap::Parser;
+
+use whitted::cli::{Cli, Command};
+use whitted::commands;
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return usage_error(&e),
+    };
+    let result = match &cli.command {
+        Some(Command::Render(args)) => commands::render::run(args),
+        None => commands::render::run(&cli.render),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+/// Help and version go to stdout with status 0; a bad command line becomes the first line of
+/// clap's message (which already starts with `error:`) and status 2.
+fn usage_error(e: &clap::Error) -> ExitCode {
+    match e.kind() {
+        ErrorKind::DisplayHelp
+        | ErrorKind::DisplayVersion
+        | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            let _ = e.print();
+            ExitCode::SUCCESS
+        }
+        _ => {
+            let text = e.to_string();
+            let first = text.lines().next().unwrap_or("error: bad command line");
+            let tip = text
+                .lines()
+                .map(str::trim)
+                .find(|l| l.starts_with("tip:"))
+                .map_or(String::new(), |t| format!(" ({t})"));
+            eprintln!("{first}{tip} (see `whitted --help`)");
+            ExitCode::from(2)
+        }
+    }
+}

@@ -1,0 +1,315 @@
+//! The tick shading model (rendering.md): Phong with several point lights, hard shadows and
+//! mirror reflection, evaluated in the course's operation order so the beauty is bit-exact.
+
+use glam::DVec3;
+
+use crate::geometry::{closest_hit, normalise, occluded, Ray};
+use crate::sample::{PrimaryHit, Sample};
+use crate::scene::{Material, Scene};
+
+/// Radiance of every ray that leaves the scene.
+pub const BACKGROUND: DVec3 = DVec3::splat(0.1);
+
+/// What a trace may do, from the command line.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct TraceOptions {
+    /// Mirror reflections followed after the primary hit.
+    pub bounces: u32,
+    /// `false` ignores occlusion: every light reaches every point (the handout's figure 2).
+    pub shadows: bool,
+}
+
+/// Traces one camera ray through its mirror chain.
+///
+/// The chain is followed iteratively. Each vertex's weighted terms go straight into the
+/// sample's layers; its unweighted shaded colour is kept so that the beauty can then be folded
+/// from the far end exactly as the course's recursion evaluates it:
+/// `direct * (1 - r) + reflected * r`.
+pub fn trace(scene: &Scene, primary: Ray, options: TraceOptions) -> Sample {
+    let mut sample = Sample::empty(scene.lights.len(), options.bounces);
+    // (shaded colour, reflectivity if the chain continues there), vertex by vertex.
+    let mut chain: Vec<(DVec3, Option<f64>)> = Vec::with_capacity(2);
+    let mut far_end = BACKGROUND;
+    let mut ray = primary;
+    let mut throughput = 1.0;
+    for k in 0..=options.bounces {
+        sample.rays += 1;
+        let Some(hit) = closest_hit(&scene.objects, &ray) else {
+            let background = BACKGROUND * throughput;
+            sample.background += background;
+            *bucket(&mut sample, k) += background;
+            far_end = BACKGROUND;
+            break;
+        };
+        let object = &scene.objects[hit.object];
+        let material = &object.material;
+        let point = ray.at(hit.distance);
+        let normal = object.shape.normal_at(point);
+        let continues = k < options.bounces && material.reflectivity != 0.0;
+        let weight = if continues {
+            throughput * (1.0 - material.reflectivity)
+        } else {
+            throughput
+        };
+        let vertex = Vertex {
+            point,
+            normal,
+            material,
+            weight,
+            primary: k == 0,
+        };
+        let colour = shade(scene, &vertex, options.shadows, &mut sample);
+        *bucket(&mut sample, k) += colour * weight;
+        if k == 0 {
+            sample.primary = Some(PrimaryHit {
+                position: point,
+                normal,
+                albedo: material.colour,
+                object: hit.object,
+            });
+        }
+        chain.push((colour, continues.then_some(material.reflectivity)));
+        if !continues {
+            break;
+        }
+        throughput *= material.reflectivity;
+        ray = Ray::offset_from(point, mirror_direction(ray.direction, normal));
+    }
+    sample.beauty = chain
+        .iter()
+        .rev()
+        .fold(far_end, |reflected, &(colour, r)| match r {
+            Some(r) => colour * (1.0 - r) + reflected * r,
+            None => colour,
+        });
+    sample
+}
+
+/// Where vertex k's radiance is filed: the direct layer for the primary hit, else the
+/// reflected layer for k bounces.
+fn bucket(sample: &mut Sample, k: u32) -> &mut DVec3 {
+    match k {
+        0 => &mut sample.direct,
+        k => &mut sample.reflected_by_bounce[k as usize - 1],
+    }
+}
+
+/// The direction a ray along `d` leaves a mirror with normal `n`: `-d` reflected about `n`,
+/// `2 (n . -d) n - (-d)`, normalised as the course does.
+pub fn mirror_direction(d: DVec3, n: DVec3) -> DVec3 {
+    let to_eye = -d;
+    normalise(n * (2.0 * n.dot(to_eye)) - to_eye)
+}
+
+/// A surface point being shaded and how much it counts towards the pixel.
+struct Vertex<'a> {
+    point: DVec3,
+    normal: DVec3,
+    material: &'a Material,
+    /// `w_k` of aovs.md: the share of the pixel this vertex's shading makes up.
+    weight: f64,
+    /// Whether this is the camera's own hit (shadow masks record only that one).
+    primary: bool,
+}
+
+/// Phong shading at a vertex, in the course's order (rendering.md, Shading). Returns the
+/// unweighted colour and adds the weighted per-effect terms to `sample`.
+fn shade(scene: &Scene, vertex: &Vertex, shadows: bool, sample: &mut Sample) -> DVec3 {
+    let Vertex {
+        point: p,
+        normal: n,
+        material: m,
+        weight,
+        ..
+    } = *vertex;
+    let ambient = scene.ambient * m.colour;
+    sample.ambient += ambient * weight;
+    let mut colour = ambient;
+    // Towards the camera at the origin, even for reflected rays: the reference does this.
+    let v = normalise(-p);
+    for (light, out) in scene.lights.iter().zip(sample.lights.iter_mut()) {
+        let to_light = light.position - p;
+        let d = to_light.length();
+        let illumination = light.illumination_at(d);
+        let l = normalise(to_light);
+        let n_dot_l = n.dot(l).max(0.0);
+        // Built from the clamped N.L, as the reference does.
+        let r = n * (2.0 * n_dot_l) - l;
+        let diffuse = ((m.colour * illumination) * m.kd) * n_dot_l;
+        let specular = (illumination * m.ks) * r.dot(v).max(0.0).powf(m.n);
+        let in_shadow = shadows && {
+            sample.rays += 1;
+            occluded(&scene.objects, &Ray::offset_from(p, l), d)
+        };
+        out.unshadowed += (diffuse + specular) * weight;
+        if vertex.primary {
+            out.occluded_at_primary = in_shadow;
+        }
+        if !in_shadow {
+            colour = (colour + diffuse) + specular;
+            out.shadowed += (diffuse + specular) * weight;
+            sample.diffuse += diffuse * weight;
+            sample.specular += specular * weight;
+        }
+    }
+    colour
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Shape;
+    use crate::scene::{Object, PointLight};
+    use std::f64::consts::PI;
+
+    const NO_BOUNCES: TraceOptions = TraceOptions {
+        bounces: 0,
+        shadows: true,
+    };
+
+    fn light(position: DVec3, intensity: f64) -> PointLight {
+        PointLight {
+            position,
+            colour: DVec3::ONE,
+            intensity,
+            name: "0".into(),
+        }
+    }
+
+    /// A plane facing the camera at z = 4, lit head-on from z = 2.
+    fn wall_scene() -> Scene {
+        Scene {
+            objects: vec![Object {
+                shape: Shape::Plane {
+                    point: DVec3::new(0.0, 0.0, 4.0),
+                    normal: DVec3::new(0.0, 0.0, -1.0),
+                },
+                material: Material::plane(DVec3::new(1.0, 0.5, 0.25)),
+            }],
+            lights: vec![light(DVec3::new(0.0, 0.0, 2.0), 100.0)],
+            ambient: DVec3::splat(0.2),
+        }
+    }
+
+    #[test]
+    fn lambertian_plane_at_normal_incidence_is_ambient_plus_diffuse() {
+        let scene = wall_scene();
+        let c = DVec3::new(1.0, 0.5, 0.25);
+        let s = trace(&scene, Ray::new(DVec3::ZERO, DVec3::Z), NO_BOUNCES);
+        // I = 100 / (4 pi 2^2); kD = 0.9; N.L = 1; kS = 0.
+        let expected = 0.2 * c + c * 0.9 * (100.0 / (16.0 * PI));
+        assert!(
+            (s.beauty - expected).length() < 1e-15,
+            "{} vs {expected}",
+            s.beauty
+        );
+        assert_eq!(s.direct, s.beauty);
+        assert_eq!(s.specular, DVec3::ZERO);
+        assert_eq!(s.rays, 2);
+        let hit = s.primary.expect("hit");
+        assert_eq!(hit.position, DVec3::new(0.0, 0.0, 4.0));
+        assert!(!s.lights[0].occluded_at_primary);
+    }
+
+    #[test]
+    fn shadowed_point_receives_ambient_only() {
+        let mut scene = wall_scene();
+        scene.lights = vec![light(DVec3::new(0.0, 2.0, 3.0), 100.0)];
+        // A small sphere on the segment from the hit point (0,0,4) to the light, off the
+        // camera ray.
+        scene.objects.push(Object {
+            shape: Shape::Sphere {
+                centre: DVec3::new(0.0, 1.0, 3.5),
+                radius: 0.3,
+            },
+            material: Material::sphere(DVec3::ONE),
+        });
+        let s = trace(&scene, Ray::new(DVec3::ZERO, DVec3::Z), NO_BOUNCES);
+        assert_eq!(s.beauty, DVec3::new(0.2, 0.1, 0.05));
+        assert!(s.lights[0].occluded_at_primary);
+        assert_eq!(s.lights[0].shadowed, DVec3::ZERO);
+        assert!(s.lights[0].unshadowed.min_element() > 0.0);
+
+        let lit = trace(
+            &scene,
+            Ray::new(DVec3::ZERO, DVec3::Z),
+            TraceOptions {
+                shadows: false,
+                ..NO_BOUNCES
+            },
+        );
+        assert!(lit.beauty.min_element() > 0.2 * 0.25);
+        assert_eq!(lit.lights[0].shadowed, lit.lights[0].unshadowed);
+        assert!(!lit.lights[0].occluded_at_primary);
+    }
+
+    #[test]
+    fn miss_gives_the_background_in_direct() {
+        let scene = wall_scene();
+        let s = trace(
+            &scene,
+            Ray::new(DVec3::ZERO, -DVec3::Z),
+            TraceOptions {
+                bounces: 3,
+                shadows: true,
+            },
+        );
+        assert_eq!(s.beauty, BACKGROUND);
+        assert_eq!(s.direct, BACKGROUND);
+        assert_eq!(s.background, BACKGROUND);
+        assert_eq!(s.reflected(), DVec3::ZERO);
+        assert!(s.primary.is_none());
+    }
+
+    #[test]
+    fn mirror_chain_layers_add_up_to_the_beauty() {
+        // Two facing mirrors with a light between them: the chain uses every bounce.
+        let mirror = |z: f64, nz: f64, colour: DVec3| Object {
+            shape: Shape::Plane {
+                point: DVec3::new(0.0, 0.0, z),
+                normal: DVec3::new(0.0, 0.0, nz),
+            },
+            material: Material {
+                reflectivity: 0.5,
+                ..Material::sphere(colour)
+            },
+        };
+        let scene = Scene {
+            objects: vec![
+                mirror(4.0, -1.0, DVec3::new(1.0, 0.2, 0.2)),
+                mirror(-1.0, 1.0, DVec3::new(0.2, 0.2, 1.0)),
+            ],
+            lights: vec![light(DVec3::new(0.5, 0.5, 1.5), 50.0)],
+            ambient: DVec3::splat(0.3),
+        };
+        let ray = Ray::new(DVec3::ZERO, normalise(DVec3::new(0.05, 0.02, 1.0)));
+        for bounces in 0..5 {
+            let s = trace(
+                &scene,
+                ray,
+                TraceOptions {
+                    bounces,
+                    shadows: true,
+                },
+            );
+            let sum_effects = s.ambient + s.diffuse + s.specular + s.background;
+            let sum_lights = s.ambient + s.lights[0].shadowed + s.background;
+            for total in [s.direct + s.reflected(), sum_effects, sum_lights] {
+                assert!(
+                    (total - s.beauty).abs().max_element() < 1e-12,
+                    "bounces {bounces}"
+                );
+            }
+            assert_eq!(s.reflected_by_bounce.len(), bounces as usize);
+            assert!(s.reflected_by_bounce.iter().all(|r| r.min_element() > 0.0));
+            assert_eq!(s.rays, 2 * (u64::from(bounces) + 1));
+        }
+    }
+
+    #[test]
+    fn mirror_direction_reflects_about_the_normal() {
+        let d = normalise(DVec3::new(1.0, -1.0, 0.0));
+        let r = mirror_direction(d, DVec3::Y);
+        assert!((r - normalise(DVec3::new(1.0, 1.0, 0.0))).length() < 1e-15);
+    }
+}
