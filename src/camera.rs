@@ -62,6 +62,22 @@ impl Camera {
         let y_pos = self.plane_height / 2.0 - (f64::from(y) + v - 1.0) * self.step;
         Ray::new(DVec3::ZERO, normalise(DVec3::new(x_pos, y_pos, 1.0)))
     }
+
+    /// OpenEXR's `worldToNDC` for this camera (Imath convention: row vectors, `p * M`, then
+    /// divide by w). NDC has x right and y down, with (0, 0) and (1, 1) the top-left and
+    /// bottom-right corners of the display window. Columns are centred on the image plane;
+    /// rows follow the course's aiming, so the window's top edge is at `h/2 + step` and its
+    /// bottom at `-h/2 + step` (see `plane_point`). World space is camera space here.
+    pub fn world_to_ndc(&self) -> [[f64; 4]; 4] {
+        let (w, h) = (self.plane_width, self.plane_height);
+        let top = h / 2.0 + self.step;
+        [
+            [1.0 / w, 0.0, 0.0, 0.0],
+            [0.0, -1.0 / h, 0.0, 0.0],
+            [0.5, top / h, 1.0, 1.0],
+            [0.0, 0.0, 0.0, 0.0],
+        ]
+    }
 }
 
 #[cfg(test)]
@@ -95,5 +111,21 @@ mod tests {
         let a = c.pixel_centre_ray(10, 7).direction;
         let b = c.sub_pixel_ray(10, 7, 0.5, 0.5).direction;
         assert!((a - b).length() < 1e-15);
+    }
+
+    #[test]
+    fn world_to_ndc_maps_pixel_rays_to_their_pixels() {
+        let c = Camera::new(640, 480);
+        let m = c.world_to_ndc();
+        for (x, y) in [(0, 0), (639, 479), (320, 100), (17, 400)] {
+            let p = c.pixel_centre_ray(x, y).direction * 3.7;
+            let row = [p.x, p.y, p.z, 1.0];
+            let out: Vec<f64> = (0..4)
+                .map(|j| (0..4).map(|i| row[i] * m[i][j]).sum())
+                .collect();
+            let (u, v) = (out[0] / out[3], out[1] / out[3]);
+            assert!((u * 640.0 - (f64::from(x) + 0.5)).abs() < 1e-9, "{x} {u}");
+            assert!((v * 480.0 - (f64::from(y) + 0.5)).abs() < 1e-9, "{y} {v}");
+        }
     }
 }

@@ -5,12 +5,17 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
 
+use crate::output::exr::ExrCompression;
+
 /// Most reflection bounces accepted: each bounce is a layer in the EXR, and past this depth a
 /// mirror chain's contribution is far below what a float image can show.
 pub const MAX_BOUNCES: u32 = 100;
 
 /// Largest image side accepted.
 pub const MAX_SIDE: u32 = 65_535;
+
+/// Most samples per pixel accepted (a 32x32 grid).
+pub const MAX_SPP: u32 = 1024;
 
 #[derive(Debug, Parser)]
 #[command(
@@ -60,9 +65,35 @@ pub struct RenderArgs {
     #[arg(long, value_name = "H", default_value_t = 480, value_parser = parse_side)]
     pub height: u32,
 
+    /// Samples per pixel on a fixed k*k stratified grid (1 = the pixel centre, the exact tick
+    /// image)
+    #[arg(long, value_name = "N", default_value_t = 1, value_parser = parse_spp)]
+    pub spp: u32,
+
     /// Ignore occlusion: every light reaches every point
     #[arg(long)]
     pub no_shadows: bool,
+
+    /// Also write the multi-layer linear HDR OpenEXR (beauty and AOVs)
+    #[arg(long, value_name = "FILE.exr")]
+    pub exr: Option<PathBuf>,
+
+    /// EXR layers: `all`, `beauty`, or a comma-separated list such as
+    /// `direct,reflected,shadow_key` (the beauty is always written)
+    #[arg(long, value_name = "all|beauty|LIST", default_value = "all")]
+    pub aovs: String,
+
+    /// Store the EXR's colour layers as half floats (masks and data layers stay float)
+    #[arg(long)]
+    pub half: bool,
+
+    /// EXR compression (all lossless)
+    #[arg(long, value_name = "C", value_enum, default_value_t = ExrCompression::Zip)]
+    pub compression: ExrCompression,
+
+    /// Record the render time in the EXR (`capDate`); without it, files are reproducible
+    #[arg(long)]
+    pub stamp_date: bool,
 
     /// Worker threads [default: all cores]; the output is identical for any number
     #[arg(long, value_name = "N", value_parser = parse_threads)]
@@ -98,6 +129,20 @@ fn parse_side(s: &str) -> Result<u32, String> {
         .ok_or_else(|| format!("must be between 1 and {MAX_SIDE} pixels, got {n}"))
 }
 
+fn parse_spp(s: &str) -> Result<u32, String> {
+    let n: u32 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("expected a whole number of samples, got `{s}`"))?;
+    let k = n.isqrt();
+    if n == 0 || k * k != n || n > MAX_SPP {
+        return Err(format!(
+            "samples per pixel must be a square k*k (1, 4, 9, 16, ...) up to {MAX_SPP}, got {n}"
+        ));
+    }
+    Ok(n)
+}
+
 fn parse_threads(s: &str) -> Result<usize, String> {
     match s.trim().parse::<usize>() {
         Ok(n) if n >= 1 => Ok(n),
@@ -124,5 +169,8 @@ mod tests {
         assert!(parse_side("70000").is_err());
         assert_eq!(parse_side("640"), Ok(640));
         assert!(parse_threads("0").is_err());
+        assert_eq!(parse_spp("16"), Ok(16));
+        assert!(parse_spp("8").unwrap_err().contains("square"));
+        assert!(parse_spp("0").is_err());
     }
 }

@@ -1,30 +1,224 @@
-//! The film: where samples are accumulated into pixels.
+//! The film: named layers declared up front, filled pixel by pixel from samples.
+//!
+//! The beauty is also kept in f64, because the tick PNG quantises the exact value the course
+//! computes; rounding it to f32 first could move a pixel across a byte. Every layer is
+//! accumulated in f64 and stored as f32, which is what the EXR holds.
 
 use glam::DVec3;
 
-/// The rendered image. The beauty is kept in f64 because the tick PNG quantises the exact
-/// value the course computes; rounding it to f32 first could move a pixel across a byte.
+use crate::aov::{Layer, Reduction};
+use crate::error::{Error, Result};
+use crate::sample::Sample;
+
+/// The rendered image and its AOV layers.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Film {
     pub width: u32,
     pub height: u32,
-    /// Row-major, y = 0 the top row.
+    /// Row-major, y = 0 the top row; the exact mean beauty of each pixel.
     pub beauty: Vec<DVec3>,
-    /// Rays cast while rendering it (primary, shadow, reflected).
+    /// The layers stored, in file order.
+    pub layers: Vec<Layer>,
+    /// Full channel names of all layers, in storage order.
+    pub channel_names: Vec<String>,
+    /// Pixel-major: channel c of pixel i is `data[i * channel_count + c]`. Always finite.
+    pub data: Vec<f32>,
+    /// Samples per pixel.
+    pub spp: u32,
+    /// Rays cast while rendering (primary, shadow, reflected).
     pub rays: u64,
+    /// Channel values that were NaN or infinite and were stored as 0.
+    pub non_finite: u64,
 }
 
 impl Film {
-    pub fn new(width: u32, height: u32) -> Self {
-        Film {
+    /// An empty film for `layers`. Two layers with a channel of the same name are an error:
+    /// one of them would silently vanish from the file.
+    pub fn new(width: u32, height: u32, spp: u32, layers: Vec<Layer>) -> Result<Self> {
+        let channel_names: Vec<String> = layers.iter().flat_map(Layer::channel_names).collect();
+        for (i, name) in channel_names.iter().enumerate() {
+            if channel_names[..i].contains(name) {
+                return Err(Error::Usage(format!(
+                    "two layers declare the channel `{name}`"
+                )));
+            }
+        }
+        let pixels = width as usize * height as usize;
+        Ok(Film {
             width,
             height,
-            beauty: vec![DVec3::ZERO; width as usize * height as usize],
+            beauty: vec![DVec3::ZERO; pixels],
+            data: vec![0.0; pixels * channel_names.len()],
+            layers,
+            channel_names,
+            spp,
             rays: 0,
+            non_finite: 0,
+        })
+    }
+
+    pub fn channel_count(&self) -> usize {
+        self.channel_names.len()
+    }
+
+    /// The exact beauty of pixel (x, y).
+    pub fn pixel(&self, x: u32, y: u32) -> DVec3 {
+        self.beauty[y as usize * self.width as usize + x as usize]
+    }
+
+    /// One channel as a row-major plane, or `None` if the film does not hold it.
+    pub fn channel(&self, name: &str) -> Option<Vec<f32>> {
+        let c = self.channel_names.iter().position(|n| n == name)?;
+        Some(
+            self.data
+                .chunks_exact(self.channel_count())
+                .map(|pixel| pixel[c])
+                .collect(),
+        )
+    }
+}
+
+/// Sums the samples of one pixel, then writes their reduction into the film's storage.
+pub struct PixelAccumulator<'a> {
+    layers: &'a [Layer],
+    beauty: DVec3,
+    sums: Vec<f64>,
+    scratch: Vec<f64>,
+    samples: u32,
+}
+
+impl<'a> PixelAccumulator<'a> {
+    pub fn new(layers: &'a [Layer], channel_count: usize) -> Self {
+        PixelAccumulator {
+            layers,
+            beauty: DVec3::ZERO,
+            sums: vec![0.0; channel_count],
+            scratch: vec![0.0; 4],
+            samples: 0,
         }
     }
 
-    pub fn pixel(&self, x: u32, y: u32) -> DVec3 {
-        self.beauty[y as usize * self.width as usize + x as usize]
+    /// Adds one sample; `nearest_centre` marks the sample whose depth, position and id the
+    /// pixel keeps.
+    pub fn add(&mut self, sample: &Sample, nearest_centre: bool) {
+        self.beauty += sample.beauty;
+        self.samples += 1;
+        let mut offset = 0;
+        for layer in self.layers {
+            let n = layer.quantity.channels().len();
+            let values = &mut self.scratch[..n];
+            layer.quantity.values(sample, values);
+            let sums = &mut self.sums[offset..offset + n];
+            match layer.quantity.reduction() {
+                Reduction::Mean => sums
+                    .iter_mut()
+                    .zip(values.iter())
+                    .for_each(|(s, v)| *s += v),
+                Reduction::NearestCentre if nearest_centre => sums.copy_from_slice(values),
+                Reduction::NearestCentre => {}
+            }
+            offset += n;
+        }
+    }
+
+    /// Writes the pixel (means, and nearest-centre values) and resets for the next one.
+    /// Returns how many channel values were not finite and were stored as 0.
+    pub fn finish(&mut self, beauty: &mut DVec3, out: &mut [f32]) -> u64 {
+        let count = f64::from(self.samples.max(1));
+        *beauty = self.beauty / count;
+        let mut non_finite = 0;
+        let mut offset = 0;
+        for layer in self.layers {
+            let n = layer.quantity.channels().len();
+            let divisor = match layer.quantity.reduction() {
+                Reduction::Mean => count,
+                Reduction::NearestCentre => 1.0,
+            };
+            for (o, &s) in out[offset..offset + n]
+                .iter_mut()
+                .zip(&self.sums[offset..offset + n])
+            {
+                let v = s / divisor;
+                if v.is_finite() {
+                    // Finite f64 beyond the f32 range stays finite, at the largest f32.
+                    *o = v.clamp(-f64::from(f32::MAX), f64::from(f32::MAX)) as f32;
+                } else {
+                    *o = 0.0;
+                    non_finite += 1;
+                }
+            }
+            offset += n;
+        }
+        self.beauty = DVec3::ZERO;
+        self.sums.iter_mut().for_each(|s| *s = 0.0);
+        self.samples = 0;
+        non_finite
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::aov::{all_layers, Quantity};
+    use crate::sample::PrimaryHit;
+
+    fn sample(beauty: f64, depth: f64) -> Sample {
+        let mut s = Sample::empty(1, 0);
+        s.beauty = DVec3::splat(beauty);
+        s.direct = DVec3::splat(beauty);
+        s.primary = Some(PrimaryHit {
+            position: DVec3::new(0.0, 0.0, depth),
+            normal: DVec3::Y,
+            albedo: DVec3::ONE,
+            object: 4,
+        });
+        s
+    }
+
+    #[test]
+    fn duplicate_channels_are_refused() {
+        let layer = all_layers(&[], 0).remove(1);
+        assert!(Film::new(2, 2, 1, vec![layer.clone(), layer]).is_err());
+    }
+
+    #[test]
+    fn colour_is_averaged_and_depth_comes_from_the_centre_sample() {
+        let layers = all_layers(&["a".into()], 0);
+        let film = Film::new(1, 1, 2, layers.clone()).expect("film");
+        let mut acc = PixelAccumulator::new(&layers, film.channel_count());
+        acc.add(&sample(1.0, 3.0), false);
+        acc.add(&sample(0.5, 7.0), true);
+        let mut beauty = DVec3::ZERO;
+        let mut out = vec![0.0; film.channel_count()];
+        assert_eq!(acc.finish(&mut beauty, &mut out), 0);
+        assert_eq!(beauty, DVec3::splat(0.75));
+        let at = |name: &str| {
+            out[film
+                .channel_names
+                .iter()
+                .position(|n| n == name)
+                .expect(name)]
+        };
+        assert_eq!(at("R"), 0.75);
+        assert_eq!(at("A"), 1.0);
+        assert_eq!(at("direct.G"), 0.75);
+        assert_eq!(at("Z"), 7.0);
+        assert_eq!(at("objectid.X"), 5.0);
+        assert_eq!(at("N.Y"), 1.0);
+    }
+
+    #[test]
+    fn non_finite_values_are_stored_as_zero_and_counted() {
+        let layers = vec![Layer {
+            name: "direct".into(),
+            quantity: Quantity::Direct,
+        }];
+        let mut acc = PixelAccumulator::new(&layers, 3);
+        let mut s = sample(1.0, 1.0);
+        s.direct = DVec3::new(f64::NAN, f64::INFINITY, 1e300);
+        acc.add(&s, true);
+        let mut out = vec![9.0; 3];
+        assert_eq!(acc.finish(&mut DVec3::ZERO, &mut out), 2);
+        assert_eq!(out, [0.0, 0.0, f32::MAX]);
     }
 }

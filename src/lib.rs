@@ -24,6 +24,7 @@
 //! - [`tonemap`] and [`output`]: linear film -> display bytes -> files.
 //! - [`cli`] and [`commands`]: the command line.
 
+pub mod aov;
 pub mod camera;
 pub mod cli;
 pub mod commands;

@@ -1,4 +1,6 @@
 //! Writers that turn a rendered film into files.
 
 pub mod atomic;
+pub mod exr;
+pub mod exr_header;
 pub mod png;

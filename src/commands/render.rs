@@ -1,18 +1,20 @@
 //! `whitted render` (and the bare `whitted ...` tick command line): scene -> film -> files.
 
-use std::io::IsTerminal;
+use std::io::{BufWriter, IsTerminal, Write};
 use std::path::Path;
-use std::time::{Duration, Instant};
+use std::time::{Duration, Instant, SystemTime};
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
+use crate::aov;
 use crate::camera::Camera;
 use crate::cli::RenderArgs;
 use crate::error::{Error, Result};
 use crate::film::Film;
 use crate::output::atomic::AtomicFile;
+use crate::output::exr::{write_exr, ExrMetadata, ExrOptions};
 use crate::output::png::{write_png, PngImage, PngPixels};
-use crate::render::render;
+use crate::render::{render, RenderSettings};
 use crate::scene::{self, Scene};
 use crate::tonemap;
 use crate::trace::TraceOptions;
@@ -23,34 +25,87 @@ const STDOUT: &str = "-";
 /// Images smaller than this finish before a progress bar would be readable.
 const PROGRESS_MIN_PIXELS: u64 = 64 * 64;
 
+/// The name errors and the EXR header use for the scene compiled into the binary.
+const EMBEDDED_NAME: &str = "tick2.xml (embedded)";
+
 pub fn run(args: &RenderArgs) -> Result<()> {
     let scene = load_scene(args.input.as_deref())?;
+    let light_names: Vec<String> = scene.lights.iter().map(|l| l.name.clone()).collect();
+    let available = aov::all_layers(&light_names, args.bounces);
+    // Checked even without --exr, so a misspelt layer name is never silently ignored.
+    let selected = aov::select(&args.aovs, &available).map_err(Error::Usage)?;
+    let layers = if args.exr.is_some() {
+        selected
+    } else {
+        available[..1].to_vec()
+    };
+
     // Open outputs before rendering, so that an unwritable path fails in milliseconds.
-    let png = match () {
-        _ if args.no_png => None,
-        _ if args.output.as_os_str() == STDOUT => Some(PngOutput::Stdout),
-        _ => Some(PngOutput::File(AtomicFile::create(&args.output)?)),
+    let png_to_stdout = !args.no_png && args.output.as_os_str() == STDOUT;
+    let mut png_file = match () {
+        _ if args.no_png || png_to_stdout => None,
+        _ => Some(AtomicFile::create(&args.output)?),
+    };
+    let mut exr_file = match &args.exr {
+        Some(path) if !args.no_png && path == &args.output => {
+            return Err(Error::Usage(format!(
+                "--output and --exr are both `{}`; give them different paths",
+                path.display()
+            )))
+        }
+        Some(path) => Some(AtomicFile::create(path)?),
+        None => None,
     };
 
     let camera = Camera::new(args.width, args.height);
-    let options = TraceOptions {
-        bounces: args.bounces,
-        shadows: !args.no_shadows,
+    let settings = RenderSettings {
+        trace: TraceOptions {
+            bounces: args.bounces,
+            shadows: !args.no_shadows,
+        },
+        spp: args.spp,
     };
     let progress = progress_bar(args, &camera);
     let started = Instant::now();
     let film = with_threads(args.threads, || {
-        render(&scene, &camera, options, &|| progress.inc(1))
-    })?;
+        render(&scene, &camera, settings, layers, &|| progress.inc(1))
+    })??;
     progress.finish_and_clear();
-    let elapsed = started.elapsed();
+    let render_time = started.elapsed();
+    if film.non_finite > 0 {
+        eprintln!(
+            "warning: {} non-finite layer values (NaN or infinity) were written as 0",
+            film.non_finite
+        );
+    }
 
-    let written = match png {
-        Some(output) => Some(output.write(&tick_png(&film))?),
-        None => None,
-    };
+    // Write everything to temporary files first, then rename: all outputs or none.
+    let started = Instant::now();
+    if let Some(file) = exr_file.as_mut() {
+        let metadata = exr_metadata(args, &film, &camera, light_names);
+        let options = ExrOptions {
+            compression: args.compression,
+            half: args.half,
+        };
+        let path = file.target().to_path_buf();
+        write_exr(file.file(), &film, options, &metadata)
+            .map_err(|msg| Error::Exr { path, msg })?;
+    }
+    let exr_time = started.elapsed();
+    let png = (!args.no_png).then(|| tick_png(&film));
+    if let (Some(file), Some(image)) = (png_file.as_mut(), &png) {
+        let path = file.target().to_path_buf();
+        encode_png(file.file(), image, &path)?;
+    }
+    for file in [exr_file, png_file].into_iter().flatten() {
+        file.commit()?;
+    }
+    if let (true, Some(image)) = (png_to_stdout, &png) {
+        encode_png(std::io::stdout().lock(), image, Path::new(STDOUT))?;
+    }
+
     if !args.quiet {
-        eprintln!("{}", summary(&film, args, elapsed, written.as_deref()));
+        eprintln!("{}", summary(&film, args, render_time, exr_time));
     }
     Ok(())
 }
@@ -59,7 +114,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
 fn load_scene(input: Option<&Path>) -> Result<Scene> {
     match input {
         Some(path) => scene::load(path),
-        None => scene::parse_str("tick2.xml (embedded)", scene::EMBEDDED_TICK2),
+        None => scene::parse_str(EMBEDDED_NAME, scene::EMBEDDED_TICK2),
     }
 }
 
@@ -78,7 +133,7 @@ fn with_threads<T: Send>(threads: Option<usize>, work: impl FnOnce() -> T + Send
 /// A bar over image rows on stderr, shown only to a person watching a render that takes a
 /// moment.
 fn progress_bar(args: &RenderArgs, camera: &Camera) -> ProgressBar {
-    let pixels = u64::from(camera.width) * u64::from(camera.height);
+    let pixels = u64::from(camera.width) * u64::from(camera.height) * u64::from(args.spp);
     if args.quiet || !std::io::stderr().is_terminal() || pixels < PROGRESS_MIN_PIXELS {
         return ProgressBar::hidden();
     }
@@ -107,49 +162,142 @@ fn tick_png(film: &Film) -> PngImage {
     }
 }
 
-/// Where the PNG goes.
-enum PngOutput {
-    Stdout,
-    File(AtomicFile),
+fn encode_png(out: impl Write, image: &PngImage, path: &Path) -> Result<()> {
+    let mut out = BufWriter::new(out);
+    let fail = |msg: String| Error::Png {
+        path: path.to_path_buf(),
+        msg,
+    };
+    write_png(&mut out, image).map_err(|e| fail(e.to_string()))?;
+    out.flush().map_err(|e| fail(e.to_string()))
 }
 
-impl PngOutput {
-    /// Encodes and writes `image`; returns the name written to, for the summary.
-    fn write(self, image: &PngImage) -> Result<String> {
-        match self {
-            PngOutput::Stdout => {
-                let stdout = std::io::stdout().lock();
-                write_png(std::io::BufWriter::new(stdout), image).map_err(|e| Error::Png {
-                    path: STDOUT.into(),
-                    msg: e.to_string(),
-                })?;
-                Ok("standard output".into())
-            }
-            PngOutput::File(file) => {
-                let name = file.target().display().to_string();
-                let path = file.target().to_path_buf();
-                file.write_with(|w| {
-                    write_png(w, image).map_err(|e| Error::Png {
-                        path,
-                        msg: e.to_string(),
-                    })
-                })?;
-                Ok(name)
-            }
-        }
+fn exr_metadata(
+    args: &RenderArgs,
+    film: &Film,
+    camera: &Camera,
+    light_names: Vec<String>,
+) -> ExrMetadata {
+    let scene_name = args
+        .input
+        .as_ref()
+        .map_or(EMBEDDED_NAME.to_string(), |p| p.display().to_string());
+    ExrMetadata {
+        software: format!("whitted {}", env!("CARGO_PKG_VERSION")),
+        comments: format!(
+            "scene: {scene_name}; command: {}",
+            render_command(args, &scene_name)
+        ),
+        bounces: args.bounces,
+        spp: film.spp,
+        light_names,
+        capture_date: args.stamp_date.then(|| capture_date(SystemTime::now())),
+        world_to_ndc: camera.world_to_ndc(),
     }
 }
 
-fn summary(film: &Film, args: &RenderArgs, elapsed: Duration, written: Option<&str>) -> String {
-    let seconds = elapsed.as_secs_f64();
-    let rate = film.rays as f64 / seconds.max(1e-9) / 1e6;
-    let target = written.map_or(String::new(), |w| format!(" -> {w}"));
+/// The command that reproduces these pixels: every option that changes them, in canonical
+/// form. Output paths, threads and verbosity are left out, so that the same render written
+/// elsewhere, or with another thread count, has the same bytes.
+fn render_command(args: &RenderArgs, scene_name: &str) -> String {
+    let quote = |a: &str| {
+        if a.contains(char::is_whitespace) {
+            format!("'{a}'")
+        } else {
+            a.to_string()
+        }
+    };
+    let mut parts = vec![
+        "whitted render".to_string(),
+        match &args.input {
+            Some(_) => format!("--input {}", quote(scene_name)),
+            None => "(embedded tick2.xml)".to_string(),
+        },
+        format!("--bounces {}", args.bounces),
+        format!("--width {} --height {}", args.width, args.height),
+        format!("--spp {}", args.spp),
+    ];
+    if args.no_shadows {
+        parts.push("--no-shadows".into());
+    }
+    parts.push(format!("--aovs {}", quote(&args.aovs)));
+    if args.half {
+        parts.push("--half".into());
+    }
+    if let Some(c) = clap::ValueEnum::to_possible_value(&args.compression) {
+        parts.push(format!("--compression {}", c.get_name()));
+    }
+    parts.join(" ")
+}
+
+/// `YYYY:MM:DD hh:mm:ss` in UTC, as OpenEXR's `capDate` wants (with `utcOffset` 0).
+fn capture_date(now: SystemTime) -> String {
+    let secs = now
+        .duration_since(SystemTime::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs());
+    let (days, rest) = (secs / 86_400, secs % 86_400);
+    // Civil date from days since 1970-01-01 (Howard Hinnant's algorithm).
+    let z = days as i64 + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let day = doy - (153 * mp + 2) / 5 + 1;
+    let month = if mp < 10 { mp + 3 } else { mp - 9 };
+    let year = yoe + era * 400 + i64::from(month <= 2);
     format!(
-        "whitted: {}x{}, {} bounce{}, {} rays in {seconds:.2} s ({rate:.1} Mrays/s){target}",
+        "{year:04}:{month:02}:{day:02} {:02}:{:02}:{:02}",
+        rest / 3600,
+        rest / 60 % 60,
+        rest % 60
+    )
+}
+
+fn summary(film: &Film, args: &RenderArgs, render_time: Duration, exr_time: Duration) -> String {
+    let seconds = render_time.as_secs_f64();
+    let rate = film.rays as f64 / seconds.max(1e-9) / 1e6;
+    let mut outputs = Vec::new();
+    if let Some(exr) = &args.exr {
+        outputs.push(format!(
+            "{} ({} layers, written in {:.2} s)",
+            exr.display(),
+            film.layers.len(),
+            exr_time.as_secs_f64()
+        ));
+    }
+    if !args.no_png {
+        outputs.push(if args.output.as_os_str() == STDOUT {
+            "standard output".to_string()
+        } else {
+            args.output.display().to_string()
+        });
+    }
+    let target = if outputs.is_empty() {
+        String::new()
+    } else {
+        format!(" -> {}", outputs.join(", "))
+    };
+    format!(
+        "whitted: {}x{}, {} spp, {} bounce{}, {} rays in {seconds:.2} s ({rate:.1} Mrays/s){target}",
         film.width,
         film.height,
+        film.spp,
         args.bounces,
         if args.bounces == 1 { "" } else { "s" },
         film.rays,
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn capture_dates_are_civil_utc() {
+        let at = |secs| capture_date(SystemTime::UNIX_EPOCH + Duration::from_secs(secs));
+        assert_eq!(at(0), "1970:01:01 00:00:00");
+        assert_eq!(at(951_782_400), "2000:02:29 00:00:00");
+        assert_eq!(at(1_795_000_000), "2026:11:18 07:06:40");
+    }
 }

@@ -3,7 +3,6 @@
 //! file and never clobbers a previous good one.
 
 use std::fs::File;
-use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 use tempfile::NamedTempFile;
@@ -54,20 +53,18 @@ impl AtomicFile {
         &self.target
     }
 
-    /// Writes the whole content with `write` into the temporary file, then renames it over the
-    /// target.
-    pub fn write_with(
-        mut self,
-        write: impl FnOnce(&mut BufWriter<&mut File>) -> Result<()>,
-    ) -> Result<()> {
+    /// The temporary file to write the content into.
+    pub fn file(&mut self) -> &mut File {
+        self.temp.as_file_mut()
+    }
+
+    /// Makes the written content durable and renames it over the target.
+    pub fn commit(self) -> Result<()> {
         let target = self.target.clone();
-        let fail = |e| Error::io(&target, "cannot write output", e);
-        {
-            let mut out = BufWriter::new(self.temp.as_file_mut());
-            write(&mut out)?;
-            out.flush().map_err(fail)?;
-        }
-        self.temp.as_file().sync_all().map_err(fail)?;
+        self.temp
+            .as_file()
+            .sync_all()
+            .map_err(|e| Error::io(&target, "cannot write output", e))?;
         self.temp
             .persist(&self.target)
             .map_err(|e| Error::io(&target, "cannot write output", e.error))?;
@@ -81,26 +78,19 @@ mod tests {
 
     #[test]
     fn commit_replaces_and_drop_leaves_the_target_alone() {
+        use std::io::Write;
         let dir = tempfile::tempdir().expect("tempdir");
         let target = dir.path().join("out.bin");
         std::fs::write(&target, b"old").expect("write");
 
-        let abandoned = AtomicFile::create(&target).expect("create");
+        let mut abandoned = AtomicFile::create(&target).expect("create");
+        abandoned.file().write_all(b"partial").expect("write");
         drop(abandoned);
         assert_eq!(std::fs::read(&target).expect("read"), b"old");
 
-        let failed = AtomicFile::create(&target).expect("create");
-        let result = failed.write_with(|w| {
-            w.write_all(b"partial").expect("write");
-            Err(crate::error::Error::Usage("boom".into()))
-        });
-        assert!(result.is_err());
-        assert_eq!(std::fs::read(&target).expect("read"), b"old");
-
-        AtomicFile::create(&target)
-            .expect("create")
-            .write_with(|w| w.write_all(b"new").map_err(|e| Error::io("x", "w", e)))
-            .expect("commit");
+        let mut file = AtomicFile::create(&target).expect("create");
+        file.file().write_all(b"new").expect("write");
+        file.commit().expect("commit");
         assert_eq!(std::fs::read(&target).expect("read"), b"new");
         let leftovers: Vec<_> = std::fs::read_dir(dir.path()).expect("ls").collect();
         assert_eq!(leftovers.len(), 1, "temporary files left behind");

@@ -1,0 +1,180 @@
+//! Film -> one-part, scanline, multi-layer OpenEXR (aovs.md, File structure and Header).
+
+use std::fs::File;
+
+use exr::prelude::{self as x, f16, AttributeValue, Text, WritableImage as _};
+
+use crate::aov::Kind;
+use crate::film::Film;
+use crate::output::exr_header;
+
+/// Lossless codecs offered on the command line. Lossy ones would corrupt the data layers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum ExrCompression {
+    None,
+    Rle,
+    /// ZIP, one scanline per block.
+    Zips,
+    /// ZIP, 16 scanlines per block (the default, as in most renderers).
+    #[default]
+    Zip,
+    Piz,
+}
+
+impl ExrCompression {
+    fn codec(self) -> x::Compression {
+        match self {
+            ExrCompression::None => x::Compression::Uncompressed,
+            ExrCompression::Rle => x::Compression::RLE,
+            ExrCompression::Zips => x::Compression::ZIP1,
+            ExrCompression::Zip => x::Compression::ZIP16,
+            ExrCompression::Piz => x::Compression::PIZ,
+        }
+    }
+}
+
+/// How to store the pixels.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ExrOptions {
+    pub compression: ExrCompression,
+    /// Colour layers as half floats (masks and data layers stay float).
+    pub half: bool,
+}
+
+/// What the header says about the render.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExrMetadata {
+    /// `<program> <version>`.
+    pub software: String,
+    /// The scene file name and the command line.
+    pub comments: String,
+    pub bounces: u32,
+    pub spp: u32,
+    /// Light names, in layer order.
+    pub light_names: Vec<String>,
+    /// `YYYY:MM:DD hh:mm:ss` in UTC, only when asked for: without it files are reproducible.
+    pub capture_date: Option<String>,
+    pub world_to_ndc: [[f64; 4]; 4],
+}
+
+/// The sums a reader can check the layers against (aovs.md, Invariants).
+pub const INVARIANTS: &str = "RGB = direct + reflected; reflected = sum_k reflected_k; \
+RGB = ambient + sum_i light_i + background; RGB = ambient + diffuse + specular + background";
+
+/// Largest finite half float.
+const HALF_MAX: f32 = 65504.0;
+
+/// Writes `film` as an EXR into `file` (positioned at its start).
+pub fn write_exr(
+    file: &mut File,
+    film: &Film,
+    options: ExrOptions,
+    metadata: &ExrMetadata,
+) -> Result<(), String> {
+    let size = (film.width as usize, film.height as usize);
+    let mut channels = x::SmallVec::new();
+    let mut offset = 0;
+    for layer in &film.layers {
+        for name in layer.channel_names() {
+            let plane: Vec<f32> = film
+                .data
+                .iter()
+                .skip(offset)
+                .step_by(film.channel_count())
+                .copied()
+                .collect();
+            let samples = if options.half && layer.quantity.kind() == Kind::Colour {
+                x::FlatSamples::F16(
+                    plane
+                        .iter()
+                        .map(|&v| f16::from_f32(v.clamp(-HALF_MAX, HALF_MAX)))
+                        .collect(),
+                )
+            } else {
+                x::FlatSamples::F32(plane)
+            };
+            channels.push(x::AnyChannel::new(text(&name), samples));
+            offset += 1;
+        }
+    }
+
+    let mut attributes = x::LayerAttributes {
+        software_name: Some(text(&metadata.software)),
+        comments: Some(text(&metadata.comments)),
+        world_to_camera: Some(matrix(&IDENTITY)),
+        world_to_normalized_device: Some(matrix(&metadata.world_to_ndc)),
+        ..x::LayerAttributes::default()
+    };
+    if let Some(date) = &metadata.capture_date {
+        attributes.capture_date = Some(text(date));
+        attributes.utc_offset = Some(0.0);
+    }
+    let custom = [
+        (
+            "colorInteropID",
+            AttributeValue::Text(text("lin_rec709_scene")),
+        ),
+        (
+            "render/bounces",
+            AttributeValue::I32(clamp_i32(metadata.bounces)),
+        ),
+        ("render/spp", AttributeValue::I32(clamp_i32(metadata.spp))),
+        (
+            "render/lights",
+            AttributeValue::Text(text(&metadata.light_names.join(","))),
+        ),
+        ("render/invariants", AttributeValue::Text(text(INVARIANTS))),
+    ];
+    for (name, value) in custom {
+        attributes.other.insert(text(name), value);
+    }
+
+    let encoding = x::Encoding {
+        compression: options.compression.codec(),
+        blocks: x::Blocks::ScanLines,
+        line_order: x::LineOrder::Increasing,
+    };
+    let layer = x::Layer::new(size, attributes, encoding, x::AnyChannels::sort(channels));
+    let mut image = x::Image::from_layer(layer);
+    image.attributes.chromaticities = Some(REC709_D65);
+
+    image
+        .write()
+        .to_buffered(std::io::BufWriter::new(&mut *file))
+        .map_err(|e| e.to_string())?;
+    exr_header::sort_attributes(file).map_err(|e| e.to_string())
+}
+
+/// Rec.709 primaries with a D65 white point: the linear sRGB the renderer works in.
+const REC709_D65: x::attribute::Chromaticities = x::attribute::Chromaticities {
+    red: x::Vec2(0.64, 0.33),
+    green: x::Vec2(0.30, 0.60),
+    blue: x::Vec2(0.15, 0.06),
+    white: x::Vec2(0.3127, 0.3290),
+};
+
+/// World space is camera space: the course's camera sits at the origin looking along +z.
+const IDENTITY: [[f64; 4]; 4] = [
+    [1.0, 0.0, 0.0, 0.0],
+    [0.0, 1.0, 0.0, 0.0],
+    [0.0, 0.0, 1.0, 0.0],
+    [0.0, 0.0, 0.0, 1.0],
+];
+
+fn matrix(m: &[[f64; 4]; 4]) -> x::attribute::Matrix4x4 {
+    let mut out = [0.0f32; 16];
+    for (o, v) in out.iter_mut().zip(m.iter().flatten()) {
+        *o = *v as f32;
+    }
+    out
+}
+
+/// OpenEXR strings are bytes; we store UTF-8, as OpenImageIO and OpenEXR read them. (The
+/// crate's checked constructor would panic on a non-Latin-1 file name.)
+fn text(s: &str) -> Text {
+    Text::from_slice_unchecked(s.as_bytes())
+}
+
+fn clamp_i32(v: u32) -> i32 {
+    i32::try_from(v).unwrap_or(i32::MAX)
+}
