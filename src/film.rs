@@ -218,7 +218,8 @@ mod tests {
         s.direct = DVec3::new(f64::NAN, f64::INFINITY, 1e300);
         acc.add(&s, true);
         let mut out = vec![9.0; 3];
-        assert_eq!(acc.finish(&mut DVec3::ZERO, &mut out), 2);
+        let mut beauty = DVec3::ZERO;
+        assert_eq!(acc.finish(&mut beauty, &mut out), 2);
         assert_eq!(out, [0.0, 0.0, f32::MAX]);
     }
 }

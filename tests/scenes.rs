@@ -4,20 +4,28 @@
 mod common;
 
 use glam::DVec3;
+use whitted::aov;
 use whitted::camera::Camera;
 use whitted::film::Film;
-use whitted::render::render;
+use whitted::render::{render, RenderSettings};
 use whitted::scene;
 use whitted::trace::TraceOptions;
 
 fn render_scene(name: &str, width: u32, height: u32, bounces: u32, shadows: bool) -> Film {
     let scene = scene::load(&common::scene(name)).unwrap_or_else(|e| panic!("{e}"));
+    let settings = RenderSettings {
+        trace: TraceOptions { bounces, shadows },
+        spp: 1,
+    };
+    let beauty = aov::all_layers(&[], 0)[..1].to_vec();
     render(
         &scene,
         &Camera::new(width, height),
-        TraceOptions { bounces, shadows },
+        settings,
+        beauty,
         &|| {},
     )
+    .expect("render")
 }
 
 #[test]

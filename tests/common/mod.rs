@@ -64,3 +64,118 @@ fn read_png_from<R: std::io::BufRead + std::io::Seek>(r: R) -> Png {
         srgb,
     }
 }
+
+/// A tool from the OpenImageIO wheel that `tools/test` installs into `.venv`, or from PATH.
+/// Missing tools fail the test: the suite must not pass without checking.
+pub fn tool(name: &str) -> PathBuf {
+    let local = root().join(".venv/bin").join(name);
+    if local.exists() {
+        return local;
+    }
+    if let Some(found) = std::env::var_os("PATH").and_then(|paths| {
+        std::env::split_paths(&paths)
+            .map(|p| p.join(name))
+            .find(|p| p.exists())
+    }) {
+        return found;
+    }
+    panic!("`{name}` not found: run tools/test, which installs OpenImageIO into .venv");
+}
+
+/// Runs a tool and returns its output; panics with its stderr if it fails to start.
+pub fn run_tool(name: &str, args: &[&str], dir: &Path) -> Output {
+    Command::new(tool(name))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap_or_else(|e| panic!("{name} did not run: {e}"))
+}
+
+/// Renders `scene_file` with extra `args` into `dir/exr_name`, asserting success.
+pub fn render_exr(dir: &Path, scene_file: &Path, exr_name: &str, args: &[&str]) -> PathBuf {
+    let mut all = vec![
+        "render",
+        "-q",
+        "--no-png",
+        "--input",
+        scene_file.to_str().expect("utf-8 path"),
+        "--exr",
+        exr_name,
+    ];
+    all.extend_from_slice(args);
+    let run = whitted(dir, &all);
+    assert!(run.status.success(), "render failed: {}", stderr(&run));
+    dir.join(exr_name)
+}
+
+/// The channel list as `oiiotool --info -v` reports it.
+pub fn oiio_channels(path: &Path) -> Vec<String> {
+    let out = run_tool(
+        "oiiotool",
+        &["--info", "-v", path.to_str().expect("utf-8")],
+        &root(),
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    let line = text
+        .lines()
+        .find_map(|l| l.trim().strip_prefix("channel list:"))
+        .unwrap_or_else(|| panic!("no channel list in {text}"));
+    line.split(',').map(|c| c.trim().to_string()).collect()
+}
+
+/// A decoded EXR read with the `exr` crate: channels as f32 planes, and the header.
+pub struct Exr {
+    pub width: usize,
+    pub height: usize,
+    pub channels: Vec<(String, exr::prelude::FlatSamples)>,
+    pub image: exr::prelude::ImageAttributes,
+    pub layer: exr::prelude::LayerAttributes,
+}
+
+pub fn read_exr(path: &Path) -> Exr {
+    use exr::prelude::*;
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .all_layers()
+        .all_attributes()
+        .from_file(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    assert_eq!(image.layer_data.len(), 1, "one part");
+    let layer = image.layer_data.into_iter().next().expect("a layer");
+    Exr {
+        width: layer.size.0,
+        height: layer.size.1,
+        channels: layer
+            .channel_data
+            .list
+            .into_iter()
+            .map(|c| (c.name.to_string(), c.sample_data))
+            .collect(),
+        image: image.attributes,
+        layer: layer.attributes,
+    }
+}
+
+impl Exr {
+    /// Channel `name` at pixel (x, y) as f32.
+    pub fn at(&self, name: &str, x: usize, y: usize) -> f32 {
+        let samples = &self
+            .channels
+            .iter()
+            .find(|(n, _)| n == name)
+            .unwrap_or_else(|| panic!("no channel {name}"))
+            .1;
+        samples.value_by_flat_index(y * self.width + x).to_f32()
+    }
+
+    pub fn names(&self) -> Vec<String> {
+        self.channels.iter().map(|(n, _)| n.clone()).collect()
+    }
+}
