@@ -6,6 +6,8 @@ use std::path::PathBuf;
 use clap::{Args, Parser, Subcommand};
 
 use crate::output::exr::ExrCompression;
+use crate::output::png::PngEncoding;
+use crate::tonemap::ToneMap;
 
 /// Most reflection bounces accepted: each bounce is a layer in the EXR, and past this depth a
 /// mirror chain's contribution is far below what a float image can show.
@@ -36,6 +38,67 @@ pub struct Cli {
 pub enum Command {
     /// Render a scene to a PNG (the default when no subcommand is given).
     Render(RenderArgs),
+    /// Tone-map a colour layer of an EXR to a PNG, without re-rendering.
+    Tonemap(TonemapArgs),
+}
+
+#[derive(Debug, Clone, Args)]
+pub struct TonemapArgs {
+    /// The EXR to read (any OpenEXR file; whitted's own have every AOV)
+    #[arg(value_name = "IN.exr")]
+    pub input: PathBuf,
+
+    /// PNG to write; `-` writes it to standard output
+    #[arg(short, long, value_name = "OUT.png")]
+    pub output: PathBuf,
+
+    /// Colour layer to encode: `beauty` (the bare R G B) or a layer such as `direct`
+    #[arg(long, value_name = "NAME", default_value = "beauty")]
+    pub layer: String,
+
+    #[command(flatten)]
+    pub tone: ToneArgs,
+}
+
+/// How linear HDR values become PNG bytes (tonemap.md).
+#[derive(Debug, Clone, Args)]
+pub struct ToneArgs {
+    /// Tone map: `tick` is the course's exact output; the others are sRGB-encoded
+    #[arg(long = "tonemap", value_name = "OP", value_enum, default_value_t = ToneMap::Tick)]
+    pub tonemap: ToneMap,
+
+    /// Exposure in stops, applied before the tone map: v * 2^EV
+    #[arg(long, value_name = "EV", default_value_t = 0.0, allow_negative_numbers = true,
+          value_parser = parse_exposure)]
+    pub exposure: f64,
+
+    /// PNG bits per channel
+    #[arg(long, value_name = "8|16", default_value_t = 8, value_parser = parse_depth)]
+    pub png_depth: u8,
+
+    /// Add triangular dither before rounding (8-bit, sRGB tone maps; deterministic)
+    #[arg(long)]
+    pub dither: bool,
+}
+
+impl ToneArgs {
+    /// The PNG encoding asked for, or why it cannot be had.
+    pub fn encoding(&self) -> Result<PngEncoding, String> {
+        if self.dither && self.tonemap == ToneMap::Tick {
+            return Err("--dither needs an sRGB tone map such as --tonemap clamp \
+                        (tick is the course's exact, undithered output)"
+                .into());
+        }
+        if self.dither && self.png_depth == 16 {
+            return Err("--dither applies to 8-bit PNGs only (16 bits need none)".into());
+        }
+        Ok(PngEncoding {
+            tonemap: self.tonemap,
+            exposure: self.exposure,
+            depth: self.png_depth,
+            dither: self.dither,
+        })
+    }
 }
 
 #[derive(Debug, Clone, Args)]
@@ -95,6 +158,9 @@ pub struct RenderArgs {
     #[arg(long)]
     pub stamp_date: bool,
 
+    #[command(flatten)]
+    pub tone: ToneArgs,
+
     /// Worker threads [default: all cores]; the output is identical for any number
     #[arg(long, value_name = "N", value_parser = parse_threads)]
     pub threads: Option<usize>,
@@ -143,6 +209,23 @@ fn parse_spp(s: &str) -> Result<u32, String> {
     Ok(n)
 }
 
+fn parse_exposure(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(ev) if ev.is_finite() && ev.abs() <= 64.0 => Ok(ev),
+        _ => Err(format!(
+            "expected an exposure in stops between -64 and 64, got `{s}`"
+        )),
+    }
+}
+
+fn parse_depth(s: &str) -> Result<u8, String> {
+    match s.trim() {
+        "8" => Ok(8),
+        "16" => Ok(16),
+        _ => Err(format!("PNG depth is 8 or 16, got `{s}`")),
+    }
+}
+
 fn parse_threads(s: &str) -> Result<usize, String> {
     match s.trim().parse::<usize>() {
         Ok(n) if n >= 1 => Ok(n),
@@ -172,5 +255,8 @@ mod tests {
         assert_eq!(parse_spp("16"), Ok(16));
         assert!(parse_spp("8").unwrap_err().contains("square"));
         assert!(parse_spp("0").is_err());
+        assert_eq!(parse_exposure("-1.5"), Ok(-1.5));
+        assert!(parse_exposure("nan").is_err());
+        assert!(parse_depth("12").is_err());
     }
 }

@@ -1,3 +1,4 @@
 //! One file per subcommand: each turns parsed arguments into work and outputs.
 
 pub mod render;
+pub mod tonemap;

@@ -21,7 +21,8 @@
 //! - [`camera`]: pixel -> primary ray.
 //! - [`trace`]: the tick shading model; returns a [`sample::Sample`].
 //! - [`render`]: parallel loop over pixels into a [`film::Film`].
-//! - [`tonemap`] and [`output`]: linear film -> display bytes -> files.
+//! - [`aov`]: the EXR layers and what each holds.
+//! - [`tonemap`] and [`output`]: linear film -> display bytes -> files; [`input`] reads EXRs back.
 //! - [`cli`] and [`commands`]: the command line.
 
 pub mod aov;
@@ -31,6 +32,7 @@ pub mod commands;
 pub mod error;
 pub mod film;
 pub mod geometry;
+pub mod input;
 pub mod output;
 pub mod render;
 pub mod sample;

@@ -16,6 +16,7 @@ fn main() -> ExitCode {
     };
     let result = match &cli.command {
         Some(Command::Render(args)) => commands::render::run(args),
+        Some(Command::Tonemap(args)) => commands::tonemap::run(args),
         None => commands::render::run(&cli.render),
     };
     match result {

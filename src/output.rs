@@ -1,6 +1,7 @@
 //! Writers that turn a rendered film into files.
 
 pub mod atomic;
+pub mod destination;
 pub mod exr;
 pub mod exr_header;
 pub mod png;

@@ -1,6 +1,6 @@
 //! `whitted render` (and the bare `whitted ...` tick command line): scene -> film -> files.
 
-use std::io::{BufWriter, IsTerminal, Write};
+use std::io::IsTerminal;
 use std::path::Path;
 use std::time::{Duration, Instant, SystemTime};
 
@@ -12,15 +12,12 @@ use crate::cli::RenderArgs;
 use crate::error::{Error, Result};
 use crate::film::Film;
 use crate::output::atomic::AtomicFile;
+use crate::output::destination::{Destination, STDOUT};
 use crate::output::exr::{write_exr, ExrMetadata, ExrOptions};
-use crate::output::png::{write_png, PngImage, PngPixels};
+use crate::output::png::encode;
 use crate::render::{render, RenderSettings};
 use crate::scene::{self, Scene};
-use crate::tonemap;
 use crate::trace::TraceOptions;
-
-/// What `-o -` means: the PNG goes to standard output.
-const STDOUT: &str = "-";
 
 /// Images smaller than this finish before a progress bar would be readable.
 const PROGRESS_MIN_PIXELS: u64 = 64 * 64;
@@ -40,11 +37,12 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         available[..1].to_vec()
     };
 
+    let encoding = args.tone.encoding().map_err(Error::Usage)?;
+
     // Open outputs before rendering, so that an unwritable path fails in milliseconds.
-    let png_to_stdout = !args.no_png && args.output.as_os_str() == STDOUT;
-    let mut png_file = match () {
-        _ if args.no_png || png_to_stdout => None,
-        _ => Some(AtomicFile::create(&args.output)?),
+    let mut png = match args.no_png {
+        true => None,
+        false => Some(Destination::open(&args.output)?),
     };
     let mut exr_file = match &args.exr {
         Some(path) if !args.no_png && path == &args.output => {
@@ -92,16 +90,14 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             .map_err(|msg| Error::Exr { path, msg })?;
     }
     let exr_time = started.elapsed();
-    let png = (!args.no_png).then(|| tick_png(&film));
-    if let (Some(file), Some(image)) = (png_file.as_mut(), &png) {
-        let path = file.target().to_path_buf();
-        encode_png(file.file(), image, &path)?;
+    if let Some(png) = png.as_mut() {
+        png.write_png(&encode(&film.beauty, film.width, film.height, &encoding))?;
     }
-    for file in [exr_file, png_file].into_iter().flatten() {
+    if let Some(file) = exr_file {
         file.commit()?;
     }
-    if let (true, Some(image)) = (png_to_stdout, &png) {
-        encode_png(std::io::stdout().lock(), image, Path::new(STDOUT))?;
+    if let Some(png) = png {
+        png.commit()?;
     }
 
     if !args.quiet {
@@ -145,31 +141,6 @@ fn progress_bar(args: &RenderArgs, camera: &Camera) -> ProgressBar {
         bar.set_style(style.progress_chars("=> "));
     }
     bar
-}
-
-/// The course's PNG: the beauty through the `tick` tone map, 8-bit RGB, no colour metadata.
-fn tick_png(film: &Film) -> PngImage {
-    PngImage {
-        width: film.width,
-        height: film.height,
-        pixels: PngPixels::Eight(
-            film.beauty
-                .iter()
-                .flat_map(|&v| tonemap::tick_bytes(v))
-                .collect(),
-        ),
-        srgb: false,
-    }
-}
-
-fn encode_png(out: impl Write, image: &PngImage, path: &Path) -> Result<()> {
-    let mut out = BufWriter::new(out);
-    let fail = |msg: String| Error::Png {
-        path: path.to_path_buf(),
-        msg,
-    };
-    write_png(&mut out, image).map_err(|e| fail(e.to_string()))?;
-    out.flush().map_err(|e| fail(e.to_string()))
 }
 
 fn exr_metadata(
@@ -298,6 +269,6 @@ mod tests {
         let at = |secs| capture_date(SystemTime::UNIX_EPOCH + Duration::from_secs(secs));
         assert_eq!(at(0), "1970:01:01 00:00:00");
         assert_eq!(at(951_782_400), "2000:02:29 00:00:00");
-        assert_eq!(at(1_795_000_000), "2026:11:18 07:06:40");
+        assert_eq!(at(1_795_000_000), "2026:11:18 11:06:40");
     }
 }

@@ -1,6 +1,35 @@
-//! Display-encoded pixels -> PNG file bytes.
+//! Linear pixels -> tone map -> encoding -> quantisation -> PNG bytes (tonemap.md).
 
 use std::io::Write;
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+use crate::tonemap::{expose, srgb_oetf, ToneMap};
+
+/// How linear values become display bytes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PngEncoding {
+    pub tonemap: ToneMap,
+    /// Exposure in stops, applied first: `v * 2^EV`.
+    pub exposure: f64,
+    /// 8 or 16 bits per channel.
+    pub depth: u8,
+    /// Triangular dither before rounding (8-bit sRGB output only).
+    pub dither: bool,
+}
+
+impl Default for PngEncoding {
+    /// The course's PNG.
+    fn default() -> Self {
+        PngEncoding {
+            tonemap: ToneMap::Tick,
+            exposure: 0.0,
+            depth: 8,
+            dither: false,
+        }
+    }
+}
 
 /// An encoded image ready for the PNG encoder: 8- or 16-bit RGB, row-major, top row first.
 #[derive(Debug, Clone, PartialEq)]
@@ -18,6 +47,92 @@ pub struct PngImage {
 pub enum PngPixels {
     Eight(Vec<u8>),
     Sixteen(Vec<u16>),
+}
+
+/// Tone-maps and quantises row-major linear `pixels`.
+pub fn encode(pixels: &[DVec3], width: u32, height: u32, encoding: &PngEncoding) -> PngImage {
+    let display: Vec<[f64; 3]> = pixels
+        .par_iter()
+        .map(|&v| {
+            let t = encoding.tonemap.apply(expose(v, encoding.exposure));
+            if encoding.tonemap.srgb_encoded() {
+                t.to_array().map(srgb_oetf)
+            } else {
+                t.to_array()
+            }
+        })
+        .collect();
+    let tick = !encoding.tonemap.srgb_encoded();
+    let pixels = if encoding.depth == 16 {
+        PngPixels::Sixteen(
+            display
+                .iter()
+                .flatten()
+                .map(|&e| quantise(e, 65535.0, tick, 0.0) as u16)
+                .collect(),
+        )
+    } else {
+        let row = width.max(1) as usize;
+        PngPixels::Eight(
+            display
+                .iter()
+                .enumerate()
+                .flat_map(|(i, e)| {
+                    let (x, y) = ((i % row) as u32, (i / row) as u32);
+                    (0..3u32).map(move |c| {
+                        let noise = if encoding.dither && !tick {
+                            triangular_noise(x, y, c, DITHER_SEED)
+                        } else {
+                            0.0
+                        };
+                        quantise(e[c as usize], 255.0, tick, noise) as u8
+                    })
+                })
+                .collect(),
+        )
+    };
+    PngImage {
+        width,
+        height,
+        pixels,
+        srgb: encoding.tonemap.srgb_encoded(),
+    }
+}
+
+/// `floor(max * e)` for the course's truncating tick output; `floor(max * e + 0.5 + noise)`
+/// (round to nearest, optionally dithered) for encoded output; clamped to the code range.
+fn quantise(e: f64, max: f64, truncate: bool, noise: f64) -> f64 {
+    let code = if truncate {
+        (max * e).floor()
+    } else {
+        (max * e + 0.5 + noise).floor()
+    };
+    code.clamp(0.0, max)
+}
+
+/// Fixed so that the same image always dithers the same way.
+const DITHER_SEED: u64 = 0x5eed;
+
+/// Triangular noise in (-1, 1) LSB: the sum of two uniforms from a stateless hash of the
+/// pixel, the channel and a seed, minus 1. Same inputs, same noise, on any thread.
+pub fn triangular_noise(x: u32, y: u32, channel: u32, seed: u64) -> f64 {
+    let key = (u64::from(x) << 32 | u64::from(y)) ^ (u64::from(channel) << 62) ^ seed;
+    let a = splitmix64(key);
+    let b = splitmix64(a ^ 0x9e37_79b9_7f4a_7c15);
+    unit(a) + unit(b) - 1.0
+}
+
+/// A uniform in [0, 1) from the top 53 bits.
+fn unit(bits: u64) -> f64 {
+    (bits >> 11) as f64 / (1u64 << 53) as f64
+}
+
+/// Sebastiano Vigna's splitmix64 finaliser: a well-mixed 64-bit hash of a 64-bit key.
+fn splitmix64(key: u64) -> u64 {
+    let mut z = key.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
 }
 
 /// Encodes `image` as a PNG into `out`.
@@ -41,6 +156,119 @@ pub fn write_png(out: impl Write, image: &PngImage) -> Result<(), png::EncodingE
             let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_be_bytes()).collect();
             writer.write_image_data(&bytes)?;
             writer.finish()
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn eight(image: &PngImage) -> &[u8] {
+        match &image.pixels {
+            PngPixels::Eight(b) => b,
+            PngPixels::Sixteen(_) => panic!("16-bit"),
+        }
+    }
+
+    #[test]
+    fn tick_truncates_and_srgb_rounds() {
+        let px = [DVec3::new(0.18, 1.0, 0.5)];
+        let tick = encode(&px, 1, 1, &PngEncoding::default());
+        assert_eq!(eight(&tick), [45, 255, 127]);
+        assert!(!tick.srgb);
+        let clamp = encode(
+            &px,
+            1,
+            1,
+            &PngEncoding {
+                tonemap: ToneMap::Clamp,
+                ..PngEncoding::default()
+            },
+        );
+        // sRGB(0.18) = 0.46135 -> 117.64 + 0.5 -> 118; sRGB(0.5) = 0.73536 -> 188.
+        assert_eq!(eight(&clamp), [118, 255, 188]);
+        assert!(clamp.srgb);
+    }
+
+    #[test]
+    fn sixteen_bit_uses_the_full_range() {
+        let px = [DVec3::new(0.0, 1.0, 0.18)];
+        let enc = PngEncoding {
+            tonemap: ToneMap::Clamp,
+            depth: 16,
+            ..PngEncoding::default()
+        };
+        let PngPixels::Sixteen(v) = encode(&px, 1, 1, &enc).pixels else {
+            panic!("8-bit")
+        };
+        let want = (65535.0 * srgb_oetf(0.18) + 0.5).floor() as u16;
+        assert_eq!(v, [0, 65535, want]);
+    }
+
+    #[test]
+    fn exposure_is_applied_before_the_operator() {
+        let px = [DVec3::splat(0.25)];
+        let enc = PngEncoding {
+            exposure: 2.0,
+            ..PngEncoding::default()
+        };
+        assert_eq!(eight(&encode(&px, 1, 1, &enc)), [255, 255, 255]);
+        let enc = PngEncoding {
+            exposure: -1.0,
+            ..PngEncoding::default()
+        };
+        assert_eq!(eight(&encode(&px, 1, 1, &enc)), [31, 31, 31]);
+    }
+
+    #[test]
+    fn noise_is_triangular_and_stateless() {
+        let samples: Vec<f64> = (0..20_000)
+            .map(|i| triangular_noise(i % 200, i / 200, i % 3, 7))
+            .collect();
+        assert!(samples.iter().all(|&n| (-1.0..1.0).contains(&n)));
+        let mean = samples.iter().sum::<f64>() / samples.len() as f64;
+        assert!(mean.abs() < 0.01, "mean {mean}");
+        // Triangular on (-1, 1): variance 1/6.
+        let var = samples.iter().map(|n| n * n).sum::<f64>() / samples.len() as f64;
+        assert!((var - 1.0 / 6.0).abs() < 0.01, "variance {var}");
+        assert_eq!(triangular_noise(3, 4, 1, 7), triangular_noise(3, 4, 1, 7));
+        assert_ne!(triangular_noise(3, 4, 1, 7), triangular_noise(3, 4, 2, 7));
+    }
+
+    #[test]
+    fn dither_removes_the_mean_quantisation_error_of_flat_areas() {
+        // Flat patches at levels between codes: rounding alone is off by up to 0.5 LSB; the
+        // dithered mean lands on the true level.
+        for fraction in [0.1, 0.3, 0.5, 0.7, 0.9] {
+            let e: f64 = (100.0 + fraction) / 255.0;
+            let linear =
+                <palette::encoding::Srgb as palette::encoding::IntoLinear<f64, f64>>::into_linear(
+                    e,
+                );
+            let px = vec![DVec3::splat(linear); 64 * 64];
+            let enc = PngEncoding {
+                tonemap: ToneMap::Clamp,
+                dither: true,
+                ..PngEncoding::default()
+            };
+            let image = encode(&px, 64, 64, &enc);
+            let bytes = eight(&image);
+            let mean = bytes.iter().map(|&b| f64::from(b)).sum::<f64>() / bytes.len() as f64;
+            assert!(
+                (mean - 255.0 * e).abs() < 0.1,
+                "level {fraction}: mean {mean}"
+            );
+            let plain = encode(
+                &px,
+                64,
+                64,
+                &PngEncoding {
+                    dither: false,
+                    ..enc
+                },
+            );
+            assert_eq!(eight(&plain)[0], (255.0 * e + 0.5).floor() as u8);
         }
     }
 }

@@ -1,0 +1,22 @@
+//! `whitted tonemap IN.exr -o OUT.png`: re-encode any colour layer of an EXR as a PNG, with
+//! any tone map and exposure, without re-rendering.
+
+use crate::cli::TonemapArgs;
+use crate::error::{Error, Result};
+use crate::input::exr::ExrImage;
+use crate::output::destination::Destination;
+use crate::output::png::encode;
+
+pub fn run(args: &TonemapArgs) -> Result<()> {
+    let encoding = args.tone.encoding().map_err(Error::Usage)?;
+    let mut output = Destination::open(&args.output)?;
+    let image = ExrImage::read(&args.input)?;
+    let pixels = image.colour_layer(&args.layer).map_err(|msg| Error::Exr {
+        path: args.input.clone(),
+        msg,
+    })?;
+    let width = u32::try_from(image.width).map_err(|_| Error::Usage("image too wide".into()))?;
+    let height = u32::try_from(image.height).map_err(|_| Error::Usage("image too tall".into()))?;
+    output.write_png(&encode(&pixels, width, height, &encoding))?;
+    output.commit()
+}

@@ -1,0 +1,3 @@
+//! Readers for files whitted consumes besides scenes.
+
+pub mod exr;
