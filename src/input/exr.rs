@@ -116,12 +116,10 @@ impl ExrImage {
                 .map(|((&r, &g), &b)| DVec3::new(f64::from(r), f64::from(g), f64::from(b)))
                 .collect()),
             _ => {
-                let exists = self.channels.iter().any(|c| {
-                    c.name
-                        .strip_prefix(&prefix)
-                        .is_some_and(|rest| !rest.contains('.'))
-                        && (!prefix.is_empty() || c.name == name)
-                });
+                let exists = self
+                    .channels
+                    .iter()
+                    .any(|c| c.name == name || c.name.starts_with(&format!("{name}.")));
                 let what = if exists {
                     format!("layer `{name}` is not a colour layer (it has no R, G, B channels)")
                 } else {

@@ -140,8 +140,22 @@ pub fn write_png(out: impl Write, image: &PngImage) -> Result<(), png::EncodingE
     let mut encoder = png::Encoder::new(out, image.width, image.height);
     encoder.set_color(png::ColorType::Rgb);
     if image.srgb {
-        // Also writes the gAMA and cHRM fallbacks the PNG spec recommends beside sRGB.
         encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
+        // The gAMA and cHRM values the PNG spec (11.3.2.5) asks for beside sRGB, for readers
+        // that do not know the sRGB chunk; the encoder writes them only when set to these.
+        encoder.set_source_gamma(png::ScaledFloat::from_scaled(45455));
+        let xy = |x, y| {
+            (
+                png::ScaledFloat::from_scaled(x),
+                png::ScaledFloat::from_scaled(y),
+            )
+        };
+        encoder.set_source_chromaticities(png::SourceChromaticities {
+            white: xy(31270, 32900),
+            red: xy(64000, 33000),
+            green: xy(30000, 60000),
+            blue: xy(15000, 6000),
+        });
     }
     match &image.pixels {
         PngPixels::Eight(bytes) => {

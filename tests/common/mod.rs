@@ -37,7 +37,10 @@ pub struct Png {
     pub color: png::ColorType,
     pub depth: png::BitDepth,
     pub data: Vec<u8>,
+    /// Whether the file has an `sRGB`, a `gAMA` and a `cHRM` chunk.
     pub srgb: bool,
+    pub gama: bool,
+    pub chrm: bool,
 }
 
 pub fn read_png(path: &Path) -> Png {
@@ -55,6 +58,8 @@ fn read_png_from<R: std::io::BufRead + std::io::Seek>(r: R) -> Png {
     let info = reader.next_frame(&mut data).expect("PNG data");
     data.truncate(info.buffer_size());
     let srgb = reader.info().srgb.is_some();
+    let gama = reader.info().gama_chunk.is_some();
+    let chrm = reader.info().chrm_chunk.is_some();
     Png {
         width: info.width,
         height: info.height,
@@ -62,6 +67,8 @@ fn read_png_from<R: std::io::BufRead + std::io::Seek>(r: R) -> Png {
         depth: info.bit_depth,
         data,
         srgb,
+        gama,
+        chrm,
     }
 }
 
