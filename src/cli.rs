@@ -40,6 +40,86 @@ pub enum Command {
     Render(RenderArgs),
     /// Tone-map a colour layer of an EXR to a PNG, without re-rendering.
     Tonemap(TonemapArgs),
+    /// Show an EXR's size, layers, channels, header and per-layer statistics.
+    Info(InfoArgs),
+    /// Compare two EXRs (or two PNGs) layer by layer; exit 1 when they differ.
+    Diff(DiffArgs),
+    /// Write a labelled contact sheet of every layer of an EXR.
+    Sheet(SheetArgs),
+}
+
+#[derive(Debug, Clone, Args)]
+pub struct InfoArgs {
+    /// The EXR (or PNG) to describe
+    #[arg(value_name = "FILE.exr")]
+    pub input: PathBuf,
+
+    /// Print JSON instead of a table
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(Debug, Clone, Args)]
+pub struct DiffArgs {
+    /// The image to check
+    #[arg(value_name = "A")]
+    pub actual: PathBuf,
+
+    /// The reference it should match (relative tolerance is relative to its values)
+    #[arg(value_name = "B")]
+    pub reference: PathBuf,
+
+    /// Layers to compare, comma separated [default: all]
+    #[arg(long, value_name = "LIST", value_delimiter = ',')]
+    pub layers: Vec<String>,
+
+    /// Absolute tolerance
+    #[arg(long = "abs", value_name = "T", default_value_t = 1e-6, value_parser = parse_tolerance)]
+    pub abs: f64,
+
+    /// Relative tolerance: a value fails when |a - b| > abs + rel * |b|
+    #[arg(long = "rel", value_name = "T", default_value_t = 1e-5, value_parser = parse_tolerance)]
+    pub rel: f64,
+
+    /// Write a PNG showing where and by how much they differ
+    #[arg(long, value_name = "OUT.png")]
+    pub heatmap: Option<PathBuf>,
+
+    /// Print JSON instead of a table
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(Debug, Clone, Args)]
+pub struct SheetArgs {
+    /// The EXR to show
+    #[arg(value_name = "IN.exr")]
+    pub input: PathBuf,
+
+    /// The contact sheet PNG to write; `-` writes it to standard output
+    #[arg(short, long, value_name = "SHEET.png")]
+    pub output: PathBuf,
+
+    /// Layers to show, in this order, comma separated [default: all]
+    #[arg(long, value_name = "LIST", value_delimiter = ',')]
+    pub layers: Vec<String>,
+
+    /// Tiles per row
+    #[arg(long, value_name = "N", default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=64))]
+    pub columns: u32,
+
+    /// Width of each tile in pixels (never wider than the image)
+    #[arg(long, value_name = "W", default_value_t = 320, value_parser = clap::value_parser!(u32).range(16..=4096))]
+    pub tile_width: u32,
+
+    /// Tone map for colour layers
+    #[arg(long = "tonemap", value_name = "OP", value_enum, default_value_t = ToneMap::Clamp)]
+    pub tonemap: ToneMap,
+
+    /// Exposure in stops for colour layers
+    #[arg(long, value_name = "EV", default_value_t = 0.0, allow_negative_numbers = true,
+          value_parser = parse_exposure)]
+    pub exposure: f64,
 }
 
 #[derive(Debug, Clone, Args)]
@@ -215,6 +295,13 @@ fn parse_exposure(s: &str) -> Result<f64, String> {
         _ => Err(format!(
             "expected an exposure in stops between -64 and 64, got `{s}`"
         )),
+    }
+}
+
+fn parse_tolerance(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(t) if t.is_finite() && t >= 0.0 => Ok(t),
+        _ => Err(format!("expected a tolerance >= 0, got `{s}`")),
     }
 }
 

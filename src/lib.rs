@@ -27,8 +27,10 @@
 
 pub mod aov;
 pub mod camera;
+pub mod canvas;
 pub mod cli;
 pub mod commands;
+pub mod compare;
 pub mod error;
 pub mod film;
 pub mod geometry;

@@ -15,12 +15,17 @@ fn main() -> ExitCode {
         Err(e) => return usage_error(&e),
     };
     let result = match &cli.command {
-        Some(Command::Render(args)) => commands::render::run(args),
-        Some(Command::Tonemap(args)) => commands::tonemap::run(args),
-        None => commands::render::run(&cli.render),
+        Some(Command::Render(args)) => commands::render::run(args).map(|()| true),
+        Some(Command::Tonemap(args)) => commands::tonemap::run(args).map(|()| true),
+        Some(Command::Info(args)) => commands::info::run(args).map(|()| true),
+        Some(Command::Diff(args)) => commands::diff::run(args),
+        Some(Command::Sheet(args)) => commands::sheet::run(args).map(|()| true),
+        None => commands::render::run(&cli.render).map(|()| true),
     };
     match result {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(true) => ExitCode::SUCCESS,
+        // A comparison that found differences (`diff`): not an error, but not a pass.
+        Ok(false) => ExitCode::from(1),
         Err(e) => {
             eprintln!("error: {e}");
             ExitCode::from(2)

@@ -1,0 +1,235 @@
+//! `whitted sheet IN.exr -o SHEET.png`: every layer as a captioned tile, the picture to look
+//! at first. Colour layers are tone-mapped; masks shown as grey 0..1; normals as (N + 1) / 2;
+//! object ids as distinct colours; other data (depth, positions) normalised to their range.
+
+use glam::DVec3;
+
+use crate::canvas::{fit, Canvas, LINE_HEIGHT};
+use crate::cli::SheetArgs;
+use crate::commands::info::{number, Stats};
+use crate::error::{Error, Result};
+use crate::input::image::suffix;
+use crate::input::{Image, Layer};
+use crate::output::destination::Destination;
+use crate::tonemap::{expose, srgb_oetf, ToneMap};
+
+const MARGIN: usize = 8;
+const CAPTION: usize = 2 * LINE_HEIGHT + 4;
+const BACKGROUND: [u8; 3] = [32, 32, 32];
+const TEXT: [u8; 3] = [230, 230, 230];
+const DIM_TEXT: [u8; 3] = [150, 150, 150];
+
+pub fn run(args: &SheetArgs) -> Result<()> {
+    let mut output = Destination::open(&args.output)?;
+    let image = Image::read_exr(&args.input)?;
+    let layers = select(&image, &args.layers)?;
+    let sheet = compose(&image, &layers, args);
+    output.write_png(&sheet.into_png())?;
+    output.commit()
+}
+
+fn select(image: &Image, wanted: &[String]) -> Result<Vec<Layer>> {
+    let all = image.layers();
+    if wanted.is_empty() {
+        return Ok(all);
+    }
+    wanted
+        .iter()
+        .map(|name| {
+            all.iter()
+                .find(|l| &l.name == name)
+                .cloned()
+                .ok_or_else(|| {
+                    let names: Vec<&str> = all.iter().map(|l| l.name.as_str()).collect();
+                    Error::Usage(format!(
+                        "no layer `{name}` in the file; layers: {}",
+                        names.join(", ")
+                    ))
+                })
+        })
+        .collect()
+}
+
+/// Lays the tiles out in a grid of `args.columns`, each captioned with name and range.
+pub fn compose(image: &Image, layers: &[Layer], args: &SheetArgs) -> Canvas {
+    let tile_w = (args.tile_width as usize).min(image.width).max(1);
+    let tile_h = ((image.height * tile_w) as f64 / image.width.max(1) as f64)
+        .round()
+        .max(1.0) as usize;
+    let columns = (args.columns as usize).min(layers.len()).max(1);
+    let rows = layers.len().div_ceil(columns).max(1);
+    let mut sheet = Canvas::new(
+        columns * tile_w + (columns + 1) * MARGIN,
+        rows * (tile_h + CAPTION) + (rows + 1) * MARGIN,
+        BACKGROUND,
+    );
+    for (i, layer) in layers.iter().enumerate() {
+        let x = MARGIN + (i % columns) * (tile_w + MARGIN);
+        let y = MARGIN + (i / columns) * (tile_h + CAPTION + MARGIN);
+        let stats = Stats::of_layer(image, layer);
+        sheet.text(x, y, &fit(&layer.name, tile_w), TEXT);
+        let range = format!("{} .. {}", number(stats.min), number(stats.max));
+        sheet.text(x, y + LINE_HEIGHT + 1, &fit(&range, tile_w), DIM_TEXT);
+        let display = display_values(image, layer, args.tonemap, args.exposure);
+        sheet.blit(
+            x,
+            y + CAPTION,
+            &downsample(&display, image.width, image.height, tile_w, tile_h),
+        );
+    }
+    sheet
+}
+
+/// What a layer looks like, as display values in [0, 1] per pixel.
+fn display_values(image: &Image, layer: &Layer, tonemap: ToneMap, exposure: f64) -> Vec<[f64; 3]> {
+    let channel = |suffix_name: &str| {
+        layer
+            .channels
+            .iter()
+            .map(|&i| &image.channels[i])
+            .find(|c| suffix(&c.name) == suffix_name)
+    };
+    let pixels = image.width * image.height;
+    let values = |i: usize| &image.channels[layer.channels[i]].values;
+    if image.is_colour(layer) {
+        let (r, g, b) = (channel("R"), channel("G"), channel("B"));
+        let (Some(r), Some(g), Some(b)) = (r, g, b) else {
+            return vec![[0.0; 3]; pixels];
+        };
+        return (0..pixels)
+            .map(|p| {
+                let v = DVec3::new(
+                    f64::from(r.values[p]),
+                    f64::from(g.values[p]),
+                    f64::from(b.values[p]),
+                );
+                let t = tonemap.apply(expose(v, exposure)).to_array();
+                if tonemap.srgb_encoded() {
+                    t.map(srgb_oetf)
+                } else {
+                    t
+                }
+            })
+            .collect();
+    }
+    if layer.name == "N" && layer.channels.len() == 3 {
+        return (0..pixels)
+            .map(|p| [0, 1, 2].map(|c| ((f64::from(values(c)[p]) + 1.0) / 2.0).clamp(0.0, 1.0)))
+            .collect();
+    }
+    if layer.name.starts_with("objectid") {
+        return values(0).iter().map(|&id| id_colour(id)).collect();
+    }
+    if layer.channels.len() == 1 && layer.name.starts_with("shadow_") {
+        return values(0)
+            .iter()
+            .map(|&v| [f64::from(v).clamp(0.0, 1.0); 3])
+            .collect();
+    }
+    // Data: each channel normalised over its non-zero finite values; 0 (a miss) stays black.
+    let normalised: Vec<Vec<f64>> = (0..layer.channels.len().min(3))
+        .map(|c| {
+            let v = values(c);
+            let hits = v
+                .iter()
+                .filter(|x| x.is_finite() && **x != 0.0)
+                .map(|&x| f64::from(x));
+            let (lo, hi) = hits.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+                (lo.min(x), hi.max(x))
+            });
+            let span = if hi > lo { hi - lo } else { 1.0 };
+            v.iter()
+                .map(|&x| {
+                    if x == 0.0 || !x.is_finite() {
+                        0.0
+                    } else {
+                        0.2 + 0.8 * (f64::from(x) - lo) / span
+                    }
+                })
+                .collect()
+        })
+        .collect();
+    (0..pixels)
+        .map(|p| match normalised.len() {
+            1 => [normalised[0][p]; 3],
+            2 => [normalised[0][p], normalised[1][p], 0.0],
+            _ => [normalised[0][p], normalised[1][p], normalised[2][p]],
+        })
+        .collect()
+}
+
+/// A stable, well-spread colour for an object id; 0 (no object) is black.
+fn id_colour(id: f32) -> [f64; 3] {
+    if !(id > 0.0) {
+        return [0.0; 3];
+    }
+    let hue = (f64::from(id) * 0.618_033_988_749_895).fract();
+    let channel =
+        |offset: f64| 0.35 + 0.55 * (0.5 + 0.5 * (std::f64::consts::TAU * (hue + offset)).cos());
+    [channel(0.0), channel(1.0 / 3.0), channel(2.0 / 3.0)]
+}
+
+/// Box-filters display values down (or nearest-samples up) to a tile.
+fn downsample(
+    values: &[[f64; 3]],
+    width: usize,
+    height: usize,
+    tile_w: usize,
+    tile_h: usize,
+) -> Canvas {
+    let mut tile = Canvas::new(tile_w, tile_h, [0; 3]);
+    for ty in 0..tile_h {
+        let (y0, y1) = (
+            ty * height / tile_h,
+            ((ty + 1) * height / tile_h).max(ty * height / tile_h + 1),
+        );
+        for tx in 0..tile_w {
+            let (x0, x1) = (
+                tx * width / tile_w,
+                ((tx + 1) * width / tile_w).max(tx * width / tile_w + 1),
+            );
+            let mut sum = [0.0; 3];
+            let mut n = 0.0;
+            for y in y0..y1.min(height) {
+                for x in x0..x1.min(width) {
+                    let v = values[y * width + x];
+                    for c in 0..3 {
+                        sum[c] += v[c];
+                    }
+                    n += 1.0;
+                }
+            }
+            tile.pixels[ty * tile_w + tx] =
+                sum.map(|s| (255.0 * s / f64::max(n, 1.0) + 0.5).clamp(0.0, 255.0) as u8);
+        }
+    }
+    tile
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ids_get_distinct_colours_and_zero_is_black() {
+        assert_eq!(id_colour(0.0), [0.0; 3]);
+        let colours: Vec<[f64; 3]> = (1..8).map(|i| id_colour(i as f32)).collect();
+        for (i, a) in colours.iter().enumerate() {
+            for b in &colours[i + 1..] {
+                assert!(a.iter().zip(b).map(|(x, y)| (x - y).abs()).sum::<f64>() > 0.05);
+            }
+        }
+    }
+
+    #[test]
+    fn downsampling_averages_boxes() {
+        let values = vec![
+            [1.0, 0.0, 0.0],
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 0.0, 0.0],
+        ];
+        let tile = downsample(&values, 2, 2, 1, 1);
+        assert_eq!(tile.pixels, [[128, 0, 0]]);
+    }
+}

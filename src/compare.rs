@@ -1,0 +1,282 @@
+//! Layer-aware numeric comparison of two images (`whitted diff`, the golden tests).
+//!
+//! A value fails when `|a - b| > abs + rel * |b|` (b is the reference), or when exactly one of
+//! the two is NaN; a pixel fails when any compared channel of the layer fails there.
+
+use crate::input::Image;
+
+/// Tolerances: absolute and relative to the reference value.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tolerance {
+    pub abs: f64,
+    pub rel: f64,
+}
+
+impl Tolerance {
+    /// The tolerance aovs.md states for sums of layers.
+    pub const AOV: Tolerance = Tolerance {
+        abs: 1e-6,
+        rel: 1e-5,
+    };
+
+    /// How far past the tolerance `a` is from reference `b`: 0 when equal, <= 1 within.
+    pub fn excess(self, a: f64, b: f64) -> f64 {
+        match (a.is_nan(), b.is_nan()) {
+            (true, true) => 0.0,
+            (true, false) | (false, true) => f64::INFINITY,
+            _ if a == b => 0.0,
+            _ => (a - b).abs() / (self.abs + self.rel * b.abs()),
+        }
+    }
+}
+
+/// How many failing pixels a layer report lists by position.
+pub const FIRST_FAILING: usize = 10;
+
+/// The comparison of one layer.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LayerReport {
+    pub layer: String,
+    pub channels: Vec<String>,
+    pub max_abs: f64,
+    pub rmse: f64,
+    /// Peak signal-to-noise ratio in dB, peak = max(1, largest |reference|); infinite when
+    /// the layers are identical.
+    pub psnr: f64,
+    /// Pixels where some channel fails.
+    pub failing: usize,
+    /// The first failing pixels in row order, as (x, y).
+    pub first_failing: Vec<(usize, usize)>,
+}
+
+impl LayerReport {
+    pub fn passed(&self) -> bool {
+        self.failing == 0
+    }
+}
+
+/// Compares layers `layers` (all layers of `reference` when empty) of `actual` against
+/// `reference`. Errors (not failures) when the sizes differ or a layer or channel is missing
+/// from either image.
+pub fn compare(
+    actual: &Image,
+    reference: &Image,
+    layers: &[String],
+    tolerance: Tolerance,
+) -> Result<Vec<LayerReport>, String> {
+    if (actual.width, actual.height) != (reference.width, reference.height) {
+        return Err(format!(
+            "sizes differ: {}x{} vs {}x{}",
+            actual.width, actual.height, reference.width, reference.height
+        ));
+    }
+    let reference_layers = reference.layers();
+    let actual_layers = actual.layers();
+    let names: Vec<String> = if layers.is_empty() {
+        let mut all: Vec<String> = reference_layers.iter().map(|l| l.name.clone()).collect();
+        for l in &actual_layers {
+            if !all.contains(&l.name) {
+                all.push(l.name.clone());
+            }
+        }
+        all
+    } else {
+        layers.to_vec()
+    };
+    let mut reports = Vec::new();
+    for name in names {
+        let find = |image_layers: &[crate::input::Layer], which: &str| {
+            image_layers
+                .iter()
+                .find(|l| l.name == name)
+                .cloned()
+                .ok_or_else(|| format!("layer `{name}` is missing from the {which} image"))
+        };
+        let r = find(&reference_layers, "second (reference)")?;
+        let a = find(&actual_layers, "first")?;
+        let mut channel_names = Vec::new();
+        let mut pairs = Vec::new();
+        for &i in &r.channels {
+            let reference_channel = &reference.channels[i];
+            let actual_channel = actual.channel(&reference_channel.name).ok_or_else(|| {
+                format!(
+                    "channel `{}` is missing from the first image",
+                    reference_channel.name
+                )
+            })?;
+            channel_names.push(reference_channel.name.clone());
+            pairs.push((&actual_channel.values, &reference_channel.values));
+        }
+        if a.channels.len() != r.channels.len() {
+            return Err(format!(
+                "layer `{name}` has {} channels in the first image and {} in the second",
+                a.channels.len(),
+                r.channels.len()
+            ));
+        }
+        reports.push(compare_layer(
+            &name,
+            channel_names,
+            &pairs,
+            actual.width,
+            tolerance,
+        ));
+    }
+    Ok(reports)
+}
+
+fn compare_layer(
+    name: &str,
+    channels: Vec<String>,
+    pairs: &[(&Vec<f32>, &Vec<f32>)],
+    width: usize,
+    tolerance: Tolerance,
+) -> LayerReport {
+    let pixels = pairs.first().map_or(0, |(a, _)| a.len());
+    let (mut max_abs, mut sum_sq, mut peak) = (0.0f64, 0.0f64, 1.0f64);
+    let mut failing = 0;
+    let mut first_failing = Vec::new();
+    for p in 0..pixels {
+        let mut pixel_fails = false;
+        for (a, b) in pairs {
+            let (a, b) = (f64::from(a[p]), f64::from(b[p]));
+            if tolerance.excess(a, b) > 1.0 {
+                pixel_fails = true;
+            }
+            let d = (a - b).abs();
+            if d.is_finite() {
+                max_abs = max_abs.max(d);
+                sum_sq += d * d;
+            } else if !(a.is_nan() && b.is_nan()) && a != b {
+                max_abs = f64::INFINITY;
+                sum_sq = f64::INFINITY;
+            }
+            if b.is_finite() {
+                peak = peak.max(b.abs());
+            }
+        }
+        if pixel_fails {
+            failing += 1;
+            if first_failing.len() < FIRST_FAILING {
+                first_failing.push((p % width.max(1), p / width.max(1)));
+            }
+        }
+    }
+    let count = (pixels * pairs.len()).max(1) as f64;
+    let rmse = (sum_sq / count).sqrt();
+    let psnr = if rmse == 0.0 {
+        f64::INFINITY
+    } else {
+        20.0 * (peak / rmse).log10()
+    };
+    LayerReport {
+        layer: name.to_string(),
+        channels,
+        max_abs,
+        rmse,
+        psnr,
+        failing,
+        first_failing,
+    }
+}
+
+/// Per pixel, the largest `excess` over all compared channels of `layers`: the heat map.
+pub fn excess_map(
+    actual: &Image,
+    reference: &Image,
+    layers: &[String],
+    tolerance: Tolerance,
+) -> Vec<f64> {
+    let mut map = vec![0.0f64; reference.width * reference.height];
+    for layer in reference
+        .layers()
+        .iter()
+        .filter(|l| layers.is_empty() || layers.contains(&l.name))
+    {
+        for &i in &layer.channels {
+            let b = &reference.channels[i];
+            let Some(a) = actual.channel(&b.name) else {
+                continue;
+            };
+            for (m, (&x, &y)) in map.iter_mut().zip(a.values.iter().zip(&b.values)) {
+                *m = m.max(tolerance.excess(f64::from(x), f64::from(y)));
+            }
+        }
+    }
+    map
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::input::image::{Channel, Format};
+
+    fn image(width: usize, values: &[(&str, Vec<f32>)]) -> Image {
+        Image {
+            format: Format::Exr,
+            width,
+            height: values[0].1.len() / width,
+            channels: values
+                .iter()
+                .map(|(n, v)| Channel {
+                    name: (*n).into(),
+                    pixel_type: "float",
+                    values: v.clone(),
+                })
+                .collect(),
+            attributes: vec![],
+        }
+    }
+
+    #[test]
+    fn tolerance_is_absolute_plus_relative() {
+        let t = Tolerance {
+            abs: 0.1,
+            rel: 0.01,
+        };
+        assert!(t.excess(1.1, 1.0) <= 1.0);
+        assert!(t.excess(1.2, 1.0) > 1.0);
+        assert!(t.excess(105.0, 100.0) > 1.0);
+        assert!(t.excess(100.9, 100.0) <= 1.0);
+        assert_eq!(t.excess(f64::NAN, f64::NAN), 0.0);
+        assert!(t.excess(f64::NAN, 0.0) > 1.0);
+    }
+
+    #[test]
+    fn reports_the_failing_layer_its_count_and_positions() {
+        let reference = image(3, &[("R", vec![0.0; 6]), ("Z", vec![1.0; 6])]);
+        let mut z = vec![1.0; 6];
+        z[4] = 1.5;
+        z[5] = 0.5;
+        let actual = image(3, &[("R", vec![0.0; 6]), ("Z", z)]);
+        let reports = compare(&actual, &reference, &[], Tolerance::AOV).expect("comparable");
+        let r = reports
+            .iter()
+            .find(|r| r.layer == "beauty")
+            .expect("beauty");
+        assert!(r.passed() && r.psnr.is_infinite());
+        let z = reports.iter().find(|r| r.layer == "Z").expect("Z");
+        assert_eq!(
+            (z.failing, z.first_failing.clone()),
+            (2, vec![(1, 1), (2, 1)])
+        );
+        assert_eq!(z.max_abs, 0.5);
+        assert!((z.rmse - (0.5f64 / 6.0).sqrt()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn mismatches_are_errors_not_failures() {
+        let a = image(2, &[("R", vec![0.0; 4])]);
+        let b = image(4, &[("R", vec![0.0; 4])]);
+        assert!(compare(&a, &b, &[], Tolerance::AOV)
+            .unwrap_err()
+            .contains("sizes differ"));
+        let c = image(2, &[("Z", vec![0.0; 4])]);
+        assert!(compare(&a, &c, &[], Tolerance::AOV)
+            .unwrap_err()
+            .contains("missing"));
+        assert!(compare(&a, &a, &["nope".into()], Tolerance::AOV)
+            .unwrap_err()
+            .contains("`nope`"));
+    }
+}
