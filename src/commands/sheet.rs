@@ -160,7 +160,7 @@ fn display_values(image: &Image, layer: &Layer, tonemap: ToneMap, exposure: f64)
 
 /// A stable, well-spread colour for an object id; 0 (no object) is black.
 fn id_colour(id: f32) -> [f64; 3] {
-    if !(id > 0.0) {
+    if id.is_nan() || id <= 0.0 {
         return [0.0; 3];
     }
     let hue = (f64::from(id) * 0.618_033_988_749_895).fract();
