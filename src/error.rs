@@ -32,12 +32,24 @@ pub enum Error {
     /// A command line that asks for something impossible.
     #[error("{0}")]
     Usage(String),
+    /// The user pressed Ctrl-C; nothing was written.
+    #[error("interrupted; no output was written")]
+    Interrupted,
 }
 
 /// The crate's result type.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
 
 impl Error {
+    /// The process exit status for this error: 130 for an interruption (128 + SIGINT, as
+    /// shells report it), 2 for everything else.
+    pub fn exit_code(&self) -> u8 {
+        match self {
+            Error::Interrupted => 130,
+            _ => 2,
+        }
+    }
+
     /// Shorthand for an I/O failure on `path` while doing `what` ("cannot read", ...).
     pub fn io(path: impl Into<PathBuf>, what: &'static str, source: std::io::Error) -> Self {
         Error::Io {

@@ -8,6 +8,7 @@ use glam::DVec3;
 
 use crate::aov::{Layer, Reduction};
 use crate::error::{Error, Result};
+use crate::memory;
 use crate::sample::Sample;
 
 /// The rendered image and its AOV layers.
@@ -43,12 +44,15 @@ impl Film {
                 )));
             }
         }
+        if layers.is_empty() {
+            return Err(Error::Usage("a film needs at least one layer".into()));
+        }
         let pixels = width as usize * height as usize;
         Ok(Film {
             width,
             height,
-            beauty: vec![DVec3::ZERO; pixels],
-            data: vec![0.0; pixels * channel_names.len()],
+            beauty: memory::filled(pixels, DVec3::ZERO)?,
+            data: memory::filled(pixels.saturating_mul(channel_names.len()), 0.0)?,
             layers,
             channel_names,
             spp,

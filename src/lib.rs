@@ -35,6 +35,8 @@ pub mod error;
 pub mod film;
 pub mod geometry;
 pub mod input;
+pub mod interrupt;
+pub mod memory;
 pub mod output;
 pub mod render;
 pub mod sample;

@@ -14,6 +14,7 @@ fn main() -> ExitCode {
         Ok(cli) => cli,
         Err(e) => return usage_error(&e),
     };
+    whitted::interrupt::install();
     let result = match &cli.command {
         Some(Command::Render(args)) => commands::render::run(args).map(|()| true),
         Some(Command::Tonemap(args)) => commands::tonemap::run(args).map(|()| true),
@@ -28,7 +29,7 @@ fn main() -> ExitCode {
         Ok(false) => ExitCode::from(1),
         Err(e) => {
             eprintln!("error: {e}");
-            ExitCode::from(2)
+            ExitCode::from(e.exit_code())
         }
     }
 }

@@ -7,6 +7,7 @@ use crate::aov::Layer;
 use crate::camera::Camera;
 use crate::error::Result;
 use crate::film::{Film, PixelAccumulator};
+use crate::interrupt;
 use crate::scene::Scene;
 use crate::trace::{trace, TraceOptions};
 
@@ -34,7 +35,8 @@ fn sample_grid(spp: u32) -> (Vec<(f64, f64)>, usize) {
 }
 
 /// Renders `scene` at `camera`'s size into a film holding `layers`. `row_done` is called once
-/// per finished row (from any thread), for progress reporting.
+/// per finished row (from any thread), for progress reporting. Stops early with
+/// `Error::Interrupted` when the user presses Ctrl-C.
 pub fn render(
     scene: &Scene,
     camera: &Camera,
@@ -53,6 +55,9 @@ pub fn render(
         .zip(film.data.par_chunks_mut(width * channels))
         .enumerate()
         .map(|(y, (beauty_row, data_row))| {
+            if interrupt::requested() {
+                return (0, 0);
+            }
             let y = y as u32;
             let mut accumulator = PixelAccumulator::new(layers, channels);
             let (mut rays, mut non_finite) = (0, 0);
@@ -76,6 +81,7 @@ pub fn render(
             (rays, non_finite)
         })
         .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
+    interrupt::check()?;
     film.rays = rays;
     film.non_finite = non_finite;
     Ok(film)

@@ -11,8 +11,9 @@ use crate::camera::Camera;
 use crate::cli::RenderArgs;
 use crate::error::{Error, Result};
 use crate::film::Film;
+use crate::memory;
 use crate::output::atomic::AtomicFile;
-use crate::output::destination::{Destination, STDOUT};
+use crate::output::destination::{same_file, Destination, STDOUT};
 use crate::output::exr::{write_exr, ExrMetadata, ExrOptions};
 use crate::output::png::encode;
 use crate::render::{render, RenderSettings};
@@ -38,22 +39,23 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     };
 
     let encoding = args.tone.encoding().map_err(Error::Usage)?;
+    let channels: usize = layers.iter().map(|l| l.quantity.channels().len()).sum();
+    memory::check(
+        memory::render_bytes(args.width, args.height, channels, args.exr.is_some()),
+        memory::available_bytes(),
+        &format!(
+            "a {}x{} render with {channels} channels",
+            args.width, args.height
+        ),
+    )?;
 
+    check_outputs(args)?;
     // Open outputs before rendering, so that an unwritable path fails in milliseconds.
     let mut png = match args.no_png {
         true => None,
         false => Some(Destination::open(&args.output)?),
     };
-    let mut exr_file = match &args.exr {
-        Some(path) if !args.no_png && path == &args.output => {
-            return Err(Error::Usage(format!(
-                "--output and --exr are both `{}`; give them different paths",
-                path.display()
-            )))
-        }
-        Some(path) => Some(AtomicFile::create(path)?),
-        None => None,
-    };
+    let mut exr_file = args.exr.as_deref().map(AtomicFile::create).transpose()?;
 
     let camera = Camera::new(args.width, args.height);
     let settings = RenderSettings {
@@ -93,6 +95,8 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     if let Some(png) = png.as_mut() {
         png.write_png(&encode(&film.beauty, film.width, film.height, &encoding))?;
     }
+    // Ctrl-C while the files were being written: drop them rather than publish them.
+    crate::interrupt::check()?;
     if let Some(file) = exr_file {
         file.commit()?;
     }
@@ -102,6 +106,37 @@ pub fn run(args: &RenderArgs) -> Result<()> {
 
     if !args.quiet {
         eprintln!("{}", summary(&film, args, render_time, exr_time));
+    }
+    Ok(())
+}
+
+/// Outputs that cannot all be written as asked: an EXR to stdout, two outputs on one file,
+/// or an output over the scene being read.
+fn check_outputs(args: &RenderArgs) -> Result<()> {
+    let png = (!args.no_png).then_some(args.output.as_path());
+    if let Some(exr) = &args.exr {
+        if exr.as_os_str() == STDOUT {
+            return Err(Error::Usage(
+                "--exr cannot write to standard output (an EXR is written with seeks); give a file name"
+                    .into(),
+            ));
+        }
+        if png.is_some_and(|png| png.as_os_str() != STDOUT && same_file(png, exr)) {
+            return Err(Error::Usage(format!(
+                "--output and --exr are both `{}`; give them different paths",
+                exr.display()
+            )));
+        }
+    }
+    if let Some(input) = &args.input {
+        for output in png.into_iter().chain(args.exr.as_deref()) {
+            if output.as_os_str() != STDOUT && same_file(output, input) {
+                return Err(Error::Usage(format!(
+                    "the output `{}` is the scene file being read; give another path",
+                    output.display()
+                )));
+            }
+        }
     }
     Ok(())
 }

@@ -1,6 +1,6 @@
 //! Where an output goes: a file (written atomically) or standard output (`-`).
 
-use std::io::{BufWriter, Write};
+use std::io::{BufWriter, IsTerminal, Write};
 use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Result};
@@ -9,6 +9,23 @@ use crate::output::png::{write_png, PngImage};
 
 /// What `-o -` means.
 pub const STDOUT: &str = "-";
+
+/// Whether two paths name the same file once resolved (`a.png`, `./a.png` and `dir/../a.png`
+/// all do), so that one output cannot overwrite another or the input. The parent directory
+/// is resolved through symlinks when it exists.
+pub fn same_file(a: &Path, b: &Path) -> bool {
+    fn resolved(p: &Path) -> Option<PathBuf> {
+        let parent = match p.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d,
+            _ => Path::new("."),
+        };
+        Some(parent.canonicalize().ok()?.join(p.file_name()?))
+    }
+    match (resolved(a), resolved(b)) {
+        (Some(x), Some(y)) => x == y,
+        _ => a == b,
+    }
+}
 
 /// An output being prepared. Nothing becomes visible until `commit`: a file stays a hidden
 /// temporary file, and bytes for standard output are held back, so a run that fails half-way
@@ -20,8 +37,15 @@ pub enum Destination {
 
 impl Destination {
     /// Opens `path` (`-` for standard output); a file path that cannot be written fails now.
+    /// Binary output is not sent to a terminal, where it would only garble the screen.
     pub fn open(path: &Path) -> Result<Self> {
         if path.as_os_str() == STDOUT {
+            if std::io::stdout().is_terminal() {
+                return Err(Error::Usage(
+                    "standard output is a terminal; redirect it (`> out.png`) or give a file name"
+                        .into(),
+                ));
+            }
             Ok(Destination::Stdout(Vec::new()))
         } else {
             Ok(Destination::File(AtomicFile::create(path)?))

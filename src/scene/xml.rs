@@ -27,10 +27,48 @@ pub const MAX_LIGHT_NAME: usize = 16;
 /// A plane normal shorter than this cannot be normalised meaningfully.
 const MIN_NORMAL_LENGTH: f64 = 1e-12;
 
+/// Largest scene file read: far beyond any hand-written scene (a million spheres is ~80 MB),
+/// small enough that a mistaken path to a huge file fails at once.
+pub const MAX_FILE_BYTES: u64 = 1 << 30;
+
+/// Most elements (objects and lights) in one scene.
+pub const MAX_ELEMENTS: usize = 10_000_000;
+
+/// Longest attribute value quoted back in an error message.
+const SHOWN_CHARS: usize = 40;
+
 /// Reads and parses the scene file at `path`. Error messages name the file as given.
 pub fn load(path: &Path) -> Result<Scene> {
+    let size = std::fs::metadata(path)
+        .map_err(|e| Error::io(path, "cannot read scene", e))?
+        .len();
+    if size > MAX_FILE_BYTES {
+        return Err(Error::Usage(format!(
+            "{}: the scene file is {size} bytes; scenes up to {MAX_FILE_BYTES} bytes are read",
+            path.display()
+        )));
+    }
     let bytes = std::fs::read(path).map_err(|e| Error::io(path, "cannot read scene", e))?;
     parse_bytes(&path.display().to_string(), &bytes)
+}
+
+/// A number as an error message shows it: plainly, or in scientific notation when tiny or huge.
+fn number(v: f64) -> String {
+    if v == 0.0 || (1e-6..1e15).contains(&v.abs()) {
+        v.to_string()
+    } else {
+        format!("{v:e}")
+    }
+}
+
+/// `value` as quoted in an error message: long values are cut short.
+fn shown(value: &str) -> String {
+    if value.chars().count() <= SHOWN_CHARS {
+        value.to_string()
+    } else {
+        let start: String = value.chars().take(SHOWN_CHARS).collect();
+        format!("{start}... ({} characters)", value.chars().count())
+    }
 }
 
 /// Parses a scene from raw bytes; `file` is the name used in error messages.
@@ -41,9 +79,14 @@ pub fn parse_bytes(file: &str, bytes: &[u8]) -> Result<Scene> {
             let valid = &bytes[..e.valid_up_to()];
             // The prefix is valid UTF-8 by construction, so this cannot fail.
             let text = std::str::from_utf8(valid).unwrap_or_default();
+            let encoding = if bytes.starts_with(&[0xff, 0xfe]) || bytes.starts_with(&[0xfe, 0xff]) {
+                "UTF-16"
+            } else {
+                "not valid UTF-8"
+            };
             Err(Source { file, text }.error_at(
                 text.len(),
-                "the file is not valid UTF-8 (save it as UTF-8)".to_string(),
+                format!("the file is {encoding} (save it as UTF-8)"),
             ))
         }
     }
@@ -72,7 +115,11 @@ struct Source<'a> {
 
 impl<'a> Source<'a> {
     fn line_col(&self, offset: usize) -> (usize, usize) {
-        let before = &self.text[..offset.min(self.text.len())];
+        let mut offset = offset.min(self.text.len());
+        while !self.text.is_char_boundary(offset) {
+            offset -= 1;
+        }
+        let before = &self.text[..offset];
         let line_start = before.rfind('\n').map_or(0, |i| i + 1);
         let line = before.matches('\n').count() + 1;
         let col = before[line_start..].chars().count() + 1;
@@ -175,7 +222,7 @@ impl<'a> Parser<'a> {
     }
 
     fn unexpected_text(&self, offset: usize, text: &str, open: &[Open]) -> Error {
-        let shown: String = text.chars().take(40).collect();
+        let text = shown(text);
         let place = match open.last() {
             Some(o) => format!("inside <{}>", o.name),
             None => "outside <scene>".into(),
@@ -183,7 +230,7 @@ impl<'a> Parser<'a> {
         self.source.error_at(
             offset,
             format!(
-                "unexpected text `{shown}` {place} (a scene holds only elements with attributes)"
+                "unexpected text `{text}` {place} (a scene holds only elements with attributes)"
             ),
         )
     }
@@ -198,13 +245,16 @@ impl<'a> Parser<'a> {
                 if *seen_root {
                     return Err(self.source.error_at(
                         offset,
-                        format!("a second root element <{name}> (a file holds one <scene>)"),
+                        format!(
+                            "a second root element <{}> (a file holds one <scene>)",
+                            shown(name)
+                        ),
                     ));
                 }
                 if name != "scene" {
                     return Err(self.source.error_at(
                         offset,
-                        format!("the root element is <{name}>, expected <scene>"),
+                        format!("the root element is <{}>, expected <scene>", shown(name)),
                     ));
                 }
                 *seen_root = true;
@@ -215,8 +265,9 @@ impl<'a> Parser<'a> {
                 return Err(self.source.error_at(
                     offset,
                     format!(
-                        "<{name}> is nested inside <{}> (elements go directly inside <scene>)",
-                        parent.name
+                        "<{}> is nested inside <{}> (elements go directly inside <scene>)",
+                        shown(name),
+                        shown(&parent.name)
                     ),
                 ));
             }
@@ -225,13 +276,24 @@ impl<'a> Parser<'a> {
     }
 
     fn child(&mut self, e: &BytesStart, name: &str, offset: usize) -> Result<()> {
+        if self.builder.objects.len() + self.builder.lights.len() >= MAX_ELEMENTS {
+            return Err(self.source.error_at(
+                offset,
+                format!(
+                    "too many elements: a scene holds at most {MAX_ELEMENTS} objects and lights"
+                ),
+            ));
+        }
         match name {
             "sphere" => {
                 let a = self.attributes(e, name, &[&SPHERE_ATTRIBUTES, &MATERIAL_ATTRIBUTES])?;
                 let colour = a.required_colour(offset)?;
                 let radius = a.number("radius", 1.0)?;
                 if radius <= 0.0 {
-                    return Err(a.error("radius", format!("`radius` must be > 0, got {radius}")));
+                    return Err(a.error(
+                        "radius",
+                        format!("`radius` must be > 0, got {}", number(radius)),
+                    ));
                 }
                 let shape = Shape::Sphere {
                     centre: a.position()?,
@@ -254,7 +316,9 @@ impl<'a> Parser<'a> {
                         format!(
                             "<plane> normal (nx, ny, nz) = ({}, {}, {}) has (near) zero length \
                              (give nx, ny, nz for a non-zero normal)",
-                            n.x, n.y, n.z
+                            number(n.x),
+                            number(n.y),
+                            number(n.z)
                         ),
                     ));
                 }
@@ -272,7 +336,7 @@ impl<'a> Parser<'a> {
                 if intensity < 0.0 {
                     return Err(a.error(
                         "intensity",
-                        format!("`intensity` must be >= 0, got {intensity}"),
+                        format!("`intensity` must be >= 0, got {}", number(intensity)),
                     ));
                 }
                 let index = self.builder.lights.len();
@@ -315,7 +379,8 @@ impl<'a> Parser<'a> {
                 return Err(self.source.error_at(
                     offset,
                     format!(
-                        "unknown element <{other}> ({hint}expected one of <{}>)",
+                        "unknown element <{}> ({hint}expected one of <{}>)",
+                        shown(other),
                         ELEMENTS.join(">, <")
                     ),
                 ));
@@ -339,15 +404,26 @@ impl<'a> Parser<'a> {
         iter.with_checks(false);
         for attr in iter {
             let attr = attr.map_err(|err| {
-                let pos = match err {
-                    quick_xml::events::attributes::AttrError::ExpectedEq(p)
-                    | quick_xml::events::attributes::AttrError::ExpectedValue(p)
-                    | quick_xml::events::attributes::AttrError::UnquotedValue(p)
-                    | quick_xml::events::attributes::AttrError::ExpectedQuote(p, _)
-                    | quick_xml::events::attributes::AttrError::Duplicated(p, _) => p,
+                use quick_xml::events::attributes::AttrError;
+                let (pos, what) = match err {
+                    AttrError::ExpectedEq(p) => {
+                        (p, "an attribute name must be followed by `=`".into())
+                    }
+                    AttrError::ExpectedValue(p) => {
+                        (p, "`=` must be followed by a quoted value".into())
+                    }
+                    AttrError::UnquotedValue(p) => (
+                        p,
+                        "attribute values must be in quotes (\"...\" or '...')".into(),
+                    ),
+                    AttrError::ExpectedQuote(p, q) => (
+                        p,
+                        format!("the attribute value has no closing {}", q as char),
+                    ),
+                    AttrError::Duplicated(p, _) => (p, "duplicate attribute".into()),
                 };
                 self.source
-                    .error_at(tag_offset + pos, format!("not well-formed XML: {err}"))
+                    .error_at(tag_offset + pos, format!("not well-formed XML: {what}"))
             })?;
             let key = attr.key.0;
             let offset = self.source.offset_of(key);
@@ -372,14 +448,22 @@ impl<'a> Parser<'a> {
                 };
                 return Err(self.source.error_at(
                     offset,
-                    format!("unknown attribute `{key}` on <{element}> ({hint}{expected})"),
+                    format!(
+                        "unknown attribute `{}` on <{element}> ({hint}{expected})",
+                        shown(key)
+                    ),
                 ));
             }
             let value = attr
                 .normalized_value(quick_xml::XmlVersion::Implicit1_0)
                 .map_err(|err| {
-                    self.source
-                        .error_at(offset, format!("bad value for `{key}`: {err}"))
+                    self.source.error_at(
+                        offset,
+                        format!(
+                            "`{key}` has an entity or character reference that scenes do not \
+                                 expand ({err}); only &lt; &gt; &amp; &quot; &apos; and &#...; are"
+                        ),
+                    )
                 })?
                 .into_owned();
             list.push(Attribute {
@@ -428,13 +512,16 @@ impl<'a> Attributes<'a> {
             Ok(v) if v.is_finite() => Ok(v),
             Ok(_) => Err(self.error(
                 key,
-                format!("`{key}` must be a finite number, got `{}`", attr.value),
+                format!(
+                    "`{key}` must be a finite number, got `{}`",
+                    shown(&attr.value)
+                ),
             )),
             Err(_) => Err(self.error(
                 key,
                 format!(
                     "`{key}` must be a number (like 1.5 or -.4), got `{}`",
-                    attr.value
+                    shown(&attr.value)
                 ),
             )),
         }
@@ -443,7 +530,7 @@ impl<'a> Attributes<'a> {
     fn non_negative(&self, key: &str, default: f64) -> Result<f64> {
         let v = self.number(key, default)?;
         if v < 0.0 {
-            return Err(self.error(key, format!("`{key}` must be >= 0, got {v}")));
+            return Err(self.error(key, format!("`{key}` must be >= 0, got {}", number(v))));
         }
         Ok(v)
     }
@@ -472,7 +559,7 @@ impl<'a> Attributes<'a> {
                 "colour",
                 format!(
                     "`colour` must be #RRGGBB with six hex digits, got `{}`",
-                    attr.value
+                    shown(&attr.value)
                 ),
             )
         })
@@ -484,7 +571,10 @@ impl<'a> Attributes<'a> {
         if !(0.0..=1.0).contains(&reflectivity) {
             return Err(self.error(
                 "reflectivity",
-                format!("`reflectivity` must be between 0 and 1, got {reflectivity}"),
+                format!(
+                    "`reflectivity` must be between 0 and 1, got {}",
+                    number(reflectivity)
+                ),
             ));
         }
         Ok(Material {
@@ -531,8 +621,9 @@ impl SceneBuilder {
             return Err(source.error_at(
                 offset,
                 format!(
-                    "light name `{name}` must be a letter followed by letters, digits or _ \
-                     ([A-Za-z][A-Za-z0-9_]*), at most {MAX_LIGHT_NAME} characters"
+                    "light name `{}` must be a letter followed by letters, digits or _ \
+                     ([A-Za-z][A-Za-z0-9_]*), at most {MAX_LIGHT_NAME} characters",
+                    shown(name)
                 ),
             ));
         }

@@ -1,0 +1,78 @@
+//! Refusing renders that cannot fit in memory before allocating anything, so a typo in
+//! `--width` is a clear message instead of an out-of-memory kill minutes later.
+
+use crate::error::{Error, Result};
+
+/// Bytes a render of this size needs at its peak: the f64 beauty, the f32 film, and during
+/// writing the EXR's per-channel planes plus the encoder's buffers (about as much again), and
+/// the PNG's display values and bytes.
+pub fn render_bytes(width: u32, height: u32, channels: usize, exr: bool) -> u64 {
+    let pixels = u64::from(width) * u64::from(height);
+    let film = 24 + 4 * channels as u64;
+    let writing = if exr { 2 * 4 * channels as u64 } else { 0 } + 24 + 3;
+    pixels.saturating_mul(film + writing)
+}
+
+/// Memory the system can give us now (Linux `MemAvailable`), if it says.
+pub fn available_bytes() -> Option<u64> {
+    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024)
+}
+
+/// An error if `needed` bytes are more than `available`.
+pub fn check(needed: u64, available: Option<u64>, what: &str) -> Result<()> {
+    match available {
+        Some(available) if needed > available => Err(Error::Usage(format!(
+            "{what} needs about {} of memory and {} is available (try a smaller size or --aovs beauty)",
+            gib(needed),
+            gib(available)
+        ))),
+        _ => Ok(()),
+    }
+}
+
+fn gib(bytes: u64) -> String {
+    format!("{:.1} GiB", bytes as f64 / f64::from(1u32 << 30))
+}
+
+/// A vector of `len` copies of `value`, or an error instead of an abort when the allocation
+/// fails.
+pub fn filled<T: Clone>(len: usize, value: T) -> Result<Vec<T>> {
+    let mut v = Vec::new();
+    v.try_reserve_exact(len)
+        .map_err(|_| Error::Usage(format!("cannot allocate memory for {len} values")))?;
+    v.resize(len, value);
+    Ok(v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn estimates_grow_with_size_and_layers() {
+        let small = render_bytes(640, 480, 4, false);
+        assert!(small > 640 * 480 * 24);
+        assert!(render_bytes(640, 480, 53, true) > 10 * small);
+        assert_eq!(render_bytes(u32::MAX, u32::MAX, 1000, true), u64::MAX);
+    }
+
+    #[test]
+    fn too_large_is_refused_with_numbers() {
+        let err = check(10 << 30, Some(1 << 30), "a render")
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("10.0 GiB") && err.contains("1.0 GiB"), "{err}");
+        assert!(check(1, Some(2), "x").is_ok());
+        assert!(check(u64::MAX, None, "x").is_ok());
+        assert!(available_bytes().is_some_and(|b| b > 0));
+    }
+
+    #[test]
+    fn impossible_allocations_are_errors() {
+        assert!(filled(usize::MAX / 2, 0u64).is_err());
+        assert_eq!(filled(3, 7u8).expect("small"), [7, 7, 7]);
+    }
+}
