@@ -7,6 +7,7 @@ use clap::{Args, Parser, Subcommand};
 
 use crate::output::exr::ExrCompression;
 use crate::output::png::PngEncoding;
+use crate::render::Region;
 use crate::tonemap::ToneMap;
 
 /// Most reflection bounces accepted: each bounce is a layer in the EXR, and past this depth a
@@ -46,6 +47,19 @@ pub enum Command {
     Diff(DiffArgs),
     /// Write a labelled contact sheet of every layer of an EXR.
     Sheet(SheetArgs),
+    /// Assemble EXRs rendered with --region into the full frame.
+    Merge(MergeArgs),
+}
+
+#[derive(Debug, Clone, Args)]
+pub struct MergeArgs {
+    /// The region EXRs; together they must cover the frame exactly once
+    #[arg(value_name = "PARTS.exr", required = true, num_args = 1..)]
+    pub parts: Vec<PathBuf>,
+
+    /// The full-frame EXR to write
+    #[arg(short, long, value_name = "FULL.exr")]
+    pub output: PathBuf,
 }
 
 #[derive(Debug, Clone, Args)]
@@ -213,6 +227,11 @@ pub struct RenderArgs {
     #[arg(long, value_name = "N", default_value_t = 1, value_parser = parse_spp)]
     pub spp: u32,
 
+    /// Render only the pixels [X0, X1) x [Y0, Y1) of the image; the EXR's data window is
+    /// that crop, so parts from several machines merge into the full frame (`whitted merge`)
+    #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = parse_region)]
+    pub region: Option<Region>,
+
     /// Ignore occlusion: every light reaches every point
     #[arg(long)]
     pub no_shadows: bool,
@@ -295,6 +314,19 @@ fn parse_exposure(s: &str) -> Result<f64, String> {
         _ => Err(format!(
             "expected an exposure in stops between -64 and 64, got `{s}`"
         )),
+    }
+}
+
+fn parse_region(s: &str) -> Result<Region, String> {
+    let numbers: Vec<u32> = s
+        .split(',')
+        .map(|n| n.trim().parse::<u32>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| format!("expected X0,Y0,X1,Y1 in whole pixels, got `{s}`"))?;
+    match numbers[..] {
+        [x0, y0, x1, y1] if x0 < x1 && y0 < y1 => Ok(Region { x0, y0, x1, y1 }),
+        [_, _, _, _] => Err(format!("the region `{s}` is empty (X0 < X1 and Y0 < Y1)")),
+        _ => Err(format!("expected four numbers X0,Y0,X1,Y1, got `{s}`")),
     }
 }
 

@@ -2,6 +2,7 @@
 
 pub mod diff;
 pub mod info;
+pub mod merge;
 pub mod render;
 pub mod sheet;
 pub mod tonemap;

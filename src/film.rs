@@ -16,6 +16,10 @@ use crate::sample::Sample;
 pub struct Film {
     pub width: u32,
     pub height: u32,
+    /// Where this film's top-left pixel sits in the full image (non-zero for a region).
+    pub origin: (u32, u32),
+    /// Size of the full image it is part of.
+    pub display: (u32, u32),
     /// Row-major, y = 0 the top row; the exact mean beauty of each pixel.
     pub beauty: Vec<DVec3>,
     /// The layers stored, in file order.
@@ -51,6 +55,8 @@ impl Film {
         Ok(Film {
             width,
             height,
+            origin: (0, 0),
+            display: (width, height),
             beauty: memory::filled(pixels, DVec3::ZERO)?,
             data: memory::filled(pixels.saturating_mul(channel_names.len()), 0.0)?,
             layers,

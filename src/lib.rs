@@ -25,6 +25,7 @@
 //! - [`tonemap`] and [`output`]: linear film -> display bytes -> files; [`input`] reads EXRs back.
 //! - [`cli`] and [`commands`]: the command line.
 
+pub mod accel;
 pub mod aov;
 pub mod camera;
 pub mod canvas;
@@ -38,6 +39,7 @@ pub mod input;
 pub mod interrupt;
 pub mod memory;
 pub mod output;
+pub mod progress;
 pub mod render;
 pub mod sample;
 pub mod scene;

@@ -21,6 +21,7 @@ fn main() -> ExitCode {
         Some(Command::Info(args)) => commands::info::run(args).map(|()| true),
         Some(Command::Diff(args)) => commands::diff::run(args),
         Some(Command::Sheet(args)) => commands::sheet::run(args).map(|()| true),
+        Some(Command::Merge(args)) => commands::merge::run(args).map(|()| true),
         None => commands::render::run(&cli.render).map(|()| true),
     };
     match result {

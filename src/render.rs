@@ -1,22 +1,84 @@
-//! Camera rays -> `trace` -> film, in parallel over rows. Each pixel depends only on its own
-//! rays, so the image is the same for any number of threads.
+//! Camera rays -> `trace` -> film. Work is split into bands of 16x16 tiles rendered in
+//! parallel; every pixel depends only on its own rays and is written by exactly one task, so
+//! the image is the same for any number of threads and no lock is taken while tracing.
 
 use rayon::prelude::*;
 
+use crate::accel::Accelerator;
 use crate::aov::Layer;
 use crate::camera::Camera;
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::film::{Film, PixelAccumulator};
 use crate::interrupt;
 use crate::scene::Scene;
 use crate::trace::{trace, TraceOptions};
 
-/// How to sample each pixel.
+/// Side of a tile in pixels: small enough to balance two or many cores, large enough that
+/// neighbouring rays reuse the same hierarchy nodes from cache.
+const TILE: usize = 16;
+
+/// A rectangle of the full image, `[x0, x1) x [y0, y1)`: the part a farm node renders.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Region {
+    pub x0: u32,
+    pub y0: u32,
+    pub x1: u32,
+    pub y1: u32,
+}
+
+impl Region {
+    pub fn full(camera: &Camera) -> Self {
+        Region {
+            x0: 0,
+            y0: 0,
+            x1: camera.width,
+            y1: camera.height,
+        }
+    }
+
+    pub fn width(&self) -> u32 {
+        self.x1 - self.x0
+    }
+
+    pub fn height(&self) -> u32 {
+        self.y1 - self.y0
+    }
+}
+
+/// How nearest hits are found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Acceleration {
+    /// The bounding volume hierarchy (the normal path).
+    #[default]
+    Bvh,
+    /// Every object for every ray: the reference the hierarchy is tested against.
+    BruteForce,
+}
+
+/// How to sample each pixel, and which pixels.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct RenderSettings {
     pub trace: TraceOptions,
     /// Samples per pixel, a square k*k: a fixed stratified grid, no randomness.
     pub spp: u32,
+    /// The part of the image to render; `None` for all of it.
+    pub region: Option<Region>,
+    pub acceleration: Acceleration,
+}
+
+impl Default for RenderSettings {
+    /// The course's render: 2 bounces, shadows, one sample at each pixel's centre.
+    fn default() -> Self {
+        RenderSettings {
+            trace: TraceOptions {
+                bounces: 2,
+                shadows: true,
+            },
+            spp: 1,
+            region: None,
+            acceleration: Acceleration::Bvh,
+        }
+    }
 }
 
 /// The sub-pixel positions of a k*k grid: cell centres, row by row, and the index of the one
@@ -34,50 +96,75 @@ fn sample_grid(spp: u32) -> (Vec<(f64, f64)>, usize) {
     (grid, centre)
 }
 
-/// Renders `scene` at `camera`'s size into a film holding `layers`. `row_done` is called once
-/// per finished row (from any thread), for progress reporting. Stops early with
-/// `Error::Interrupted` when the user presses Ctrl-C.
+/// Renders `scene` into a film holding `layers`: the whole of `camera`'s image, or the region
+/// the settings name. `rows_done` is told how many rows have finished (from any thread), for
+/// progress. Stops early with `Error::Interrupted` when the user presses Ctrl-C.
 pub fn render(
     scene: &Scene,
     camera: &Camera,
     settings: RenderSettings,
     layers: Vec<Layer>,
-    row_done: &(dyn Fn() + Sync),
+    rows_done: &(dyn Fn(u64) + Sync),
 ) -> Result<Film> {
-    let mut film = Film::new(camera.width, camera.height, settings.spp, layers)?;
+    let region = settings.region.unwrap_or(Region::full(camera));
+    if region.x0 >= region.x1
+        || region.y0 >= region.y1
+        || region.x1 > camera.width
+        || region.y1 > camera.height
+    {
+        return Err(Error::Usage(format!(
+            "the region {},{},{},{} is not a non-empty part of the {}x{} image",
+            region.x0, region.y0, region.x1, region.y1, camera.width, camera.height
+        )));
+    }
+    let accel = match settings.acceleration {
+        Acceleration::Bvh => Accelerator::build(&scene.objects),
+        Acceleration::BruteForce => Accelerator::brute_force(&scene.objects),
+    };
+    let mut film = Film::new(region.width(), region.height(), settings.spp, layers)?;
+    film.origin = (region.x0, region.y0);
+    film.display = (camera.width, camera.height);
     let (grid, centre) = sample_grid(settings.spp);
-    let width = camera.width as usize;
+    let width = region.width() as usize;
     let channels = film.channel_count();
     let layers = &film.layers;
     let (rays, non_finite) = film
         .beauty
-        .par_chunks_mut(width)
-        .zip(film.data.par_chunks_mut(width * channels))
+        .par_chunks_mut(width * TILE)
+        .zip(film.data.par_chunks_mut(width * TILE * channels))
         .enumerate()
-        .map(|(y, (beauty_row, data_row))| {
+        .map(|(band, (beauty, data))| {
             if interrupt::requested() {
                 return (0, 0);
             }
-            let y = y as u32;
+            let rows = beauty.len() / width;
             let mut accumulator = PixelAccumulator::new(layers, channels);
             let (mut rays, mut non_finite) = (0, 0);
-            let data_pixels = data_row.chunks_exact_mut(channels.max(1));
-            for (x, (beauty, data)) in beauty_row.iter_mut().zip(data_pixels).enumerate() {
-                let x = x as u32;
-                for (i, &(u, v)) in grid.iter().enumerate() {
-                    // The exact tick ray wherever the grid has a cell at the pixel centre.
-                    let ray = if (u, v) == (0.5, 0.5) {
-                        camera.pixel_centre_ray(x, y)
-                    } else {
-                        camera.sub_pixel_ray(x, y, u, v)
-                    };
-                    let sample = trace(scene, ray, settings.trace);
-                    rays += sample.rays;
-                    accumulator.add(&sample, i == centre);
+            for tile_x in (0..width).step_by(TILE) {
+                for row in 0..rows {
+                    let y = region.y0 + (band * TILE + row) as u32;
+                    for column in tile_x..(tile_x + TILE).min(width) {
+                        let x = region.x0 + column as u32;
+                        for (i, &(u, v)) in grid.iter().enumerate() {
+                            // The exact tick ray wherever the grid has a cell at the centre.
+                            let ray = if (u, v) == (0.5, 0.5) {
+                                camera.pixel_centre_ray(x, y)
+                            } else {
+                                camera.sub_pixel_ray(x, y, u, v)
+                            };
+                            let sample = trace(scene, &accel, ray, settings.trace);
+                            rays += sample.rays;
+                            accumulator.add(&sample, i == centre);
+                        }
+                        let pixel = row * width + column;
+                        non_finite += accumulator.finish(
+                            &mut beauty[pixel],
+                            &mut data[pixel * channels..(pixel + 1) * channels],
+                        );
+                    }
                 }
-                non_finite += accumulator.finish(beauty, data);
             }
-            row_done();
+            rows_done(rows as u64);
             (rays, non_finite)
         })
         .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
@@ -101,5 +188,33 @@ mod tests {
         assert_eq!(g9[0], (1.0 / 6.0, 1.0 / 6.0));
         let (g4, c4) = sample_grid(4);
         assert_eq!((g4[c4], c4), ((0.25, 0.25), 0));
+    }
+
+    #[test]
+    fn regions_must_lie_inside_the_image() {
+        let scene = crate::scene::parse_str("t.xml", "<scene/>").expect("scene");
+        let camera = Camera::new(10, 10);
+        let layers = crate::aov::all_layers(&[], 0)[..1].to_vec();
+        for (x0, y0, x1, y1) in [(0, 0, 11, 10), (5, 5, 5, 9), (3, 0, 2, 10)] {
+            let settings = RenderSettings {
+                region: Some(Region { x0, y0, x1, y1 }),
+                ..RenderSettings::default()
+            };
+            assert!(render(&scene, &camera, settings, layers.clone(), &|_| {}).is_err());
+        }
+        let settings = RenderSettings {
+            region: Some(Region {
+                x0: 2,
+                y0: 3,
+                x1: 7,
+                y1: 4,
+            }),
+            ..RenderSettings::default()
+        };
+        let film = render(&scene, &camera, settings, layers, &|_| {}).expect("render");
+        assert_eq!(
+            (film.width, film.height, film.origin, film.display),
+            (5, 1, (2, 3), (10, 10))
+        );
     }
 }

@@ -3,7 +3,8 @@
 
 use glam::DVec3;
 
-use crate::geometry::{closest_hit, normalise, occluded, Ray};
+use crate::accel::Accelerator;
+use crate::geometry::{normalise, Ray};
 use crate::sample::{PrimaryHit, Sample};
 use crate::scene::{Material, Scene};
 
@@ -25,7 +26,7 @@ pub struct TraceOptions {
 /// sample's layers; its unweighted shaded colour is kept so that the beauty can then be folded
 /// from the far end exactly as the course's recursion evaluates it:
 /// `direct * (1 - r) + reflected * r`.
-pub fn trace(scene: &Scene, primary: Ray, options: TraceOptions) -> Sample {
+pub fn trace(scene: &Scene, accel: &Accelerator, primary: Ray, options: TraceOptions) -> Sample {
     let mut sample = Sample::empty(scene.lights.len(), options.bounces);
     // (shaded colour, reflectivity if the chain continues there), vertex by vertex.
     let mut chain: Vec<(DVec3, Option<f64>)> = Vec::with_capacity(2);
@@ -34,7 +35,7 @@ pub fn trace(scene: &Scene, primary: Ray, options: TraceOptions) -> Sample {
     let mut throughput = 1.0;
     for k in 0..=options.bounces {
         sample.rays += 1;
-        let Some(hit) = closest_hit(&scene.objects, &ray) else {
+        let Some(hit) = accel.closest_hit(&scene.objects, &ray) else {
             let background = BACKGROUND * throughput;
             sample.background += background;
             *bucket(&mut sample, k) += background;
@@ -58,7 +59,7 @@ pub fn trace(scene: &Scene, primary: Ray, options: TraceOptions) -> Sample {
             weight,
             primary: k == 0,
         };
-        let colour = shade(scene, &vertex, options.shadows, &mut sample);
+        let colour = shade(scene, accel, &vertex, options.shadows, &mut sample);
         *bucket(&mut sample, k) += colour * weight;
         if k == 0 {
             sample.primary = Some(PrimaryHit {
@@ -114,7 +115,13 @@ struct Vertex<'a> {
 
 /// Phong shading at a vertex, in the course's order (rendering.md, Shading). Returns the
 /// unweighted colour and adds the weighted per-effect terms to `sample`.
-fn shade(scene: &Scene, vertex: &Vertex, shadows: bool, sample: &mut Sample) -> DVec3 {
+fn shade(
+    scene: &Scene,
+    accel: &Accelerator,
+    vertex: &Vertex,
+    shadows: bool,
+    sample: &mut Sample,
+) -> DVec3 {
     let Vertex {
         point: p,
         normal: n,
@@ -139,7 +146,7 @@ fn shade(scene: &Scene, vertex: &Vertex, shadows: bool, sample: &mut Sample) -> 
         let specular = (illumination * m.ks) * r.dot(v).max(0.0).powf(m.n);
         let in_shadow = shadows && {
             sample.rays += 1;
-            occluded(&scene.objects, &Ray::offset_from(p, l), d)
+            accel.occluded(&scene.objects, &Ray::offset_from(p, l), d)
         };
         out.unshadowed += (diffuse + specular) * weight;
         if vertex.primary {
@@ -161,6 +168,19 @@ mod tests {
     use crate::geometry::Shape;
     use crate::scene::{Object, PointLight};
     use std::f64::consts::PI;
+
+    /// Traces with the hierarchy, after checking brute force gives the very same sample.
+    fn trace(scene: &Scene, ray: Ray, options: TraceOptions) -> Sample {
+        let fast = super::trace(scene, &Accelerator::build(&scene.objects), ray, options);
+        let slow = super::trace(
+            scene,
+            &Accelerator::brute_force(&scene.objects),
+            ray,
+            options,
+        );
+        assert_eq!(fast, slow);
+        fast
+    }
 
     const NO_BOUNCES: TraceOptions = TraceOptions {
         bounces: 0,

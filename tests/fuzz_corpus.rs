@@ -40,13 +40,14 @@ fn every_corpus_input_loads_or_fails_cleanly() {
                         shadows: true,
                     },
                     spp: 1,
+                    ..RenderSettings::default()
                 };
                 let film = render(
                     &scene,
                     &Camera::new(8, 6),
                     settings,
                     all_layers(&names, 2),
-                    &|| {},
+                    &|_| {},
                 )
                 .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
                 assert!(

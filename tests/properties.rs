@@ -150,13 +150,14 @@ fn render_all(xml: &str, bounces: u32, shadows: bool) -> Film {
     let settings = RenderSettings {
         trace: TraceOptions { bounces, shadows },
         spp: 1,
+        ..RenderSettings::default()
     };
     render(
         &scene,
         &Camera::new(12, 9),
         settings,
         all_layers(&names, bounces),
-        &|| {},
+        &|_| {},
     )
     .expect("render")
 }

@@ -16,6 +16,7 @@ fn render_scene(name: &str, width: u32, height: u32, bounces: u32, shadows: bool
     let settings = RenderSettings {
         trace: TraceOptions { bounces, shadows },
         spp: 1,
+        ..RenderSettings::default()
     };
     let beauty = aov::all_layers(&[], 0)[..1].to_vec();
     render(
@@ -23,7 +24,7 @@ fn render_scene(name: &str, width: u32, height: u32, bounces: u32, shadows: bool
         &Camera::new(width, height),
         settings,
         beauty,
-        &|| {},
+        &|_| {},
     )
     .expect("render")
 }

@@ -26,14 +26,13 @@ fuzz_target!(|data: &[u8]| {
             bounces: 2,
             shadows: true,
         },
-        spp: 1,
-    };
+        spp: 1, ..RenderSettings::default() };
     let film = render(
         &scene,
         &Camera::new(8, 6),
         settings,
         all_layers(&names, 2),
-        &|| {},
+        &|_| {},
     )
     .expect("a loaded scene renders");
     assert!(film.data.iter().all(|v| v.is_finite()));

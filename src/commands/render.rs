@@ -1,10 +1,7 @@
 //! `whitted render` (and the bare `whitted ...` tick command line): scene -> film -> files.
 
-use std::io::IsTerminal;
 use std::path::Path;
 use std::time::{Duration, Instant, SystemTime};
-
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::aov;
 use crate::camera::Camera;
@@ -16,12 +13,10 @@ use crate::output::atomic::AtomicFile;
 use crate::output::destination::{same_file, Destination, STDOUT};
 use crate::output::exr::{write_exr, ExrMetadata, ExrOptions};
 use crate::output::png::encode;
+use crate::progress::Progress;
 use crate::render::{render, RenderSettings};
 use crate::scene::{self, Scene};
 use crate::trace::TraceOptions;
-
-/// Images smaller than this finish before a progress bar would be readable.
-const PROGRESS_MIN_PIXELS: u64 = 64 * 64;
 
 /// The name errors and the EXR header use for the scene compiled into the binary.
 const EMBEDDED_NAME: &str = "tick2.xml (embedded)";
@@ -40,8 +35,11 @@ pub fn run(args: &RenderArgs) -> Result<()> {
 
     let encoding = args.tone.encoding().map_err(Error::Usage)?;
     let channels: usize = layers.iter().map(|l| l.quantity.channels().len()).sum();
+    let (width, height) = args
+        .region
+        .map_or((args.width, args.height), |r| (r.width(), r.height()));
     memory::check(
-        memory::render_bytes(args.width, args.height, channels, args.exr.is_some()),
+        memory::render_bytes(width, height, channels, args.exr.is_some()),
         memory::available_bytes(),
         &format!(
             "a {}x{} render with {channels} channels",
@@ -64,13 +62,17 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             shadows: !args.no_shadows,
         },
         spp: args.spp,
+        region: args.region,
+        ..RenderSettings::default()
     };
-    let progress = progress_bar(args, &camera);
+    let progress = Progress::new(u64::from(height), args.quiet);
     let started = Instant::now();
     let film = with_threads(args.threads, || {
-        render(&scene, &camera, settings, layers, &|| progress.inc(1))
+        render(&scene, &camera, settings, layers, &|rows| {
+            progress.advance(rows)
+        })
     })??;
-    progress.finish_and_clear();
+    progress.finish();
     let render_time = started.elapsed();
     if film.non_finite > 0 {
         eprintln!(
@@ -159,23 +161,6 @@ fn with_threads<T: Send>(threads: Option<usize>, work: impl FnOnce() -> T + Send
             .map(|pool| pool.install(work))
             .map_err(|e| Error::Usage(format!("cannot start {n} worker threads: {e}"))),
     }
-}
-
-/// A bar over image rows on stderr, shown only to a person watching a render that takes a
-/// moment.
-fn progress_bar(args: &RenderArgs, camera: &Camera) -> ProgressBar {
-    let pixels = u64::from(camera.width) * u64::from(camera.height) * u64::from(args.spp);
-    if args.quiet || !std::io::stderr().is_terminal() || pixels < PROGRESS_MIN_PIXELS {
-        return ProgressBar::hidden();
-    }
-    let bar =
-        ProgressBar::with_draw_target(Some(u64::from(camera.height)), ProgressDrawTarget::stderr());
-    if let Ok(style) =
-        ProgressStyle::with_template("{spinner} rendering [{bar:40}] {pos}/{len} rows, {eta} left")
-    {
-        bar.set_style(style.progress_chars("=> "));
-    }
-    bar
 }
 
 fn exr_metadata(

@@ -41,6 +41,18 @@ pub fn decode(path: &Path, bytes: Vec<u8>) -> Result<Image> {
         })
         .collect();
     let mut attributes = header_text(&image.attributes, &layer.attributes);
+    let (x, y) = (
+        layer.attributes.layer_position.0,
+        layer.attributes.layer_position.1,
+    );
+    attributes.push((
+        "dataWindow".into(),
+        format!(
+            "({x}, {y}) - ({}, {})",
+            x + layer.size.0 as i32 - 1,
+            y + layer.size.1 as i32 - 1
+        ),
+    ));
     attributes.sort();
     Ok(Image {
         format: Format::Exr,

@@ -99,6 +99,8 @@ pub fn write_exr(
     }
 
     let mut attributes = x::LayerAttributes {
+        // The data window: where this film (a whole image, or a farm node's region) sits.
+        layer_position: x::Vec2(film.origin.0 as i32, film.origin.1 as i32),
         software_name: Some(text(&metadata.software)),
         comments: Some(text(&metadata.comments)),
         world_to_camera: Some(matrix(&IDENTITY)),
@@ -135,7 +137,8 @@ pub fn write_exr(
         line_order: x::LineOrder::Increasing,
     };
     let layer = x::Layer::new(size, attributes, encoding, x::AnyChannels::sort(channels));
-    let mut image = x::Image::from_layer(layer);
+    let display = x::IntegerBounds::new((0, 0), (film.display.0 as usize, film.display.1 as usize));
+    let mut image = x::Image::new(x::ImageAttributes::new(display), layer);
     image.attributes.chromaticities = Some(REC709_D65);
 
     image

@@ -1,0 +1,447 @@
+//! Finding the nearest object without testing every object: a bounding volume hierarchy
+//! (binned SAH) over the bounded shapes, with unbounded planes tested one by one.
+//!
+//! It must give exactly the brute-force answer of `geometry::closest_hit`, including ties:
+//! the same intersection code runs on every candidate, and candidates are ranked by
+//! (distance, file index), which is what "earlier object wins ties" means. Boxes are padded so
+//! that rounding in the slab test never prunes a sphere the exact test would report.
+
+use glam::DVec3;
+
+use crate::geometry::{Hit, Ray, Shape};
+use crate::scene::Object;
+
+/// Leaves hold at most this many objects unless their centres coincide.
+const MAX_LEAF: usize = 4;
+
+/// SAH bins per split.
+const BINS: usize = 16;
+
+/// An axis-aligned box.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Aabb {
+    pub min: DVec3,
+    pub max: DVec3,
+}
+
+impl Aabb {
+    const EMPTY: Aabb = Aabb {
+        min: DVec3::splat(f64::INFINITY),
+        max: DVec3::splat(f64::NEG_INFINITY),
+    };
+
+    fn grow(self, other: Aabb) -> Aabb {
+        Aabb {
+            min: self.min.min(other.min),
+            max: self.max.max(other.max),
+        }
+    }
+
+    fn grow_point(self, p: DVec3) -> Aabb {
+        Aabb {
+            min: self.min.min(p),
+            max: self.max.max(p),
+        }
+    }
+
+    fn area(self) -> f64 {
+        let d = (self.max - self.min).max(DVec3::ZERO);
+        2.0 * (d.x * d.y + d.y * d.z + d.z * d.x)
+    }
+
+    /// Parameter where the ray enters the box, or `None` if it misses it or the box lies
+    /// wholly behind the origin. `inverse` is `1 / direction` per component.
+    fn entry(self, origin: DVec3, inverse: DVec3) -> Option<f64> {
+        let t1 = (self.min - origin) * inverse;
+        let t2 = (self.max - origin) * inverse;
+        // f64::min/max ignore a NaN operand (0 * inf on a slab plane), keeping the test
+        // conservative.
+        let near = t1.x.min(t2.x).max(t1.y.min(t2.y)).max(t1.z.min(t2.z));
+        let far = t1.x.max(t2.x).min(t1.y.max(t2.y)).min(t1.z.max(t2.z));
+        (near <= far && far >= 0.0).then_some(near)
+    }
+}
+
+/// The box around a bounded shape, padded for rounding (see the module comment); `None` for
+/// unbounded shapes.
+fn bounds(shape: &Shape) -> Option<Aabb> {
+    match *shape {
+        Shape::Sphere { centre, radius } => {
+            // A grazing sphere test can report a hit a hair outside the true sphere; 1e-4 of
+            // the radius covers that for rays shorter than ~10^6 radii.
+            let pad = radius * (1.0 + 1e-4) + 1e-9 * centre.abs().max_element() + 1e-12;
+            Some(Aabb {
+                min: centre - DVec3::splat(pad),
+                max: centre + DVec3::splat(pad),
+            })
+        }
+        Shape::Plane { .. } => None,
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Node {
+    bounds: Aabb,
+    /// Leaf: first index into `items`; interior: index of the left child (right is +1).
+    first: u32,
+    /// Leaf: number of items (> 0); interior: 0.
+    count: u32,
+}
+
+/// The acceleration structure for one scene's objects.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Accelerator {
+    nodes: Vec<Node>,
+    /// Object indices, grouped by leaf.
+    items: Vec<u32>,
+    /// Objects without bounds (planes), in file order: tested for every ray.
+    unbounded: Vec<u32>,
+}
+
+/// The nearest of two candidate hits by (distance, object index): the brute-force order.
+fn nearer(best: Option<Hit>, candidate: Hit) -> Option<Hit> {
+    match best {
+        Some(b) if (b.distance, b.object) <= (candidate.distance, candidate.object) => Some(b),
+        _ => Some(candidate),
+    }
+}
+
+impl Accelerator {
+    /// Builds the hierarchy over `objects`' bounded shapes.
+    pub fn build(objects: &[Object]) -> Self {
+        let mut unbounded = Vec::new();
+        let mut boxes = Vec::new();
+        for (i, object) in objects.iter().enumerate() {
+            match bounds(&object.shape) {
+                Some(b) => boxes.push((i as u32, b)),
+                None => unbounded.push(i as u32),
+            }
+        }
+        let mut accel = Accelerator {
+            nodes: Vec::with_capacity(2 * boxes.len() / MAX_LEAF + 1),
+            items: Vec::with_capacity(boxes.len()),
+            unbounded,
+        };
+        if !boxes.is_empty() {
+            accel.nodes.push(Node {
+                bounds: Aabb::EMPTY,
+                first: 0,
+                count: 0,
+            });
+            accel.split(0, &mut boxes);
+        }
+        accel
+    }
+
+    /// Tests every object in order: the reference the hierarchy must agree with.
+    pub fn brute_force(objects: &[Object]) -> Self {
+        Accelerator {
+            nodes: Vec::new(),
+            items: Vec::new(),
+            unbounded: (0..objects.len() as u32).collect(),
+        }
+    }
+
+    /// Fills node `index` from `boxes`, splitting by the surface area heuristic.
+    fn split(&mut self, index: usize, boxes: &mut [(u32, Aabb)]) {
+        let bounds = boxes.iter().fold(Aabb::EMPTY, |a, (_, b)| a.grow(*b));
+        self.nodes[index].bounds = bounds;
+        let centroids = boxes
+            .iter()
+            .fold(Aabb::EMPTY, |a, (_, b)| a.grow_point((b.min + b.max) / 2.0));
+        let extent = centroids.max - centroids.min;
+        let axis = if extent.x >= extent.y && extent.x >= extent.z {
+            0
+        } else if extent.y >= extent.z {
+            1
+        } else {
+            2
+        };
+        let split = (boxes.len() > MAX_LEAF && extent[axis] > 0.0)
+            .then(|| {
+                best_split(
+                    boxes,
+                    centroids.min[axis],
+                    extent[axis],
+                    axis,
+                    bounds.area(),
+                )
+            })
+            .flatten();
+        let Some(position) = split else {
+            self.nodes[index].first = self.items.len() as u32;
+            self.nodes[index].count = boxes.len() as u32;
+            self.items.extend(boxes.iter().map(|(i, _)| *i));
+            return;
+        };
+        let centre = |b: &Aabb| (b.min[axis] + b.max[axis]) / 2.0;
+        let (mut left, mut right) = (0, boxes.len());
+        // Partition by the chosen plane (in-place, like quicksort's partition).
+        while left < right {
+            if centre(&boxes[left].1) < position {
+                left += 1;
+            } else {
+                right -= 1;
+                boxes.swap(left, right);
+            }
+        }
+        if left == 0 || left == boxes.len() {
+            left = boxes.len() / 2;
+        }
+        let child = self.nodes.len();
+        self.nodes[index].first = child as u32;
+        for _ in 0..2 {
+            self.nodes.push(Node {
+                bounds: Aabb::EMPTY,
+                first: 0,
+                count: 0,
+            });
+        }
+        let (l, r) = boxes.split_at_mut(left);
+        self.split(child, l);
+        self.split(child + 1, r);
+    }
+
+    /// The nearest hit along `ray`, exactly as `geometry::closest_hit` finds it.
+    pub fn closest_hit(&self, objects: &[Object], ray: &Ray) -> Option<Hit> {
+        let mut best: Option<Hit> = None;
+        let test = |best: Option<Hit>, i: u32| match objects[i as usize].shape.intersect(ray) {
+            Some(distance) => nearer(
+                best,
+                Hit {
+                    object: i as usize,
+                    distance,
+                },
+            ),
+            None => best,
+        };
+        for &i in &self.unbounded {
+            best = test(best, i);
+        }
+        if self.nodes.is_empty() {
+            return best;
+        }
+        let inverse = DVec3::ONE / ray.direction;
+        let mut stack: Vec<(u32, f64)> = Vec::with_capacity(64);
+        if let Some(t) = self.nodes[0].bounds.entry(ray.origin, inverse) {
+            stack.push((0, t));
+        }
+        while let Some((index, entry)) = stack.pop() {
+            // Equal distances must still be visited: a tie may go to a lower index.
+            if best.is_some_and(|b| entry > b.distance) {
+                continue;
+            }
+            let node = self.nodes[index as usize];
+            if node.count > 0 {
+                let items = &self.items[node.first as usize..(node.first + node.count) as usize];
+                for &i in items {
+                    best = test(best, i);
+                }
+                continue;
+            }
+            let children = [node.first, node.first + 1]
+                .map(|c| (c, self.nodes[c as usize].bounds.entry(ray.origin, inverse)));
+            // Push the farther child first so the nearer one is searched first.
+            let (near, far) = match (children[0].1, children[1].1) {
+                (Some(a), Some(b)) if b < a => (children[1], children[0]),
+                _ => (children[0], children[1]),
+            };
+            for (c, t) in [far, near] {
+                if let Some(t) = t {
+                    stack.push((c, t));
+                }
+            }
+        }
+        best
+    }
+
+    /// Whether anything lies along `ray` strictly nearer than `max_distance`.
+    pub fn occluded(&self, objects: &[Object], ray: &Ray, max_distance: f64) -> bool {
+        let blocks = |i: u32| {
+            objects[i as usize]
+                .shape
+                .intersect(ray)
+                .is_some_and(|s| s < max_distance)
+        };
+        if self.unbounded.iter().any(|&i| blocks(i)) {
+            return true;
+        }
+        if self.nodes.is_empty() {
+            return false;
+        }
+        let inverse = DVec3::ONE / ray.direction;
+        let mut stack: Vec<u32> = Vec::with_capacity(64);
+        stack.push(0);
+        while let Some(index) = stack.pop() {
+            let node = self.nodes[index as usize];
+            match node.bounds.entry(ray.origin, inverse) {
+                Some(t) if t < max_distance => {}
+                _ => continue,
+            }
+            if node.count > 0 {
+                let items = &self.items[node.first as usize..(node.first + node.count) as usize];
+                if items.iter().any(|&i| blocks(i)) {
+                    return true;
+                }
+            } else {
+                stack.extend([node.first, node.first + 1]);
+            }
+        }
+        false
+    }
+}
+
+/// The SAH-best split position along `axis` for `boxes`, if splitting beats a leaf.
+fn best_split(
+    boxes: &[(u32, Aabb)],
+    start: f64,
+    extent: f64,
+    axis: usize,
+    parent_area: f64,
+) -> Option<f64> {
+    let mut bins = [(Aabb::EMPTY, 0usize); BINS];
+    let scale = BINS as f64 / extent;
+    let bin_of =
+        |b: &Aabb| ((((b.min[axis] + b.max[axis]) / 2.0 - start) * scale) as usize).min(BINS - 1);
+    for (_, b) in boxes {
+        let bin = &mut bins[bin_of(b)];
+        bin.0 = bin.0.grow(*b);
+        bin.1 += 1;
+    }
+    // Costs of splitting after each bin: sweep from the left, then from the right.
+    let mut left = [(0.0, 0usize); BINS - 1];
+    let (mut acc, mut count) = (Aabb::EMPTY, 0);
+    for i in 0..BINS - 1 {
+        acc = acc.grow(bins[i].0);
+        count += bins[i].1;
+        left[i] = (acc.area(), count);
+    }
+    let (mut acc, mut count) = (Aabb::EMPTY, 0);
+    let mut best: Option<(f64, usize)> = None;
+    for i in (1..BINS).rev() {
+        acc = acc.grow(bins[i].0);
+        count += bins[i].1;
+        let (left_area, left_count) = left[i - 1];
+        if left_count == 0 || count == 0 {
+            continue;
+        }
+        let cost = left_area * left_count as f64 + acc.area() * count as f64;
+        if best.is_none_or(|(c, _)| cost < c) {
+            best = Some((cost, i));
+        }
+    }
+    let (cost, bin) = best?;
+    // Splitting pays if its expected work is below testing every object here.
+    (cost < parent_area * boxes.len() as f64).then(|| start + bin as f64 / scale)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::{closest_hit, normalise, occluded};
+    use crate::scene::Material;
+
+    /// A small deterministic generator, so the test needs no randomness crate.
+    struct Lcg(u64);
+    impl Lcg {
+        fn next(&mut self) -> f64 {
+            self.0 = self
+                .0
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        }
+        fn range(&mut self, lo: f64, hi: f64) -> f64 {
+            lo + (hi - lo) * self.next()
+        }
+    }
+
+    fn scene(n: usize, seed: u64) -> Vec<Object> {
+        let mut rng = Lcg(seed);
+        let mut objects: Vec<Object> = (0..n)
+            .map(|_| Object {
+                shape: Shape::Sphere {
+                    centre: DVec3::new(
+                        rng.range(-5.0, 5.0),
+                        rng.range(-5.0, 5.0),
+                        rng.range(2.0, 12.0),
+                    ),
+                    radius: rng.range(0.05, 0.8),
+                },
+                material: Material::sphere(DVec3::ONE),
+            })
+            .collect();
+        // Duplicates make exact ties; a plane makes the unbounded list non-empty.
+        objects.push(objects[3].clone());
+        objects.push(objects[0].clone());
+        objects.insert(
+            5,
+            Object {
+                shape: Shape::Plane {
+                    point: DVec3::new(0.0, -3.0, 0.0),
+                    normal: DVec3::Y,
+                },
+                material: Material::plane(DVec3::ONE),
+            },
+        );
+        objects
+    }
+
+    #[test]
+    fn agrees_with_brute_force_on_random_rays_including_ties() {
+        for (n, seed) in [(10, 1), (200, 2), (2000, 3)] {
+            let objects = scene(n, seed);
+            let accel = Accelerator::build(&objects);
+            let brute = Accelerator::brute_force(&objects);
+            let mut rng = Lcg(seed + 100);
+            for _ in 0..3000 {
+                let origin = DVec3::new(
+                    rng.range(-6.0, 6.0),
+                    rng.range(-6.0, 6.0),
+                    rng.range(-2.0, 14.0),
+                );
+                let direction = normalise(DVec3::new(
+                    rng.range(-1.0, 1.0),
+                    rng.range(-1.0, 1.0),
+                    rng.range(-1.0, 1.0),
+                ));
+                let ray = Ray::new(origin, direction);
+                let expected = closest_hit(&objects, &ray);
+                assert_eq!(accel.closest_hit(&objects, &ray), expected);
+                assert_eq!(brute.closest_hit(&objects, &ray), expected);
+                let d = rng.range(0.1, 20.0);
+                assert_eq!(
+                    accel.occluded(&objects, &ray, d),
+                    occluded(&objects, &ray, d)
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn duplicate_spheres_tie_to_the_first_in_file_order() {
+        let objects = scene(50, 7);
+        let accel = Accelerator::build(&objects);
+        let Shape::Sphere { centre, .. } = objects[0].shape else {
+            panic!("sphere")
+        };
+        let ray = Ray::new(DVec3::new(centre.x, centre.y, -20.0), DVec3::Z);
+        let hit = accel.closest_hit(&objects, &ray).expect("hits");
+        assert_eq!(hit, closest_hit(&objects, &ray).expect("hits"));
+        assert!(
+            hit.object < objects.len() - 1,
+            "the later duplicate must not win"
+        );
+    }
+
+    #[test]
+    fn builds_a_real_hierarchy() {
+        let objects = scene(5000, 9);
+        let accel = Accelerator::build(&objects);
+        assert_eq!(accel.items.len(), objects.len() - 1);
+        assert_eq!(accel.unbounded, [5]);
+        let leaves: Vec<&Node> = accel.nodes.iter().filter(|n| n.count > 0).collect();
+        assert!(leaves.len() > 5000 / 8, "{} leaves", leaves.len());
+        assert!(leaves.iter().all(|n| n.count <= 16));
+    }
+}

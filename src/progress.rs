@@ -1,0 +1,53 @@
+//! A progress bar on stderr that appears only once a render has run for half a second, and
+//! only for a person watching a terminal: quick renders and scripts see nothing.
+
+use std::io::IsTerminal;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
+/// How long a render runs before the bar is worth showing.
+const DELAY: Duration = Duration::from_millis(500);
+
+pub struct Progress {
+    bar: ProgressBar,
+    started: Instant,
+    /// Whether the bar may ever be shown (a terminal, and not --quiet).
+    wanted: bool,
+    shown: AtomicBool,
+}
+
+impl Progress {
+    /// A bar over `rows` rows; `quiet` or a non-terminal stderr keep it hidden for good.
+    pub fn new(rows: u64, quiet: bool) -> Self {
+        let bar = ProgressBar::with_draw_target(Some(rows), ProgressDrawTarget::hidden());
+        if let Ok(style) = ProgressStyle::with_template(
+            "{spinner} rendering [{bar:40}] {pos}/{len} rows, {eta} left",
+        ) {
+            bar.set_style(style.progress_chars("=> "));
+        }
+        Progress {
+            bar,
+            started: Instant::now(),
+            wanted: !quiet && std::io::stderr().is_terminal(),
+            shown: AtomicBool::new(false),
+        }
+    }
+
+    /// Records `rows` more finished rows; safe from any thread.
+    pub fn advance(&self, rows: u64) {
+        self.bar.inc(rows);
+        if self.wanted
+            && self.started.elapsed() >= DELAY
+            && !self.shown.swap(true, Ordering::Relaxed)
+        {
+            self.bar.set_draw_target(ProgressDrawTarget::stderr());
+        }
+    }
+
+    /// Removes the bar from the screen.
+    pub fn finish(&self) {
+        self.bar.finish_and_clear();
+    }
+}
