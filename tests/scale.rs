@@ -1,0 +1,167 @@
+//! The fast paths give the slow paths' answers: the hierarchy renders what brute force
+//! renders, regions merge into the full frame byte for byte, and supersampling keeps the
+//! exact tick image at one sample and unblended data layers at many.
+
+mod common;
+
+use common::*;
+use whitted::aov::all_layers;
+use whitted::camera::Camera;
+use whitted::render::{render, Acceleration, RenderSettings};
+use whitted::scene::{self, Scene};
+use whitted::trace::TraceOptions;
+
+/// A grid of n x n small spheres over a reflective floor, like the benchmark scenes.
+pub fn sphere_grid(n: usize) -> String {
+    let mut xml = String::from(
+        "<scene>\n<ambient-light colour=\"#202020\"/>\n\
+         <point-light x=\"-4\" y=\"6\" z=\"0\" colour=\"#FFFFFF\" intensity=\"400\" name=\"key\"/>\n\
+         <point-light x=\"5\" y=\"3\" z=\"2\" colour=\"#8080FF\" intensity=\"150\" name=\"fill\"/>\n\
+         <plane y=\"-1\" ny=\"1\" colour=\"#404040\" reflectivity=\"0.5\"/>\n",
+    );
+    let step = 8.0 / n as f64;
+    for i in 0..n {
+        for j in 0..n {
+            xml += &format!(
+                "<sphere x=\"{:.4}\" y=\"{:.4}\" z=\"{:.4}\" radius=\"{:.4}\" colour=\"#{:02X}80{:02X}\"/>\n",
+                -4.0 + (i as f64 + 0.5) * step,
+                -0.6 + 0.3 * ((i * 7 + j * 3) % 5) as f64 / 5.0,
+                6.0 + (j as f64 + 0.5) * step,
+                0.4 * step,
+                (i * 255 / n) as u8,
+                (j * 255 / n) as u8
+            );
+        }
+    }
+    xml + "</scene>\n"
+}
+
+fn film(scene: &Scene, acceleration: Acceleration, spp: u32) -> whitted::film::Film {
+    let names: Vec<String> = scene.lights.iter().map(|l| l.name.clone()).collect();
+    let settings = RenderSettings {
+        trace: TraceOptions {
+            bounces: 3,
+            shadows: true,
+        },
+        spp,
+        acceleration,
+        ..RenderSettings::default()
+    };
+    render(
+        scene,
+        &Camera::new(96, 72),
+        settings,
+        all_layers(&names, 3),
+        &|_| {},
+    )
+    .expect("render")
+}
+
+#[test]
+fn hierarchy_and_brute_force_render_identical_films() {
+    for source in [
+        sphere_grid(12),
+        std::fs::read_to_string(scene("tick2.xml")).expect("tick2"),
+    ] {
+        let scene = scene::parse_str("grid.xml", &source).expect("valid");
+        let fast = film(&scene, Acceleration::Bvh, 1);
+        let slow = film(&scene, Acceleration::BruteForce, 1);
+        assert_eq!(fast.beauty, slow.beauty);
+        assert!(fast.data == slow.data, "AOV layers differ");
+        assert_eq!(fast.rays, slow.rays);
+    }
+}
+
+#[test]
+fn regions_merge_byte_identically_to_the_full_frame() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let tick2 = scene("tick2.xml");
+    let full = render_exr(dir.path(), &tick2, "full.exr", &["--spp", "4"]);
+    let parts = [
+        ("a.exr", "0,0,640,123"),
+        ("b.exr", "0,123,333,480"),
+        ("c.exr", "333,123,640,480"),
+    ];
+    let mut names = Vec::new();
+    for (name, region) in parts {
+        let part = render_exr(
+            dir.path(),
+            &tick2,
+            name,
+            &["--spp", "4", "--region", region],
+        );
+        names.push(part.to_str().expect("utf-8").to_string());
+    }
+    let part = read_exr(&dir.path().join("b.exr"));
+    assert_eq!((part.width, part.height), (333, 357));
+    assert_eq!(part.layer.layer_position, exr::prelude::Vec2(0, 123));
+
+    let mut args = vec!["merge"];
+    args.extend(names.iter().map(String::as_str));
+    args.extend(["-o", "merged.exr"]);
+    let run = whitted(dir.path(), &args);
+    assert!(run.status.success(), "{}", stderr(&run));
+    assert!(
+        std::fs::read(full).expect("full")
+            == std::fs::read(dir.path().join("merged.exr")).expect("merged")
+    );
+
+    // Gaps and overlaps are refused, naming a pixel.
+    let run = whitted(
+        dir.path(),
+        &["merge", &names[0], &names[1], "-o", "gap.exr"],
+    );
+    assert_eq!(run.status.code(), Some(2));
+    assert!(
+        stderr(&run).contains("no part covers pixel (333, 123)"),
+        "{}",
+        stderr(&run)
+    );
+    let run = whitted(
+        dir.path(),
+        &[
+            "merge",
+            &names[0],
+            &names[0],
+            &names[1],
+            &names[2],
+            "-o",
+            "twice.exr",
+        ],
+    );
+    assert_eq!(run.status.code(), Some(2));
+    assert!(
+        stderr(&run).contains("both cover pixel (0, 0)"),
+        "{}",
+        stderr(&run)
+    );
+    assert!(!dir.path().join("gap.exr").exists() && !dir.path().join("twice.exr").exists());
+    let run = whitted(
+        dir.path(),
+        &["render", "--region", "600,0,700,10", "-o", "x.png"],
+    );
+    assert_eq!(run.status.code(), Some(2));
+}
+
+#[test]
+fn supersampling_averages_colour_and_keeps_data_unblended() {
+    let scene = scene::parse_str("grid.xml", &sphere_grid(6)).expect("valid");
+    let one = film(&scene, Acceleration::Bvh, 1);
+    let nine = film(&scene, Acceleration::Bvh, 9);
+    // With an odd grid the centre sample is the tick ray itself: data layers match exactly.
+    for name in ["Z", "P.X", "P.Y", "P.Z", "objectid.X"] {
+        assert!(one.channel(name) == nine.channel(name), "{name} differs");
+    }
+    // Colour is averaged: edges soften, so some pixels change, by bounded amounts.
+    let (a, b) = (one.channel("R").expect("R"), nine.channel("R").expect("R"));
+    let changed = a.iter().zip(&b).filter(|(x, y)| x != y).count();
+    assert!(changed > a.len() / 20, "only {changed} pixels changed");
+    // Object ids stay whole numbers: never a blend of two objects.
+    let ids = nine.channel("objectid.X").expect("ids");
+    assert!(ids.iter().all(|v| v.fract() == 0.0));
+    let mean = |v: &[f32]| v.iter().map(|&x| f64::from(x)).sum::<f64>() / v.len() as f64;
+    assert!(
+        (mean(&a) - mean(&b)).abs() < 0.02,
+        "the average brightness is kept"
+    );
+}
