@@ -7,6 +7,7 @@
 //! that rounding in the slab test never prunes a sphere the exact test would report.
 
 use glam::DVec3;
+use smallvec::SmallVec;
 
 use crate::geometry::{Hit, Ray, Shape};
 use crate::scene::Object;
@@ -94,6 +95,9 @@ pub struct Accelerator {
     nodes: Vec<Node>,
     /// Object indices, grouped by leaf.
     items: Vec<u32>,
+    /// The shapes of `items`, in the same order: a leaf's shapes sit side by side in memory
+    /// instead of scattered through the scene's objects.
+    shapes: Vec<Shape>,
     /// Objects without bounds (planes), in file order: tested for every ray.
     unbounded: Vec<u32>,
 }
@@ -120,17 +124,50 @@ impl Accelerator {
         let mut accel = Accelerator {
             nodes: Vec::with_capacity(2 * boxes.len() / MAX_LEAF + 1),
             items: Vec::with_capacity(boxes.len()),
+            shapes: Vec::new(),
             unbounded,
         };
         if !boxes.is_empty() {
+            let tree = build(&mut boxes);
             accel.nodes.push(Node {
                 bounds: Aabb::EMPTY,
                 first: 0,
                 count: 0,
             });
-            accel.split(0, &mut boxes);
+            accel.fill(0, tree);
         }
+        accel.shapes = accel
+            .items
+            .iter()
+            .map(|&i| objects[i as usize].shape)
+            .collect();
         accel
+    }
+
+    /// Writes `tree` into the already reserved node `index`, its nodes depth first; the two
+    /// children of a node sit next to each other, so a node needs only the first's index.
+    fn fill(&mut self, index: usize, tree: Subtree) {
+        self.nodes[index].bounds = tree.bounds;
+        match tree.kind {
+            SubtreeKind::Leaf(items) => {
+                self.nodes[index].first = self.items.len() as u32;
+                self.nodes[index].count = items.len() as u32;
+                self.items.extend(items);
+            }
+            SubtreeKind::Split(left, right) => {
+                let children = self.nodes.len();
+                for _ in 0..2 {
+                    self.nodes.push(Node {
+                        bounds: Aabb::EMPTY,
+                        first: 0,
+                        count: 0,
+                    });
+                }
+                self.nodes[index].first = children as u32;
+                self.fill(children, *left);
+                self.fill(children + 1, *right);
+            }
+        }
     }
 
     /// Tests every object in order: the reference the hierarchy must agree with.
@@ -138,68 +175,9 @@ impl Accelerator {
         Accelerator {
             nodes: Vec::new(),
             items: Vec::new(),
+            shapes: Vec::new(),
             unbounded: (0..objects.len() as u32).collect(),
         }
-    }
-
-    /// Fills node `index` from `boxes`, splitting by the surface area heuristic.
-    fn split(&mut self, index: usize, boxes: &mut [(u32, Aabb)]) {
-        let bounds = boxes.iter().fold(Aabb::EMPTY, |a, (_, b)| a.grow(*b));
-        self.nodes[index].bounds = bounds;
-        let centroids = boxes
-            .iter()
-            .fold(Aabb::EMPTY, |a, (_, b)| a.grow_point((b.min + b.max) / 2.0));
-        let extent = centroids.max - centroids.min;
-        let axis = if extent.x >= extent.y && extent.x >= extent.z {
-            0
-        } else if extent.y >= extent.z {
-            1
-        } else {
-            2
-        };
-        let split = (boxes.len() > MAX_LEAF && extent[axis] > 0.0)
-            .then(|| {
-                best_split(
-                    boxes,
-                    centroids.min[axis],
-                    extent[axis],
-                    axis,
-                    bounds.area(),
-                )
-            })
-            .flatten();
-        let Some(position) = split else {
-            self.nodes[index].first = self.items.len() as u32;
-            self.nodes[index].count = boxes.len() as u32;
-            self.items.extend(boxes.iter().map(|(i, _)| *i));
-            return;
-        };
-        let centre = |b: &Aabb| (b.min[axis] + b.max[axis]) / 2.0;
-        let (mut left, mut right) = (0, boxes.len());
-        // Partition by the chosen plane (in-place, like quicksort's partition).
-        while left < right {
-            if centre(&boxes[left].1) < position {
-                left += 1;
-            } else {
-                right -= 1;
-                boxes.swap(left, right);
-            }
-        }
-        if left == 0 || left == boxes.len() {
-            left = boxes.len() / 2;
-        }
-        let child = self.nodes.len();
-        self.nodes[index].first = child as u32;
-        for _ in 0..2 {
-            self.nodes.push(Node {
-                bounds: Aabb::EMPTY,
-                first: 0,
-                count: 0,
-            });
-        }
-        let (l, r) = boxes.split_at_mut(left);
-        self.split(child, l);
-        self.split(child + 1, r);
     }
 
     /// The nearest hit along `ray`, exactly as `geometry::closest_hit` finds it.
@@ -222,7 +200,7 @@ impl Accelerator {
             return best;
         }
         let inverse = DVec3::ONE / ray.direction;
-        let mut stack: Vec<(u32, f64)> = Vec::with_capacity(64);
+        let mut stack: SmallVec<[(u32, f64); 64]> = SmallVec::new();
         if let Some(t) = self.nodes[0].bounds.entry(ray.origin, inverse) {
             stack.push((0, t));
         }
@@ -233,9 +211,17 @@ impl Accelerator {
             }
             let node = self.nodes[index as usize];
             if node.count > 0 {
-                let items = &self.items[node.first as usize..(node.first + node.count) as usize];
-                for &i in items {
-                    best = test(best, i);
+                let range = node.first as usize..(node.first + node.count) as usize;
+                for (shape, &i) in self.shapes[range.clone()].iter().zip(&self.items[range]) {
+                    if let Some(distance) = shape.intersect(ray) {
+                        best = nearer(
+                            best,
+                            Hit {
+                                object: i as usize,
+                                distance,
+                            },
+                        );
+                    }
                 }
                 continue;
             }
@@ -270,7 +256,7 @@ impl Accelerator {
             return false;
         }
         let inverse = DVec3::ONE / ray.direction;
-        let mut stack: Vec<u32> = Vec::with_capacity(64);
+        let mut stack: SmallVec<[u32; 64]> = SmallVec::new();
         stack.push(0);
         while let Some(index) = stack.pop() {
             let node = self.nodes[index as usize];
@@ -279,8 +265,9 @@ impl Accelerator {
                 _ => continue,
             }
             if node.count > 0 {
-                let items = &self.items[node.first as usize..(node.first + node.count) as usize];
-                if items.iter().any(|&i| blocks(i)) {
+                let range = node.first as usize..(node.first + node.count) as usize;
+                let hit = |shape: &Shape| shape.intersect(ray).is_some_and(|s| s < max_distance);
+                if self.shapes[range].iter().any(hit) {
                     return true;
                 }
             } else {
@@ -288,6 +275,78 @@ impl Accelerator {
             }
         }
         false
+    }
+}
+
+/// A hierarchy under construction: built in parallel as a tree, then flattened.
+struct Subtree {
+    bounds: Aabb,
+    kind: SubtreeKind,
+}
+
+enum SubtreeKind {
+    Leaf(Vec<u32>),
+    Split(Box<Subtree>, Box<Subtree>),
+}
+
+/// Below this many objects a subtree is built on the current thread.
+const PARALLEL_BUILD: usize = 4096;
+
+/// Builds the subtree over `boxes`, splitting by the surface area heuristic; large halves are
+/// built in parallel. The result does not depend on scheduling.
+fn build(boxes: &mut [(u32, Aabb)]) -> Subtree {
+    let bounds = boxes.iter().fold(Aabb::EMPTY, |a, (_, b)| a.grow(*b));
+    let centroids = boxes
+        .iter()
+        .fold(Aabb::EMPTY, |a, (_, b)| a.grow_point((b.min + b.max) / 2.0));
+    let extent = centroids.max - centroids.min;
+    let axis = if extent.x >= extent.y && extent.x >= extent.z {
+        0
+    } else if extent.y >= extent.z {
+        1
+    } else {
+        2
+    };
+    let split = (boxes.len() > MAX_LEAF && extent[axis] > 0.0)
+        .then(|| {
+            best_split(
+                boxes,
+                centroids.min[axis],
+                extent[axis],
+                axis,
+                bounds.area(),
+            )
+        })
+        .flatten();
+    let Some(position) = split else {
+        return Subtree {
+            bounds,
+            kind: SubtreeKind::Leaf(boxes.iter().map(|(i, _)| *i).collect()),
+        };
+    };
+    let centre = |b: &Aabb| (b.min[axis] + b.max[axis]) / 2.0;
+    let (mut left, mut right) = (0, boxes.len());
+    // Partition by the chosen plane (in place, like quicksort's partition).
+    while left < right {
+        if centre(&boxes[left].1) < position {
+            left += 1;
+        } else {
+            right -= 1;
+            boxes.swap(left, right);
+        }
+    }
+    if left == 0 || left == boxes.len() {
+        left = boxes.len() / 2;
+    }
+    let (l, r) = boxes.split_at_mut(left);
+    let (l, r) = if l.len().min(r.len()) >= PARALLEL_BUILD {
+        rayon::join(|| build(l), || build(r))
+    } else {
+        (build(l), build(r))
+    };
+    Subtree {
+        bounds,
+        kind: SubtreeKind::Split(Box::new(l), Box::new(r)),
     }
 }
 
