@@ -7,13 +7,14 @@
 //! that rounding in the slab test never prunes a sphere the exact test would report.
 
 use glam::DVec3;
+use rayon::prelude::*;
 use smallvec::SmallVec;
 
 use crate::geometry::{Hit, Ray, Shape};
 use crate::scene::Object;
 
 /// Leaves hold at most this many objects unless their centres coincide.
-const MAX_LEAF: usize = 4;
+const MAX_LEAF: usize = 8;
 
 /// SAH bins per split.
 const BINS: usize = 16;
@@ -128,7 +129,9 @@ impl Accelerator {
             unbounded,
         };
         if !boxes.is_empty() {
-            let tree = build(&mut boxes);
+            let extent = Extent::of(&boxes);
+            let tree = build(&mut boxes, 0, extent);
+            accel.items = boxes.iter().map(|(i, _)| *i).collect();
             accel.nodes.push(Node {
                 bounds: Aabb::EMPTY,
                 first: 0,
@@ -149,10 +152,9 @@ impl Accelerator {
     fn fill(&mut self, index: usize, tree: Subtree) {
         self.nodes[index].bounds = tree.bounds;
         match tree.kind {
-            SubtreeKind::Leaf(items) => {
-                self.nodes[index].first = self.items.len() as u32;
-                self.nodes[index].count = items.len() as u32;
-                self.items.extend(items);
+            SubtreeKind::Leaf { first, count } => {
+                self.nodes[index].first = first as u32;
+                self.nodes[index].count = count as u32;
             }
             SubtreeKind::Split(left, right) => {
                 let children = self.nodes.len();
@@ -285,113 +287,193 @@ struct Subtree {
 }
 
 enum SubtreeKind {
-    Leaf(Vec<u32>),
+    /// A range of the box array, which partitioning has left in leaf order.
+    Leaf {
+        first: usize,
+        count: usize,
+    },
     Split(Box<Subtree>, Box<Subtree>),
 }
 
-/// Below this many objects a subtree is built on the current thread.
-const PARALLEL_BUILD: usize = 4096;
+/// Nodes with more boxes than four of these chunks are binned in parallel, chunk by chunk.
+const PARALLEL_BIN_CHUNK: usize = 16_384;
 
-/// Builds the subtree over `boxes`, splitting by the surface area heuristic; large halves are
-/// built in parallel. The result does not depend on scheduling.
-fn build(boxes: &mut [(u32, Aabb)]) -> Subtree {
-    let bounds = boxes.iter().fold(Aabb::EMPTY, |a, (_, b)| a.grow(*b));
-    let centroids = boxes
-        .iter()
-        .fold(Aabb::EMPTY, |a, (_, b)| a.grow_point((b.min + b.max) / 2.0));
-    let extent = centroids.max - centroids.min;
-    let axis = if extent.x >= extent.y && extent.x >= extent.z {
+/// Below this many objects a subtree is built on the current thread.
+const PARALLEL_BUILD: usize = 1024;
+
+/// The bounds of a set of boxes and of their centres: what a split decision needs.
+#[derive(Debug, Clone, Copy)]
+struct Extent {
+    bounds: Aabb,
+    centroids: Aabb,
+}
+
+impl Extent {
+    const EMPTY: Extent = Extent {
+        bounds: Aabb::EMPTY,
+        centroids: Aabb::EMPTY,
+    };
+
+    fn add(self, b: &Aabb) -> Extent {
+        Extent {
+            bounds: self.bounds.grow(*b),
+            centroids: self.centroids.grow_point(centre(b)),
+        }
+    }
+
+    fn merge(self, other: Extent) -> Extent {
+        Extent {
+            bounds: self.bounds.grow(other.bounds),
+            centroids: self.centroids.grow(other.centroids),
+        }
+    }
+
+    fn of(boxes: &[(u32, Aabb)]) -> Extent {
+        boxes.iter().fold(Extent::EMPTY, |e, (_, b)| e.add(b))
+    }
+}
+
+fn centre(b: &Aabb) -> DVec3 {
+    (b.min + b.max) / 2.0
+}
+
+/// Builds the subtree over `boxes` (whose extent is `extent`), splitting by the surface area
+/// heuristic; large halves are built in parallel. Each level makes two passes over its boxes
+/// (binning, partitioning): the children's extents come from the bins. The result does not
+/// depend on scheduling.
+fn build(boxes: &mut [(u32, Aabb)], offset: usize, extent: Extent) -> Subtree {
+    let size = extent.centroids.max - extent.centroids.min;
+    let axis = if size.x >= size.y && size.x >= size.z {
         0
-    } else if extent.y >= extent.z {
+    } else if size.y >= size.z {
         1
     } else {
         2
     };
-    let split = (boxes.len() > MAX_LEAF && extent[axis] > 0.0)
-        .then(|| {
-            best_split(
-                boxes,
-                centroids.min[axis],
-                extent[axis],
-                axis,
-                bounds.area(),
-            )
-        })
+    let split = (boxes.len() > MAX_LEAF && size[axis] > 0.0)
+        .then(|| best_split(boxes, extent, axis))
         .flatten();
-    let Some(position) = split else {
+    let Some(split) = split else {
         return Subtree {
-            bounds,
-            kind: SubtreeKind::Leaf(boxes.iter().map(|(i, _)| *i).collect()),
+            bounds: extent.bounds,
+            kind: SubtreeKind::Leaf {
+                first: offset,
+                count: boxes.len(),
+            },
         };
     };
-    let centre = |b: &Aabb| (b.min[axis] + b.max[axis]) / 2.0;
     let (mut left, mut right) = (0, boxes.len());
-    // Partition by the chosen plane (in place, like quicksort's partition).
+    // Partition by bin, exactly as the bins were filled (in place, like quicksort's).
     while left < right {
-        if centre(&boxes[left].1) < position {
+        if split.bin_of(&boxes[left].1) < split.bin {
             left += 1;
         } else {
             right -= 1;
             boxes.swap(left, right);
         }
     }
-    if left == 0 || left == boxes.len() {
-        left = boxes.len() / 2;
-    }
     let (l, r) = boxes.split_at_mut(left);
+    let right_offset = offset + l.len();
     let (l, r) = if l.len().min(r.len()) >= PARALLEL_BUILD {
-        rayon::join(|| build(l), || build(r))
+        rayon::join(
+            || build(l, offset, split.left),
+            || build(r, right_offset, split.right),
+        )
     } else {
-        (build(l), build(r))
+        (
+            build(l, offset, split.left),
+            build(r, right_offset, split.right),
+        )
     };
     Subtree {
-        bounds,
+        bounds: extent.bounds,
         kind: SubtreeKind::Split(Box::new(l), Box::new(r)),
     }
 }
 
-/// The SAH-best split position along `axis` for `boxes`, if splitting beats a leaf.
-fn best_split(
-    boxes: &[(u32, Aabb)],
-    start: f64,
-    extent: f64,
+/// A chosen split: boxes whose centre falls in a bin below `bin` go left.
+struct Split {
     axis: usize,
-    parent_area: f64,
-) -> Option<f64> {
-    let mut bins = [(Aabb::EMPTY, 0usize); BINS];
-    let scale = BINS as f64 / extent;
-    let bin_of =
-        |b: &Aabb| ((((b.min[axis] + b.max[axis]) / 2.0 - start) * scale) as usize).min(BINS - 1);
-    for (_, b) in boxes {
-        let bin = &mut bins[bin_of(b)];
-        bin.0 = bin.0.grow(*b);
-        bin.1 += 1;
+    start: f64,
+    scale: f64,
+    bin: usize,
+    left: Extent,
+    right: Extent,
+}
+
+impl Split {
+    fn bin_of(&self, b: &Aabb) -> usize {
+        (((centre(b)[self.axis] - self.start) * self.scale) as usize).min(BINS - 1)
     }
-    // Costs of splitting after each bin: sweep from the left, then from the right.
-    let mut left = [(0.0, 0usize); BINS - 1];
-    let (mut acc, mut count) = (Aabb::EMPTY, 0);
-    for i in 0..BINS - 1 {
-        acc = acc.grow(bins[i].0);
-        count += bins[i].1;
-        left[i] = (acc.area(), count);
+}
+
+/// The SAH-best split of `boxes` along `axis`, if splitting beats a leaf.
+fn best_split(boxes: &[(u32, Aabb)], extent: Extent, axis: usize) -> Option<Split> {
+    let start = extent.centroids.min[axis];
+    let scale = BINS as f64 / (extent.centroids.max[axis] - start);
+    let mut split = Split {
+        axis,
+        start,
+        scale,
+        bin: 0,
+        left: Extent::EMPTY,
+        right: Extent::EMPTY,
+    };
+    let fill = |chunk: &[(u32, Aabb)]| {
+        let mut bins = [(Extent::EMPTY, 0usize); BINS];
+        for (_, b) in chunk {
+            let bin = &mut bins[split.bin_of(b)];
+            bin.0 = bin.0.add(b);
+            bin.1 += 1;
+        }
+        bins
+    };
+    // The top levels hold most of the boxes: bin them on every core.
+    let bins = if boxes.len() >= 4 * PARALLEL_BIN_CHUNK {
+        boxes.par_chunks(PARALLEL_BIN_CHUNK).map(fill).reduce(
+            || [(Extent::EMPTY, 0usize); BINS],
+            |mut a, b| {
+                for (x, y) in a.iter_mut().zip(b) {
+                    *x = (x.0.merge(y.0), x.1 + y.1);
+                }
+                a
+            },
+        )
+    } else {
+        fill(boxes)
+    };
+    // Extents and counts left of each boundary, then sweep from the right for the cost.
+    let mut left = [(Extent::EMPTY, 0usize); BINS];
+    for i in 1..BINS {
+        left[i] = (
+            left[i - 1].0.merge(bins[i - 1].0),
+            left[i - 1].1 + bins[i - 1].1,
+        );
     }
-    let (mut acc, mut count) = (Aabb::EMPTY, 0);
-    let mut best: Option<(f64, usize)> = None;
+    let (mut right, mut right_count) = (Extent::EMPTY, 0);
+    let mut best: Option<(f64, usize, Extent)> = None;
     for i in (1..BINS).rev() {
-        acc = acc.grow(bins[i].0);
-        count += bins[i].1;
-        let (left_area, left_count) = left[i - 1];
-        if left_count == 0 || count == 0 {
+        right = right.merge(bins[i].0);
+        right_count += bins[i].1;
+        let (left_extent, left_count) = left[i];
+        if left_count == 0 || right_count == 0 {
             continue;
         }
-        let cost = left_area * left_count as f64 + acc.area() * count as f64;
-        if best.is_none_or(|(c, _)| cost < c) {
-            best = Some((cost, i));
+        let cost = left_extent.bounds.area() * left_count as f64
+            + right.bounds.area() * right_count as f64;
+        if best.is_none_or(|(c, _, _)| cost < c) {
+            best = Some((cost, i, right));
         }
     }
-    let (cost, bin) = best?;
+    let (cost, bin, right) = best?;
     // Splitting pays if its expected work is below testing every object here.
-    (cost < parent_area * boxes.len() as f64).then(|| start + bin as f64 / scale)
+    if cost >= extent.bounds.area() * boxes.len() as f64 {
+        return None;
+    }
+    split.bin = bin;
+    split.left = left[bin].0;
+    split.right = right;
+    Some(split)
 }
 
 #[cfg(test)]

@@ -34,6 +34,8 @@ pub struct Film {
     pub rays: u64,
     /// Channel values that were NaN or infinite and were stored as 0.
     pub non_finite: u64,
+    /// Time spent building the acceleration hierarchy before tracing.
+    pub hierarchy_time: std::time::Duration,
 }
 
 impl Film {
@@ -64,6 +66,7 @@ impl Film {
             spp,
             rays: 0,
             non_finite: 0,
+            hierarchy_time: std::time::Duration::ZERO,
         })
     }
 

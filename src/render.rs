@@ -117,11 +117,14 @@ pub fn render(
             region.x0, region.y0, region.x1, region.y1, camera.width, camera.height
         )));
     }
+    let started = std::time::Instant::now();
     let accel = match settings.acceleration {
         Acceleration::Bvh => Accelerator::build(&scene.objects),
         Acceleration::BruteForce => Accelerator::brute_force(&scene.objects),
     };
+    let hierarchy_time = started.elapsed();
     let mut film = Film::new(region.width(), region.height(), settings.spp, layers)?;
+    film.hierarchy_time = hierarchy_time;
     film.origin = (region.x0, region.y0);
     film.display = (camera.width, camera.height);
     let (grid, centre) = sample_grid(settings.spp);

@@ -270,13 +270,15 @@ fn summary(film: &Film, args: &RenderArgs, render_time: Duration, exr_time: Dura
         format!(" -> {}", outputs.join(", "))
     };
     format!(
-        "whitted: {}x{}, {} spp, {} bounce{}, {} rays in {seconds:.2} s ({rate:.1} Mrays/s){target}",
+        "whitted: {}x{}, {} spp, {} bounce{}, {} rays in {seconds:.2} s ({rate:.1} Mrays/s, \
+         hierarchy built in {:.2} s){target}",
         film.width,
         film.height,
         film.spp,
         args.bounces,
         if args.bounces == 1 { "" } else { "s" },
         film.rays,
+        film.hierarchy_time.as_secs_f64(),
     )
 }
 
