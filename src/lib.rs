@@ -17,13 +17,16 @@
 //!
 //! # Module map
 //! - [`scene`]: plain scene data, and [`scene::xml`] which loads it with located errors.
-//! - [`geometry`]: rays, the shapes, intersection.
+//! - [`geometry`]: rays, the shapes, intersection; [`accel`]: the BVH that finds the same
+//!   nearest hit faster.
 //! - [`camera`]: pixel -> primary ray.
 //! - [`trace`]: the tick shading model; returns a [`sample::Sample`].
-//! - [`render`]: parallel loop over pixels into a [`film::Film`].
+//! - [`render`]: tiles in parallel, k*k samples per pixel, regions -> [`film::Film`].
 //! - [`aov`]: the EXR layers and what each holds.
-//! - [`tonemap`] and [`output`]: linear film -> display bytes -> files; [`input`] reads EXRs back.
-//! - [`cli`] and [`commands`]: the command line.
+//! - [`tonemap`] and [`output`]: linear film -> display bytes -> files; [`input`] reads
+//!   EXRs and PNGs back; [`compare`] and [`canvas`] serve `diff` and `sheet`.
+//! - [`cli`] and [`commands`]: the command line; [`progress`], [`interrupt`] and [`memory`]
+//!   keep long renders watchable, stoppable and within the machine.
 
 pub mod accel;
 pub mod aov;
