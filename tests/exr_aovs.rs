@@ -56,22 +56,7 @@ fn oiio_sum(exr: &Path, layers: &[&str], out: &Path) {
 
 /// Whether idiff finds `a` and `b` equal within the stated tolerance.
 fn idiff_equal(a: &Path, b: &Path) -> bool {
-    let run = run_tool(
-        "idiff",
-        &[
-            "-fail",
-            "1e-6",
-            "-failrelative",
-            "1e-5",
-            "-warn",
-            "1e-6",
-            "-warnrelative",
-            "1e-5",
-            s(a),
-            s(b),
-        ],
-        a.parent().expect("dir"),
-    );
+    let run = idiff_aov(a, b);
     match run.status.code() {
         Some(0) => true,
         Some(1 | 2) => false,

@@ -186,3 +186,22 @@ impl Exr {
         self.channels.iter().map(|(n, _)| n.clone()).collect()
     }
 }
+
+/// Runs OpenImageIO's idiff on `a` and `b` with the AOV tolerance of aovs.md (a value fails
+/// when off by more than 1e-6 absolute and 1e-5 relative, for failures and warnings alike).
+pub fn idiff_aov(a: &Path, b: &Path) -> Output {
+    let (a, b) = (a.to_str().expect("utf-8"), b.to_str().expect("utf-8"));
+    let args = [
+        "-fail",
+        "1e-6",
+        "-failrelative",
+        "1e-5",
+        "-warn",
+        "1e-6",
+        "-warnrelative",
+        "1e-5",
+        a,
+        b,
+    ];
+    run_tool("idiff", &args, &root())
+}
