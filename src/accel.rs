@@ -114,14 +114,15 @@ fn nearer(best: Option<Hit>, candidate: Hit) -> Option<Hit> {
 impl Accelerator {
     /// Builds the hierarchy over `objects`' bounded shapes.
     pub fn build(objects: &[Object]) -> Self {
-        let mut unbounded = Vec::new();
-        let mut boxes = Vec::new();
-        for (i, object) in objects.iter().enumerate() {
-            match bounds(&object.shape) {
-                Some(b) => boxes.push((i as u32, b)),
-                None => unbounded.push(i as u32),
-            }
-        }
+        // Whole-scene passes run on every core (rayon keeps the order).
+        let mut boxes: Vec<(u32, Aabb)> = objects
+            .par_iter()
+            .enumerate()
+            .filter_map(|(i, o)| bounds(&o.shape).map(|b| (i as u32, b)))
+            .collect();
+        let unbounded: Vec<u32> = (0..objects.len() as u32)
+            .filter(|&i| bounds(&objects[i as usize].shape).is_none())
+            .collect();
         let mut accel = Accelerator {
             nodes: Vec::with_capacity(2 * boxes.len() / MAX_LEAF + 1),
             items: Vec::with_capacity(boxes.len()),
@@ -129,9 +130,12 @@ impl Accelerator {
             unbounded,
         };
         if !boxes.is_empty() {
-            let extent = Extent::of(&boxes);
+            let extent = boxes
+                .par_chunks(PARALLEL_BIN_CHUNK)
+                .map(Extent::of)
+                .reduce(|| Extent::EMPTY, Extent::merge);
             let tree = build(&mut boxes, 0, extent);
-            accel.items = boxes.iter().map(|(i, _)| *i).collect();
+            accel.items = boxes.par_iter().map(|(i, _)| *i).collect();
             accel.nodes.push(Node {
                 bounds: Aabb::EMPTY,
                 first: 0,
@@ -362,16 +366,7 @@ fn build(boxes: &mut [(u32, Aabb)], offset: usize, extent: Extent) -> Subtree {
             },
         };
     };
-    let (mut left, mut right) = (0, boxes.len());
-    // Partition by bin, exactly as the bins were filled (in place, like quicksort's).
-    while left < right {
-        if split.bin_of(&boxes[left].1) < split.bin {
-            left += 1;
-        } else {
-            right -= 1;
-            boxes.swap(left, right);
-        }
-    }
+    let left = partition(boxes, &split);
     let (l, r) = boxes.split_at_mut(left);
     let right_offset = offset + l.len();
     let (l, r) = if l.len().min(r.len()) >= PARALLEL_BUILD {
@@ -389,6 +384,22 @@ fn build(boxes: &mut [(u32, Aabb)], offset: usize, extent: Extent) -> Subtree {
         bounds: extent.bounds,
         kind: SubtreeKind::Split(Box::new(l), Box::new(r)),
     }
+}
+
+/// Moves the boxes that go left to the front (as the bins were filled), in place like
+/// quicksort's partition; returns how many.
+fn partition(boxes: &mut [(u32, Aabb)], split: &Split) -> usize {
+    let goes_left = |b: &(u32, Aabb)| split.bin_of(&b.1) < split.bin;
+    let (mut left, mut right) = (0, boxes.len());
+    while left < right {
+        if goes_left(&boxes[left]) {
+            left += 1;
+        } else {
+            right -= 1;
+            boxes.swap(left, right);
+        }
+    }
+    left
 }
 
 /// A chosen split: boxes whose centre falls in a bin below `bin` go left.
