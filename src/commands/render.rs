@@ -41,18 +41,14 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     memory::check(
         memory::render_bytes(width, height, channels, args.exr.is_some()),
         memory::available_bytes(),
-        &format!(
-            "a {}x{} render with {channels} channels",
-            args.width, args.height
-        ),
+        &format!("a {width}x{height} render with {channels} channels"),
     )?;
 
     check_outputs(args)?;
     // Open outputs before rendering, so that an unwritable path fails in milliseconds.
-    let mut png = match args.no_png {
-        true => None,
-        false => Some(Destination::open(&args.output)?),
-    };
+    let mut png = (!args.no_png)
+        .then(|| Destination::open(&args.output))
+        .transpose()?;
     let mut exr_file = args.exr.as_deref().map(AtomicFile::create).transpose()?;
 
     let camera = Camera::new(args.width, args.height);
