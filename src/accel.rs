@@ -7,6 +7,7 @@
 //! that rounding in the slab test never prunes a sphere the exact test would report.
 
 use glam::DVec3;
+use rayon::iter::Either;
 use rayon::prelude::*;
 use smallvec::SmallVec;
 
@@ -115,14 +116,13 @@ impl Accelerator {
     /// Builds the hierarchy over `objects`' bounded shapes.
     pub fn build(objects: &[Object]) -> Self {
         // Whole-scene passes run on every core (rayon keeps the order).
-        let mut boxes: Vec<(u32, Aabb)> = objects
+        let (mut boxes, unbounded): (Vec<(u32, Aabb)>, Vec<u32>) = objects
             .par_iter()
             .enumerate()
-            .filter_map(|(i, o)| bounds(&o.shape).map(|b| (i as u32, b)))
-            .collect();
-        let unbounded: Vec<u32> = (0..objects.len() as u32)
-            .filter(|&i| bounds(&objects[i as usize].shape).is_none())
-            .collect();
+            .partition_map(|(i, o)| match bounds(&o.shape) {
+                Some(b) => Either::Left((i as u32, b)),
+                None => Either::Right(i as u32),
+            });
         let mut accel = Accelerator {
             nodes: Vec::with_capacity(2 * boxes.len() / MAX_LEAF + 1),
             items: Vec::with_capacity(boxes.len()),

@@ -10,8 +10,9 @@ use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::film::{Film, PixelAccumulator};
 use crate::interrupt;
+use crate::sample::Sample;
 use crate::scene::Scene;
-use crate::trace::{trace, TraceOptions};
+use crate::trace::{trace_into, TraceOptions};
 
 /// Side of a tile in pixels: small enough to balance two or many cores, large enough that
 /// neighbouring rays reuse the same hierarchy nodes from cache.
@@ -142,6 +143,7 @@ pub fn render(
             }
             let rows = beauty.len() / width;
             let mut accumulator = PixelAccumulator::new(layers, channels);
+            let mut sample = Sample::empty(scene.lights.len(), settings.trace.bounces);
             let (mut rays, mut non_finite) = (0, 0);
             for tile_x in (0..width).step_by(TILE) {
                 for row in 0..rows {
@@ -155,7 +157,7 @@ pub fn render(
                             } else {
                                 camera.sub_pixel_ray(x, y, u, v)
                             };
-                            let sample = trace(scene, &accel, ray, settings.trace);
+                            trace_into(scene, &accel, ray, settings.trace, &mut sample);
                             rays += sample.rays;
                             accumulator.add(&sample, i == centre);
                         }

@@ -75,8 +75,45 @@ impl Sample {
         }
     }
 
+    /// Empties the sample for reuse, keeping its buffers: the render loop traces millions of
+    /// samples through one `Sample` instead of allocating each.
+    pub fn reset(&mut self) {
+        self.beauty = DVec3::ZERO;
+        self.direct = DVec3::ZERO;
+        self.reflected_by_bounce.fill(DVec3::ZERO);
+        self.ambient = DVec3::ZERO;
+        self.diffuse = DVec3::ZERO;
+        self.specular = DVec3::ZERO;
+        self.background = DVec3::ZERO;
+        self.lights.fill(LightSample::default());
+        self.primary = None;
+        self.rays = 0;
+    }
+
     /// Everything that came through at least one mirror.
     pub fn reflected(&self) -> DVec3 {
         self.reflected_by_bounce.iter().copied().sum()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reset_gives_an_empty_sample_of_the_same_shape() {
+        let mut s = Sample::empty(2, 3);
+        s.beauty = DVec3::ONE;
+        s.reflected_by_bounce[1] = DVec3::ONE;
+        s.lights[0].occluded_at_primary = true;
+        s.rays = 9;
+        s.primary = Some(PrimaryHit {
+            position: DVec3::ONE,
+            normal: DVec3::Y,
+            albedo: DVec3::ONE,
+            object: 1,
+        });
+        s.reset();
+        assert_eq!(s, Sample::empty(2, 3));
     }
 }

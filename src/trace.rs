@@ -2,6 +2,7 @@
 //! mirror reflection, evaluated in the course's operation order so the beauty is bit-exact.
 
 use glam::DVec3;
+use smallvec::SmallVec;
 
 use crate::accel::Accelerator;
 use crate::geometry::{normalise, Ray};
@@ -28,8 +29,23 @@ pub struct TraceOptions {
 /// `direct * (1 - r) + reflected * r`.
 pub fn trace(scene: &Scene, accel: &Accelerator, primary: Ray, options: TraceOptions) -> Sample {
     let mut sample = Sample::empty(scene.lights.len(), options.bounces);
-    // (shaded colour, reflectivity if the chain continues there), vertex by vertex.
-    let mut chain: Vec<(DVec3, Option<f64>)> = Vec::with_capacity(2);
+    trace_into(scene, accel, primary, options, &mut sample);
+    sample
+}
+
+/// `trace` into an existing sample (shaped for this scene and bounce count by
+/// `Sample::empty`), which is reset first: the render loop reuses one per task.
+pub fn trace_into(
+    scene: &Scene,
+    accel: &Accelerator,
+    primary: Ray,
+    options: TraceOptions,
+    sample: &mut Sample,
+) {
+    sample.reset();
+    // (shaded colour, reflectivity if the chain continues there), vertex by vertex; on the
+    // stack for the usual few bounces.
+    let mut chain: SmallVec<[(DVec3, Option<f64>); 4]> = SmallVec::new();
     let mut far_end = BACKGROUND;
     let mut ray = primary;
     let mut throughput = 1.0;
@@ -38,7 +54,7 @@ pub fn trace(scene: &Scene, accel: &Accelerator, primary: Ray, options: TraceOpt
         let Some(hit) = accel.closest_hit(&scene.objects, &ray) else {
             let background = BACKGROUND * throughput;
             sample.background += background;
-            *bucket(&mut sample, k) += background;
+            *bucket(sample, k) += background;
             far_end = BACKGROUND;
             break;
         };
@@ -59,8 +75,8 @@ pub fn trace(scene: &Scene, accel: &Accelerator, primary: Ray, options: TraceOpt
             weight,
             primary: k == 0,
         };
-        let colour = shade(scene, accel, &vertex, options.shadows, &mut sample);
-        *bucket(&mut sample, k) += colour * weight;
+        let colour = shade(scene, accel, &vertex, options.shadows, sample);
+        *bucket(sample, k) += colour * weight;
         if k == 0 {
             sample.primary = Some(PrimaryHit {
                 position: point,
@@ -83,7 +99,6 @@ pub fn trace(scene: &Scene, accel: &Accelerator, primary: Ray, options: TraceOpt
             Some(r) => colour * (1.0 - r) + reflected * r,
             None => colour,
         });
-    sample
 }
 
 /// Where vertex k's radiance is filed: the direct layer for the primary hit, else the

@@ -438,19 +438,19 @@ fn camera_ray(x: u32, y: u32, width: u32, height: u32) -> [f64; 3] {
 fn data_layers_hold_hand_computed_geometry() {
     // Object 1: a floor at y = -2 facing up; object 2: a unit sphere at (0, 0, 5).
     let dir = tempfile::tempdir().expect("tempdir");
-    std::fs::write(
-        dir.path().join("geometry.xml"),
+    let scene_file = write_scene(
+        dir.path(),
+        "geometry.xml",
         r##"<scene>
   <point-light x="0" y="5" z="0" colour="#FFFFFF"/>
   <plane x="0" y="-2" z="0" nx="0" ny="1" nz="0" colour="#336699"/>
   <sphere x="0" y="0" z="5" radius="1" colour="#CC8844"/>
 </scene>"##,
-    )
-    .expect("write");
+    );
     let (width, height) = (160, 120);
     let exr = render_exr(
         dir.path(),
-        &dir.path().join("geometry.xml"),
+        &scene_file,
         "g.exr",
         &["--width", "160", "--height", "120"],
     );
@@ -511,19 +511,19 @@ fn shadow_masks_mark_the_light_that_is_blocked() {
     // A floor lit by two lights; a sphere on the line from floor point (1, -1, 5) to the left
     // light blocks it there, while the right light still reaches that point.
     let dir = tempfile::tempdir().expect("tempdir");
-    std::fs::write(
-        dir.path().join("masks.xml"),
+    let scene_file = write_scene(
+        dir.path(),
+        "masks.xml",
         r##"<scene>
   <point-light x="-3" y="3" z="5" colour="#FFFFFF" name="left"/>
   <point-light x="3" y="3" z="5" colour="#FFFFFF" name="right"/>
   <sphere x="-1" y="1" z="5" radius="0.5" colour="#FFFFFF"/>
   <plane x="0" y="-1" z="0" nx="0" ny="1" nz="0" colour="#808080"/>
 </scene>"##,
-    )
-    .expect("write");
+    );
     let exr = render_exr(
         dir.path(),
-        &dir.path().join("masks.xml"),
+        &scene_file,
         "m.exr",
         &["--width", "160", "--height", "120"],
     );
@@ -590,17 +590,17 @@ fn aovs_selects_layers_and_rejects_unknown_names() {
 #[test]
 fn half_clamps_colour_layers_and_keeps_data_layers_float() {
     let dir = tempfile::tempdir().expect("tempdir");
-    std::fs::write(
-        dir.path().join("bright.xml"),
+    let scene_file = write_scene(
+        dir.path(),
+        "bright.xml",
         r##"<scene>
   <point-light x="0" y="0" z="0" colour="#FFFFFF" intensity="1e12"/>
   <sphere x="0" y="0" z="5" radius="1" colour="#FFFFFF"/>
 </scene>"##,
-    )
-    .expect("write");
+    );
     let exr = render_exr(
         dir.path(),
-        &dir.path().join("bright.xml"),
+        &scene_file,
         "h.exr",
         &["--half", "--width", "32", "--height", "24"],
     );
@@ -681,7 +681,6 @@ fn exr_bytes_are_identical_for_any_thread_count_and_output_name() {
 #[test]
 fn tick_tone_map_of_the_exr_beauty_is_the_tick_png() {
     // Invariant 8: within 1 LSB, and only where f32 storage rounds across a step.
-    let dir = tempfile::tempdir().expect("tempdir");
     let exr = read_exr(tick2_exr());
     let png = read_png(&reference("tick2_b2.png"));
     let channels = if png.color == png::ColorType::Rgba {
@@ -708,5 +707,4 @@ fn tick_tone_map_of_the_exr_beauty_is_the_tick_png() {
         off_by_one <= exr.width * exr.height / 10_000,
         "{off_by_one} values off by one"
     );
-    drop(dir);
 }

@@ -17,6 +17,13 @@ pub fn reference(name: &str) -> PathBuf {
     root().join("reference").join(name)
 }
 
+/// Writes a scene a test defines inline to `dir/name`; returns its path.
+pub fn write_scene(dir: &Path, name: &str, xml: &str) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, xml).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    path
+}
+
 /// Runs `whitted` with `args` in `dir`.
 pub fn whitted(dir: &Path, args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_whitted"))
@@ -46,10 +53,6 @@ pub struct Png {
 pub fn read_png(path: &Path) -> Png {
     let file = std::fs::File::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     read_png_from(std::io::BufReader::new(file))
-}
-
-pub fn read_png_bytes(bytes: &[u8]) -> Png {
-    read_png_from(std::io::Cursor::new(bytes.to_vec()))
 }
 
 fn read_png_from<R: std::io::BufRead + std::io::Seek>(r: R) -> Png {
