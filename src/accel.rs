@@ -3,8 +3,9 @@
 //!
 //! It must give exactly the brute-force answer of `geometry::closest_hit`, including ties:
 //! the same intersection code runs on every candidate, and candidates are ranked by
-//! (distance, file index), which is what "earlier object wins ties" means. Boxes are padded so
-//! that rounding in the slab test never prunes a sphere the exact test would report.
+//! (distance, file index), which is what "earlier object wins ties" means. A box is only ever
+//! skipped when no sphere in it can be *reported* hit by the brute-force formula, including the
+//! hits that formula reports outside the sphere on badly conditioned rays: see [`RayMargin`].
 
 use glam::DVec3;
 use rayon::iter::Either;
@@ -47,16 +48,24 @@ impl Aabb {
         }
     }
 
+    fn contains(self, p: DVec3) -> bool {
+        (self.min.x <= p.x && p.x <= self.max.x)
+            && (self.min.y <= p.y && p.y <= self.max.y)
+            && (self.min.z <= p.z && p.z <= self.max.z)
+    }
+
     fn area(self) -> f64 {
         let d = (self.max - self.min).max(DVec3::ZERO);
         2.0 * (d.x * d.y + d.y * d.z + d.z * d.x)
     }
 
-    /// Parameter where the ray enters the box, or `None` if it misses it or the box lies
-    /// wholly behind the origin. `inverse` is `1 / direction` per component.
-    fn entry(self, origin: DVec3, inverse: DVec3) -> Option<f64> {
-        let t1 = (self.min - origin) * inverse;
-        let t2 = (self.max - origin) * inverse;
+    /// Parameter where the ray enters the box grown by the ray's margin on every side, or
+    /// `None` if it misses it or the box lies wholly behind the origin. Growing the box by m is
+    /// moving the origin by -m towards `min` and +m towards `max`: the same three subtractions
+    /// per slab as an ungrown test.
+    fn entry(self, ray: &RayMargin) -> Option<f64> {
+        let t1 = (self.min - ray.origin_plus_margin) * ray.inverse;
+        let t2 = (self.max - ray.origin_minus_margin) * ray.inverse;
         // f64::min/max ignore a NaN operand (0 * inf on a slab plane), keeping the test
         // conservative.
         let near = t1.x.min(t2.x).max(t1.y.min(t2.y)).max(t1.z.min(t2.z));
@@ -65,14 +74,14 @@ impl Aabb {
     }
 }
 
-/// The box around a bounded shape, padded for rounding (see the module comment); `None` for
-/// unbounded shapes.
+/// The box around a bounded shape; `None` for unbounded shapes. The half-side exceeds the
+/// radius by 2^-40 of the coordinates' size, far more than the rounding of `centre +- pad`
+/// (2^-53 of it), so the stored box contains the exact sphere. Hits the formula reports
+/// *outside* the sphere are the per-ray margin's job ([`RayMargin`]), not the box's.
 fn bounds(shape: &Shape) -> Option<Aabb> {
     match *shape {
         Shape::Sphere { centre, radius } => {
-            // A grazing sphere test can report a hit a hair outside the true sphere; 1e-4 of
-            // the radius covers that for rays shorter than ~10^6 radii.
-            let pad = radius * (1.0 + 1e-4) + 1e-9 * centre.abs().max_element() + 1e-12;
+            let pad = radius + (centre.abs().max_element() + radius) * REPRESENTATION_SLACK;
             Some(Aabb {
                 min: centre - DVec3::splat(pad),
                 max: centre + DVec3::splat(pad),
@@ -80,6 +89,97 @@ fn bounds(shape: &Shape) -> Option<Aabb> {
         }
         Shape::Plane { .. } => None,
     }
+}
+
+/// 2^-40: relative slack for storing a box's corners in f64 (whose rounding is 2^-53).
+const REPRESENTATION_SLACK: f64 = 1.0 / (1u64 << 40) as f64;
+
+/// 2^-23 (1.2e-7): how far outside a sphere, relative to `wmax` below, the brute-force formula
+/// can report a hit. See [`RayMargin`].
+const CONDITIONING_BOUND: f64 = 1.0 / (1u64 << 23) as f64;
+
+/// A ray prepared for box tests: `1 / direction`, and the margin every box is grown by for it.
+///
+/// Why a margin. For a sphere (C, r) and a ray (O, D), write w = O - C and u = 1 + 2^-53 (unit
+/// roundoff e = 2^-53). The formula of rendering.md computes `disc = b^2 - 4ac` with
+/// `b = 2 D.w`, `c = w.w - r^2`. Each of those dot products and products carries a rounding
+/// error of at most a few e times the size of its terms (`|D.w| <= |D||w|`), so the computed
+/// disc differs from the exact one by |err| <= 4 |D|^2 (|w|^2 + r^2) * k e with k < 16 (three
+/// terms per dot product, the squares, the products and the final subtraction; the
+/// subtraction `O - C` itself is exact to e of |w|). The exact disc is `4 a (r^2 - h^2)`, h the
+/// distance from C to the ray's line, so a reported hit (disc >= 0) needs
+/// `h^2 <= r^2 + E`, E = |err| / (4a) <= 16 e (|w|^2 + r^2) (the renderer's rays are unit,
+/// a = 1 to within 3e). The reported root then lies sqrt(disc)/(2a) before the closest
+/// approach, so the reported point Q = O + sD is at distance <= sqrt(r^2 + E) + (rounding of
+/// s, a few e |w|) from C, and sqrt(r^2 + E) <= r + sqrt(E) <= r + 4 sqrt(e) (|w| + r). With
+/// sqrt(e) = 1.05e-8, every reported point is within
+/// r + 4.3e-8 (|w| + r) + (a few e |w|) < r + 2^-23 wmax
+/// of C, where wmax is the distance from O to the farthest corner of the root box, which
+/// contains every sphere, so wmax >= |w| + r for each of them. Growing every box by
+/// `2^-23 wmax` therefore keeps every reported hit point inside the boxes that hold its
+/// sphere (with room to spare for the slab test's own rounding, a few e of `wmax`), so:
+/// - a box the ray misses holds no sphere the formula reports hit: skipping it is exact;
+/// - a reported hit at s lies in the grown box, so the box's entry parameter is <= s: the
+///   `entry > best` cut in `closest_hit` and the `entry < max_distance` test in `occluded`
+///   never drop a hit brute force would keep.
+///
+/// The margin also carries 2^-40 of the origin's largest coordinate, so that storing
+/// `origin +- margin` (rounded to 2^-53 of the origin) cannot eat into it.
+///
+/// For camera rays in a scene of size ~10 the margin is ~1e-6 and costs nothing; for a shadow
+/// ray starting 1e7 away it is ~1.2, which is what exactness costs there. A ray with a NaN or
+/// infinite origin or direction gets a non-finite margin, but the formula reports no hit at
+/// all for such a ray (its disc or root is NaN), so whatever the box test does is exact; an
+/// infinite margin from a finite ray (coordinates near f64::MAX) makes every box pass.
+struct RayMargin {
+    origin_plus_margin: DVec3,
+    origin_minus_margin: DVec3,
+    inverse: DVec3,
+}
+
+impl RayMargin {
+    /// The ray with its own margin, or none when it starts in the near zone, whose margin the
+    /// stored boxes already have.
+    fn new(ray: &Ray, root: Aabb, near_zone: Aabb) -> Self {
+        let inverse = DVec3::ONE / ray.direction;
+        if near_zone.contains(ray.origin) {
+            return RayMargin {
+                origin_plus_margin: ray.origin,
+                origin_minus_margin: ray.origin,
+                inverse,
+            };
+        }
+        let far_corner = (ray.origin - root.min)
+            .abs()
+            .max((ray.origin - root.max).abs());
+        // The L1 length bounds the Euclidean one from above and needs no square root.
+        let margin = far_corner.element_sum() * CONDITIONING_BOUND
+            + ray.origin.abs().max_element() * REPRESENTATION_SLACK;
+        RayMargin {
+            origin_plus_margin: ray.origin + DVec3::splat(margin),
+            origin_minus_margin: ray.origin - DVec3::splat(margin),
+            inverse,
+        }
+    }
+}
+
+/// The near zone of a root box and the margin that covers every ray starting in it. The zone
+/// is the root box stretched to take in the camera at the origin, then grown by its longest
+/// side S on every side: camera rays and rays from the scene's surfaces start in it. From
+/// such an origin the far corner of the root is at most 2S away per axis, 6S in the L1
+/// length, so the margin is 2^-23 * 6S, plus the representation slack of the zone's
+/// coordinates (for storing the grown boxes and the origins). Rays from elsewhere add their
+/// own margin on top, which only grows the boxes more.
+fn near_zone(root: Aabb) -> (Aabb, f64) {
+    let root = root.grow_point(DVec3::ZERO);
+    let side = (root.max - root.min).max_element();
+    let zone = Aabb {
+        min: root.min - DVec3::splat(side),
+        max: root.max + DVec3::splat(side),
+    };
+    let size = zone.min.abs().max(zone.max.abs()).max_element();
+    let margin = 6.0 * side * CONDITIONING_BOUND + size * REPRESENTATION_SLACK;
+    (zone, margin)
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -102,6 +202,9 @@ pub struct Accelerator {
     shapes: Vec<Shape>,
     /// Objects without bounds (planes), in file order: tested for every ray.
     unbounded: Vec<u32>,
+    /// Rays starting in here need no margin of their own: every stored box is already grown
+    /// by one that covers them ([`RayMargin`]).
+    near_zone: Aabb,
 }
 
 /// The nearest of two candidate hits by (distance, object index): the brute-force order.
@@ -128,6 +231,7 @@ impl Accelerator {
             items: Vec::with_capacity(boxes.len()),
             shapes: Vec::new(),
             unbounded,
+            near_zone: Aabb::EMPTY,
         };
         if !boxes.is_empty() {
             let extent = boxes
@@ -135,13 +239,15 @@ impl Accelerator {
                 .map(Extent::of)
                 .reduce(|| Extent::EMPTY, Extent::merge);
             let tree = build(&mut boxes, 0, extent);
+            let (near_zone, margin) = near_zone(extent.bounds);
+            accel.near_zone = near_zone;
             accel.items = boxes.par_iter().map(|(i, _)| *i).collect();
             accel.nodes.push(Node {
                 bounds: Aabb::EMPTY,
                 first: 0,
                 count: 0,
             });
-            accel.fill(0, tree);
+            accel.fill(0, tree, margin);
         }
         accel.shapes = accel
             .items
@@ -153,8 +259,12 @@ impl Accelerator {
 
     /// Writes `tree` into the already reserved node `index`, its nodes depth first; the two
     /// children of a node sit next to each other, so a node needs only the first's index.
-    fn fill(&mut self, index: usize, tree: Subtree) {
-        self.nodes[index].bounds = tree.bounds;
+    /// Every box is stored grown by `margin`, the near zone's share of [`RayMargin`].
+    fn fill(&mut self, index: usize, tree: Subtree, margin: f64) {
+        self.nodes[index].bounds = Aabb {
+            min: tree.bounds.min - DVec3::splat(margin),
+            max: tree.bounds.max + DVec3::splat(margin),
+        };
         match tree.kind {
             SubtreeKind::Leaf { first, count } => {
                 self.nodes[index].first = first as u32;
@@ -170,8 +280,8 @@ impl Accelerator {
                     });
                 }
                 self.nodes[index].first = children as u32;
-                self.fill(children, *left);
-                self.fill(children + 1, *right);
+                self.fill(children, *left, margin);
+                self.fill(children + 1, *right, margin);
             }
         }
     }
@@ -183,6 +293,7 @@ impl Accelerator {
             items: Vec::new(),
             shapes: Vec::new(),
             unbounded: (0..objects.len() as u32).collect(),
+            near_zone: Aabb::EMPTY,
         }
     }
 
@@ -205,9 +316,9 @@ impl Accelerator {
         if self.nodes.is_empty() {
             return best;
         }
-        let inverse = DVec3::ONE / ray.direction;
+        let prepared = RayMargin::new(ray, self.nodes[0].bounds, self.near_zone);
         let mut stack: SmallVec<[(u32, f64); 64]> = SmallVec::new();
-        if let Some(t) = self.nodes[0].bounds.entry(ray.origin, inverse) {
+        if let Some(t) = self.nodes[0].bounds.entry(&prepared) {
             stack.push((0, t));
         }
         while let Some((index, entry)) = stack.pop() {
@@ -232,7 +343,7 @@ impl Accelerator {
                 continue;
             }
             let children = [node.first, node.first + 1]
-                .map(|c| (c, self.nodes[c as usize].bounds.entry(ray.origin, inverse)));
+                .map(|c| (c, self.nodes[c as usize].bounds.entry(&prepared)));
             // Push the farther child first so the nearer one is searched first.
             let (near, far) = match (children[0].1, children[1].1) {
                 (Some(a), Some(b)) if b < a => (children[1], children[0]),
@@ -261,12 +372,12 @@ impl Accelerator {
         if self.nodes.is_empty() {
             return false;
         }
-        let inverse = DVec3::ONE / ray.direction;
+        let prepared = RayMargin::new(ray, self.nodes[0].bounds, self.near_zone);
         let mut stack: SmallVec<[u32; 64]> = SmallVec::new();
         stack.push(0);
         while let Some(index) = stack.pop() {
             let node = self.nodes[index as usize];
-            match node.bounds.entry(ray.origin, inverse) {
+            match node.bounds.entry(&prepared) {
                 Some(t) if t < max_distance => {}
                 _ => continue,
             }
@@ -568,6 +679,102 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// Spheres with radii down to 1e-4 in a cluster, and rays from up to 1e7 away aimed at
+    /// points near them: the badly conditioned case where the formula reports hits outside the
+    /// sphere. The hierarchy must report exactly those hits too.
+    fn long_rays(seed: u64, rays: usize) -> (Vec<Object>, Vec<(Ray, f64)>) {
+        let mut rng = Lcg(seed);
+        let objects: Vec<Object> = (0..300)
+            .map(|_| Object {
+                shape: Shape::Sphere {
+                    centre: DVec3::new(
+                        rng.range(-3.0, 3.0),
+                        rng.range(-3.0, 3.0),
+                        rng.range(2.0, 8.0),
+                    ),
+                    radius: 10f64.powf(rng.range(-4.0, -1.0)),
+                },
+                material: Material::sphere(DVec3::ONE),
+            })
+            .collect();
+        let cases = (0..rays)
+            .map(|_| {
+                let Shape::Sphere { centre, radius } =
+                    objects[(rng.next() * objects.len() as f64) as usize].shape
+                else {
+                    unreachable!("only spheres")
+                };
+                let far = 10f64.powf(rng.range(0.0, 7.0));
+                let origin = centre
+                    + far
+                        * normalise(DVec3::new(
+                            rng.range(-1.0, 1.0),
+                            rng.range(-1.0, 1.0),
+                            rng.range(-1.0, 1.0),
+                        ));
+                // Aim within a few radii of the centre, and up to 0.3 away at long range.
+                let spread = radius * 3.0 + far * 3e-8;
+                let target = centre
+                    + DVec3::new(
+                        rng.range(-spread, spread),
+                        rng.range(-spread, spread),
+                        rng.range(-spread, spread),
+                    );
+                let ray = Ray::new(origin, normalise(target - origin));
+                (ray, far * rng.range(0.5, 1.5))
+            })
+            .collect();
+        (objects, cases)
+    }
+
+    #[test]
+    fn agrees_with_brute_force_on_long_badly_conditioned_rays() {
+        let (objects, cases) = long_rays(11, 20_000);
+        let accel = Accelerator::build(&objects);
+        let mut outside = 0;
+        for (ray, max_distance) in &cases {
+            let expected = closest_hit(&objects, ray);
+            assert_eq!(accel.closest_hit(&objects, ray), expected, "{ray:?}");
+            assert_eq!(
+                accel.occluded(&objects, ray, *max_distance),
+                occluded(&objects, ray, *max_distance),
+                "{ray:?}"
+            );
+            if let Some(hit) = expected {
+                let Shape::Sphere { centre, radius } = objects[hit.object].shape else {
+                    unreachable!("only spheres")
+                };
+                let miss_by = (ray.at(hit.distance) - centre).length() - radius;
+                outside += usize::from(miss_by > radius * 1e-4 + 1e-9);
+            }
+        }
+        // The case this guards: hits reported well outside their sphere, which a box padded
+        // by a fixed fraction of the radius would cull.
+        assert!(outside > 100, "only {outside} hits outside their sphere");
+    }
+
+    #[test]
+    fn reported_hits_stay_within_the_conditioning_bound() {
+        // The margin's argument, checked: how far outside its sphere a reported hit lies,
+        // relative to |O - C| + r, stays below CONDITIONING_BOUND with room to spare.
+        let (objects, cases) = long_rays(12, 20_000);
+        let mut worst: f64 = 0.0;
+        for (ray, _) in &cases {
+            for object in &objects {
+                let Shape::Sphere { centre, radius } = object.shape else {
+                    unreachable!("only spheres")
+                };
+                if let Some(s) = object.shape.intersect(ray) {
+                    let outside = (ray.at(s) - centre).length() - radius;
+                    let scale = (ray.origin - centre).length() + radius;
+                    worst = worst.max(outside / scale);
+                }
+            }
+        }
+        assert!(worst > 1e-9, "no badly conditioned hit was generated");
+        assert!(worst < CONDITIONING_BOUND / 2.0, "worst ratio {worst:e}");
     }
 
     #[test]

@@ -117,6 +117,18 @@ pub fn mirror_direction(d: DVec3, n: DVec3) -> DVec3 {
     normalise(n * (2.0 * n.dot(to_eye)) - to_eye)
 }
 
+/// `Math.max(0, x)` as Java evaluates it, which the course's reference does for every clamp
+/// in shading (rendering.md): NaN stays NaN (Rust's `f64::max` would return 0 and shade a
+/// pixel the reference leaves NaN), and -0.0 becomes +0.0.
+pub fn java_max_zero(x: f64) -> f64 {
+    // One comparison: NaN <= 0 is false, so NaN falls through unchanged.
+    if x <= 0.0 {
+        0.0
+    } else {
+        x
+    }
+}
+
 /// A surface point being shaded and how much it counts towards the pixel.
 struct Vertex<'a> {
     point: DVec3,
@@ -154,11 +166,11 @@ fn shade(
         let d = to_light.length();
         let illumination = light.illumination_at(d);
         let l = normalise(to_light);
-        let n_dot_l = n.dot(l).max(0.0);
+        let n_dot_l = java_max_zero(n.dot(l));
         // Built from the clamped N.L, as the reference does.
         let r = n * (2.0 * n_dot_l) - l;
         let diffuse = ((m.colour * illumination) * m.kd) * n_dot_l;
-        let specular = (illumination * m.ks) * r.dot(v).max(0.0).powf(m.n);
+        let specular = (illumination * m.ks) * java_max_zero(r.dot(v)).powf(m.n);
         let in_shadow = shadows && {
             sample.rays += 1;
             accel.occluded(&scene.objects, &Ray::offset_from(p, l), d)
@@ -193,7 +205,8 @@ mod tests {
             ray,
             options,
         );
-        assert_eq!(fast, slow);
+        // Compared as text: NaN samples are legitimate and NaN != NaN.
+        assert_eq!(format!("{fast:?}"), format!("{slow:?}"));
         fast
     }
 
@@ -339,6 +352,41 @@ mod tests {
             assert!(s.reflected_by_bounce.iter().all(|r| r.min_element() > 0.0));
             assert_eq!(s.rays, 2 * (u64::from(bounces) + 1));
         }
+    }
+
+    #[test]
+    fn clamps_follow_java_math_max() {
+        assert!(java_max_zero(f64::NAN).is_nan());
+        assert_eq!(java_max_zero(-2.0), 0.0);
+        assert_eq!(java_max_zero(-0.0).to_bits(), 0.0f64.to_bits());
+        assert_eq!(java_max_zero(0.25), 0.25);
+        assert_eq!(java_max_zero(f64::INFINITY), f64::INFINITY);
+    }
+
+    #[test]
+    fn a_hit_at_the_eye_is_nan_as_in_the_reference() {
+        // A plane through the camera with a specular term: V = (-P) normalised is 0/0 at
+        // P = 0, and Math.max(0, NaN) keeps it NaN, so the pixel is NaN (0 in the PNG).
+        let mut scene = wall_scene();
+        scene.objects[0] = Object {
+            shape: Shape::Plane {
+                point: DVec3::ZERO,
+                normal: DVec3::new(0.0, 0.0, -1.0),
+            },
+            material: Material::sphere(DVec3::ONE),
+        };
+        let s = trace(&scene, Ray::new(DVec3::ZERO, DVec3::Z), NO_BOUNCES);
+        assert_eq!(s.primary.expect("hit").position, DVec3::ZERO);
+        assert!(s.beauty.is_nan(), "{}", s.beauty);
+    }
+
+    #[test]
+    fn a_light_on_the_surface_makes_the_point_nan() {
+        // L = 0/0 at a light exactly on the hit point: every term of that light is NaN.
+        let mut scene = wall_scene();
+        scene.lights = vec![light(DVec3::new(0.0, 0.0, 4.0), 100.0)];
+        let s = trace(&scene, Ray::new(DVec3::ZERO, DVec3::Z), NO_BOUNCES);
+        assert!(s.beauty.is_nan(), "{}", s.beauty);
     }
 
     #[test]

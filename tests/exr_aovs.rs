@@ -680,7 +680,8 @@ fn exr_bytes_are_identical_for_any_thread_count_and_output_name() {
 
 #[test]
 fn tick_tone_map_of_the_exr_beauty_is_the_tick_png() {
-    // Invariant 8: within 1 LSB, and only where f32 storage rounds across a step.
+    // Invariant 8: within 1 LSB, and only where f32 storage rounds across a step: there the
+    // stored value lies within half an f32 ulp of a step k/255 (no share is promised).
     let exr = read_exr(tick2_exr());
     let png = read_png(&reference("tick2_b2.png"));
     let channels = if png.color == png::ColorType::Rgba {
@@ -699,12 +700,18 @@ fn tick_tone_map_of_the_exr_beauty_is_the_tick_png() {
                     (byte - want).abs() <= 1,
                     "({x}, {y}) {name}: {byte} vs {want}"
                 );
-                off_by_one += usize::from(byte != want);
+                if byte != want {
+                    let stored = exr.at(name, x, y);
+                    let half_ulp = f64::from(f32::from_bits(stored.to_bits() + 1) - stored) / 2.0;
+                    let scaled = 255.0 * f64::from(stored);
+                    assert!(
+                        (scaled - scaled.round()).abs() <= 255.0 * half_ulp,
+                        "({x}, {y}) {name}: {stored} is off by one but not at a step"
+                    );
+                    off_by_one += 1;
+                }
             }
         }
     }
-    assert!(
-        off_by_one <= exr.width * exr.height / 10_000,
-        "{off_by_one} values off by one"
-    );
+    eprintln!("{off_by_one} values off by one, each at a quantisation step");
 }
