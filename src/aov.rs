@@ -5,6 +5,10 @@
 use crate::sample::Sample;
 use crate::suggest;
 
+/// `Z` where the camera ray misses: "far", as Cycles writes it, so depth-based compositing puts
+/// the sky behind everything (aovs.md). The EXR header records it as `render/zMiss`.
+pub const Z_MISS: f64 = 1e10;
+
 /// What a layer measures. A closed set, so the mapping from a `Sample` is one `match`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Quantity {
@@ -115,7 +119,7 @@ impl Quantity {
             Quantity::Light(i) => rgb(out, s.lights[i].shadowed),
             Quantity::Unshadowed(i) => rgb(out, s.lights[i].unshadowed),
             Quantity::Shadow(i) => out[0] = f64::from(u8::from(s.lights[i].occluded_at_primary)),
-            Quantity::Depth => out[0] = hit.map_or(0.0, |h| h.position.z),
+            Quantity::Depth => out[0] = hit.map_or(Z_MISS, |h| h.position.z),
             Quantity::Normal => rgb(out, hit.map_or(glam::DVec3::ZERO, |h| h.normal)),
             Quantity::Position => rgb(out, hit.map_or(glam::DVec3::ZERO, |h| h.position)),
             Quantity::Albedo => rgb(out, hit.map_or(glam::DVec3::ZERO, |h| h.albedo)),

@@ -374,6 +374,7 @@ fn header_attributes_are_present_and_correct() {
     assert_eq!(other("render/bounces"), AttributeValue::I32(2));
     assert_eq!(other("render/spp"), AttributeValue::I32(1));
     assert_eq!(other("render/lights"), AttributeValue::Text("0,1".into()));
+    assert_eq!(other("render/zMiss"), AttributeValue::F32(1e10));
     match other("render/invariants") {
         AttributeValue::Text(t) => assert!(t.to_string().contains("RGB = direct + reflected")),
         v => panic!("render/invariants is {v:?}"),
@@ -393,6 +394,15 @@ fn header_attributes_are_present_and_correct() {
         .list
         .iter()
         .all(|c| c.sample_type == exr::prelude::SampleType::F32));
+    // Linear data, never flagged as perceptually encoded.
+    let flagged: Vec<String> = header
+        .channels
+        .list
+        .iter()
+        .filter(|c| c.quantize_linearly)
+        .map(|c| c.name.to_string())
+        .collect();
+    assert!(flagged.is_empty(), "pLinear on {flagged:?}");
 }
 
 #[test]
@@ -488,9 +498,10 @@ fn data_layers_hold_hand_computed_geometry() {
     close(exr.at("N.Y", x, y), 1.0, "floor N.Y");
     close(exr.at("objectid.X", x, y), 1.0, "floor id");
 
-    // The top-left pixel looks up into the background: data layers are 0 there.
+    // The top-left pixel looks up into the background: data layers are 0 there, and Z is
+    // "far".
+    assert_eq!(exr.at("Z", 0, 0), 1e10, "Z on a miss");
     for c in [
-        "Z",
         "N.X",
         "N.Y",
         "N.Z",

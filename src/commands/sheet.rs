@@ -126,21 +126,19 @@ fn display_values(image: &Image, layer: &Layer, tonemap: ToneMap, exposure: f64)
             .map(|&v| [f64::from(v).clamp(0.0, 1.0); 3])
             .collect();
     }
-    // Data: each channel normalised over its non-zero finite values; 0 (a miss) stays black.
+    // Data: each channel normalised over its non-zero finite values below the depth of a
+    // miss; 0 and that depth (a miss) stay black.
     let normalised: Vec<Vec<f64>> = (0..layer.channels.len().min(3))
         .map(|c| {
             let v = values(c);
-            let hits = v
-                .iter()
-                .filter(|x| x.is_finite() && **x != 0.0)
-                .map(|&x| f64::from(x));
+            let hits = v.iter().filter(|&&x| is_hit(x)).map(|&x| f64::from(x));
             let (lo, hi) = hits.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
                 (lo.min(x), hi.max(x))
             });
             let span = if hi > lo { hi - lo } else { 1.0 };
             v.iter()
                 .map(|&x| {
-                    if x == 0.0 || !x.is_finite() {
+                    if !is_hit(x) {
                         0.0
                     } else {
                         0.2 + 0.8 * (f64::from(x) - lo) / span
@@ -204,6 +202,11 @@ fn downsample(
         }
     }
     tile
+}
+
+/// Whether a data value is a surface's: not 0, not the depth of a miss, finite.
+fn is_hit(x: f32) -> bool {
+    x.is_finite() && x != 0.0 && f64::from(x) < crate::aov::Z_MISS
 }
 
 #[cfg(test)]

@@ -4,7 +4,7 @@ use std::fs::File;
 
 use exr::prelude::{self as x, f16, AttributeValue, Text, WritableImage as _};
 
-use crate::aov::Kind;
+use crate::aov::{Kind, Z_MISS};
 use crate::film::Film;
 use crate::output::exr_header;
 
@@ -93,7 +93,14 @@ pub fn write_exr(
             } else {
                 x::FlatSamples::F32(plane)
             };
-            channels.push(x::AnyChannel::new(text(&name), samples));
+            // Explicitly linear: the crate would flag every non-RGB name `pLinear`, which
+            // claims perceptual encoding for linear data (aovs.md).
+            channels.push(x::AnyChannel {
+                name: text(&name),
+                sample_data: samples,
+                quantize_linearly: false,
+                sampling: x::Vec2(1, 1),
+            });
             offset += 1;
         }
     }
@@ -126,6 +133,7 @@ pub fn write_exr(
             AttributeValue::Text(text(&metadata.light_names.join(","))),
         ),
         ("render/invariants", AttributeValue::Text(text(INVARIANTS))),
+        ("render/zMiss", AttributeValue::F32(Z_MISS as f32)),
     ];
     for (name, value) in custom {
         attributes.other.insert(text(name), value);
