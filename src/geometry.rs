@@ -4,8 +4,6 @@
 
 use glam::DVec3;
 
-use crate::scene::Object;
-
 /// How far secondary rays start off the surface they leave, so they do not re-hit it.
 pub const EPSILON: f64 = 0.0001;
 
@@ -101,32 +99,40 @@ impl Shape {
     }
 }
 
-/// The nearest hit along `ray`. Objects are tried in file order and a later object wins only
-/// when strictly nearer, so ties go to the earlier object (`min_by` keeps the first minimum).
-pub fn closest_hit(objects: &[Object], ray: &Ray) -> Option<Hit> {
-    objects
-        .iter()
-        .enumerate()
-        .filter_map(|(object, o)| {
-            o.shape
+/// The brute-force nearest hit along `ray` over `(file index, shape)` pairs given in file
+/// order: the definition of the closest hit (rendering.md). A later shape wins only when
+/// strictly nearer, so ties go to the earlier one (`min_by` keeps the first minimum). The
+/// hierarchy uses this for its unbounded shapes, and the tests as the reference.
+pub fn closest_hit<'a>(
+    shapes: impl IntoIterator<Item = (usize, &'a Shape)>,
+    ray: &Ray,
+) -> Option<Hit> {
+    shapes
+        .into_iter()
+        .filter_map(|(object, shape)| {
+            shape
                 .intersect(ray)
                 .map(|distance| Hit { object, distance })
         })
         .min_by(|a, b| a.distance.total_cmp(&b.distance))
 }
 
-/// Whether anything lies along `ray` strictly nearer than `max_distance`: the shadow test. The
-/// same answer as `closest_hit(..).distance < max_distance`, but stops at the first blocker.
-pub fn occluded(objects: &[Object], ray: &Ray, max_distance: f64) -> bool {
-    objects
-        .iter()
-        .any(|o| o.shape.intersect(ray).is_some_and(|s| s < max_distance))
+/// Whether any of `shapes` lies along `ray` strictly nearer than `max_distance`: the shadow
+/// test. The same answer as `closest_hit(..).distance < max_distance`, but stops at the first
+/// blocker.
+pub fn occluded<'a>(
+    shapes: impl IntoIterator<Item = (usize, &'a Shape)>,
+    ray: &Ray,
+    max_distance: f64,
+) -> bool {
+    shapes
+        .into_iter()
+        .any(|(_, shape)| shape.intersect(ray).is_some_and(|s| s < max_distance))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::Material;
 
     fn sphere(centre: DVec3, radius: f64) -> Shape {
         Shape::Sphere { centre, radius }
@@ -200,22 +206,13 @@ mod tests {
 
     #[test]
     fn ties_go_to_the_earlier_object() {
-        let m = Material::sphere(DVec3::ONE);
-        let objects = vec![
-            Object {
-                shape: plane(DVec3::new(0.0, 0.0, 4.0), -DVec3::Z),
-                material: m,
-            },
-            Object {
-                shape: sphere(DVec3::new(0.0, 0.0, 5.0), 1.0),
-                material: m,
-            },
-            Object {
-                shape: plane(DVec3::new(0.0, 0.0, 4.0), DVec3::Z),
-                material: m,
-            },
+        let shapes = [
+            plane(DVec3::new(0.0, 0.0, 4.0), -DVec3::Z),
+            sphere(DVec3::new(0.0, 0.0, 5.0), 1.0),
+            plane(DVec3::new(0.0, 0.0, 4.0), DVec3::Z),
         ];
-        let hit = closest_hit(&objects, &Ray::new(DVec3::ZERO, DVec3::Z)).expect("hits");
+        let hit = closest_hit(shapes.iter().enumerate(), &Ray::new(DVec3::ZERO, DVec3::Z))
+            .expect("hits");
         assert_eq!(
             hit,
             Hit {
@@ -228,10 +225,7 @@ mod tests {
     #[test]
     fn a_ray_spawned_off_a_sphere_does_not_rehit_it() {
         let s = sphere(DVec3::new(0.2, -0.1, 4.0), 0.7);
-        let objects = vec![Object {
-            shape: s,
-            material: Material::sphere(DVec3::ONE),
-        }];
+        let shapes = [s];
         for i in 0..100 {
             let t = i as f64 * 0.173;
             let dir = normalise(DVec3::new(t.sin(), (2.0 * t).cos(), -0.5 - t.cos().abs()));
@@ -241,7 +235,7 @@ mod tests {
             let n = s.normal_at(p);
             let out = normalise(n + DVec3::new(0.1 * t.cos(), 0.1 * t.sin(), 0.0));
             assert!(
-                closest_hit(&objects, &Ray::offset_from(p, out)).is_none(),
+                closest_hit(shapes.iter().enumerate(), &Ray::offset_from(p, out)).is_none(),
                 "ray {i}"
             );
         }

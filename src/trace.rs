@@ -51,7 +51,7 @@ pub fn trace_into(
     let mut throughput = 1.0;
     for k in 0..=options.bounces {
         sample.rays += 1;
-        let Some(hit) = accel.closest_hit(&scene.objects, &ray) else {
+        let Some(hit) = accel.closest_hit(&ray) else {
             let background = BACKGROUND * throughput;
             sample.background += background;
             *bucket(sample, k) += background;
@@ -173,7 +173,7 @@ fn shade(
         let specular = (illumination * m.ks) * java_max_zero(r.dot(v)).powf(m.n);
         let in_shadow = shadows && {
             sample.rays += 1;
-            accel.occluded(&scene.objects, &Ray::offset_from(p, l), d)
+            accel.occluded(&Ray::offset_from(p, l), d)
         };
         out.unshadowed += (diffuse + specular) * weight;
         if vertex.primary {

@@ -1,0 +1,80 @@
+//! Axis-aligned boxes: the hierarchy's bounding volumes, and the box around a shape.
+
+use glam::DVec3;
+
+use super::margin::RayMargin;
+use crate::geometry::Shape;
+
+/// An axis-aligned box.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Aabb {
+    pub min: DVec3,
+    pub max: DVec3,
+}
+
+impl Aabb {
+    pub(super) const EMPTY: Aabb = Aabb {
+        min: DVec3::splat(f64::INFINITY),
+        max: DVec3::splat(f64::NEG_INFINITY),
+    };
+
+    pub(super) fn grow(self, other: Aabb) -> Aabb {
+        Aabb {
+            min: self.min.min(other.min),
+            max: self.max.max(other.max),
+        }
+    }
+
+    pub(super) fn grow_point(self, p: DVec3) -> Aabb {
+        Aabb {
+            min: self.min.min(p),
+            max: self.max.max(p),
+        }
+    }
+
+    pub(super) fn contains(self, p: DVec3) -> bool {
+        (self.min.x <= p.x && p.x <= self.max.x)
+            && (self.min.y <= p.y && p.y <= self.max.y)
+            && (self.min.z <= p.z && p.z <= self.max.z)
+    }
+
+    pub(super) fn area(self) -> f64 {
+        let d = (self.max - self.min).max(DVec3::ZERO);
+        2.0 * (d.x * d.y + d.y * d.z + d.z * d.x)
+    }
+
+    /// Parameter where the ray enters the box grown by the ray's margin on every side, or
+    /// `None` if it misses it or the box lies wholly behind the origin. Growing the box by m is
+    /// moving the origin by -m towards `min` and +m towards `max`: the same three subtractions
+    /// per slab as an ungrown test.
+    pub(super) fn entry(self, ray: &RayMargin) -> Option<f64> {
+        let t1 = (self.min - ray.origin_plus_margin) * ray.inverse;
+        let t2 = (self.max - ray.origin_minus_margin) * ray.inverse;
+        // f64::min/max ignore a NaN operand (0 * inf on a slab plane), keeping the test
+        // conservative.
+        let near = t1.x.min(t2.x).max(t1.y.min(t2.y)).max(t1.z.min(t2.z));
+        let far = t1.x.max(t2.x).min(t1.y.max(t2.y)).min(t1.z.max(t2.z));
+        (near <= far && far >= 0.0).then_some(near)
+    }
+}
+
+/// The box around a bounded shape; `None` for unbounded shapes. The half-side exceeds the
+/// radius by 2^-40 of the coordinates' size, far more than the rounding of `centre +- pad`
+/// (2^-53 of it), so the stored box contains the exact sphere. Hits the formula reports
+/// *outside* the sphere are the per-ray margin's job ([`RayMargin`]), not the box's.
+pub(super) fn bounds(shape: &Shape) -> Option<Aabb> {
+    match *shape {
+        Shape::Sphere { centre, radius } => {
+            let pad = radius + (centre.abs().max_element() + radius) * REPRESENTATION_SLACK;
+            Some(Aabb {
+                min: centre - DVec3::splat(pad),
+                max: centre + DVec3::splat(pad),
+            })
+        }
+        Shape::Plane { .. } => None,
+    }
+}
+
+/// 2^-40: relative slack for storing a box's corners in f64 (whose rounding is 2^-53).
+pub(super) const REPRESENTATION_SLACK: f64 = 1.0 / (1u64 << 40) as f64;
+
