@@ -25,6 +25,9 @@ use margin::{near_zone, RayMargin};
 use crate::geometry::{self, Hit, Ray, Shape};
 use crate::scene::Object;
 
+/// A shape without bounds (a plane) and its file index.
+type Unbounded = (usize, Shape);
+
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Node {
     bounds: Aabb,
@@ -45,7 +48,7 @@ pub struct Accelerator {
     shapes: Vec<Shape>,
     /// Objects without bounds (planes) with their file index, in file order: tested for
     /// every ray by the brute-force search itself.
-    unbounded: Vec<(usize, Shape)>,
+    unbounded: Vec<Unbounded>,
     /// Rays starting in here need no margin of their own: every stored box is already grown
     /// by one that covers them ([`RayMargin`]).
     near_zone: Aabb,
@@ -63,7 +66,7 @@ impl Accelerator {
     /// Builds the hierarchy over `objects`' bounded shapes.
     pub fn build(objects: &[Object]) -> Self {
         // Whole-scene passes run on every core (rayon keeps the order).
-        let (mut boxes, unbounded): (Vec<(u32, Aabb)>, Vec<(usize, Shape)>) = objects
+        let (mut boxes, unbounded): (Vec<(u32, Aabb)>, Vec<Unbounded>) = objects
             .par_iter()
             .enumerate()
             .partition_map(|(i, o)| match bounds(&o.shape) {
@@ -221,4 +224,3 @@ impl Accelerator {
         false
     }
 }
-

@@ -151,11 +151,58 @@ impl Layer {
     /// The name a user selects this layer by (`beauty` for the bare RGBA).
     pub fn selection_name(&self) -> &str {
         match self.quantity {
-            Quantity::Beauty => "beauty",
+            Quantity::Beauty => BEAUTY,
             _ => &self.name,
         }
     }
 }
+
+/// The layer a stored channel belongs to: `direct.R` -> `direct`; the beauty's bare `R G B A`
+/// -> `beauty`; other bare names (`Z`) are their own layer. The inverse of
+/// [`Layer::channel_names`], for files from whitted or anyone else.
+pub fn layer_of_channel(channel: &str) -> &str {
+    match channel.rsplit_once('.') {
+        Some((layer, _)) => layer,
+        None if Quantity::Beauty.channels().contains(&channel) => BEAUTY,
+        None => channel,
+    }
+}
+
+/// What a stored layer is, for showing it: whitted's layer names, recognised here where they
+/// are made.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Role {
+    /// Linear radiance.
+    Colour,
+    /// A fraction in [0, 1] (`shadow_<name>`).
+    Mask,
+    /// Unit vectors (`N`).
+    Normal,
+    /// Integer object ids (`objectid`).
+    ObjectId,
+    /// Anything else measured: depth, positions, albedo.
+    Data,
+}
+
+/// The role of a layer named as whitted names them, or `None` for a name it never writes.
+pub fn role_of_layer(name: &str) -> Option<Role> {
+    let is_bounce = |k: &str| !k.is_empty() && k.bytes().all(|b| b.is_ascii_digit());
+    Some(match name {
+        BEAUTY | "direct" | "reflected" | "ambient" | "diffuse" | "specular" | "background" => {
+            Role::Colour
+        }
+        "N" => Role::Normal,
+        "objectid" => Role::ObjectId,
+        "Z" | "P" | "albedo" => Role::Data,
+        _ if name.strip_prefix("reflected_").is_some_and(is_bounce) => Role::Colour,
+        _ if name.starts_with("light_") || name.starts_with("unshadowed_") => Role::Colour,
+        _ if name.starts_with("shadow_") => Role::Mask,
+        _ => return None,
+    })
+}
+
+/// The name the bare `R G B A` channels go by.
+pub const BEAUTY: &str = "beauty";
 
 /// Every layer a render of a scene with these lights and bounces can write, in file order:
 /// beauty, the radiance split, per-light layers, shadow masks, then the data layers.

@@ -3,11 +3,12 @@
 
 use std::path::PathBuf;
 
-use clap::{Args, Parser, Subcommand};
+use clap::{Args, Parser, Subcommand, ValueEnum};
 
-use crate::output::exr::ExrCompression;
-use crate::output::png::PngEncoding;
-use crate::render::Region;
+use crate::frame::{FrameSpec, Region};
+use crate::output::exr::{ExrCompression, ExrOptions};
+use crate::plan::{RenderRequest, ToneRequest};
+use crate::sheet::SheetOptions;
 use crate::tonemap::ToneMap;
 
 /// Most reflection bounces accepted: each bounce is a layer in the EXR, and past this depth a
@@ -16,6 +17,8 @@ pub const MAX_BOUNCES: u32 = 100;
 
 /// Largest image side accepted.
 pub const MAX_SIDE: u32 = 65_535;
+
+pub use crate::plan::MAX_THREADS;
 
 /// Most samples per pixel accepted (a 32x32 grid).
 pub const MAX_SPP: u32 = 1024;
@@ -127,8 +130,8 @@ pub struct SheetArgs {
     pub tile_width: u32,
 
     /// Tone map for colour layers
-    #[arg(long = "tonemap", value_name = "OP", value_enum, default_value_t = ToneMap::Clamp)]
-    pub tonemap: ToneMap,
+    #[arg(long = "tonemap", value_name = "OP", value_enum, default_value_t = ToneMapArg::Clamp)]
+    pub tonemap: ToneMapArg,
 
     /// Exposure in stops for colour layers
     #[arg(long, value_name = "EV", default_value_t = 0.0, allow_negative_numbers = true,
@@ -158,8 +161,8 @@ pub struct TonemapArgs {
 #[derive(Debug, Clone, Args)]
 pub struct ToneArgs {
     /// Tone map: `tick` is the course's exact output; the others are sRGB-encoded
-    #[arg(long = "tonemap", value_name = "OP", value_enum, default_value_t = ToneMap::Tick)]
-    pub tonemap: ToneMap,
+    #[arg(long = "tonemap", value_name = "OP", value_enum, default_value_t = ToneMapArg::Tick)]
+    pub tonemap: ToneMapArg,
 
     /// Exposure in stops, applied before the tone map: v * 2^EV
     #[arg(long, value_name = "EV", default_value_t = 0.0, allow_negative_numbers = true,
@@ -176,22 +179,13 @@ pub struct ToneArgs {
 }
 
 impl ToneArgs {
-    /// The PNG encoding asked for, or why it cannot be had.
-    pub fn encoding(&self) -> Result<PngEncoding, String> {
-        if self.dither && self.tonemap == ToneMap::Tick {
-            return Err("--dither needs an sRGB tone map such as --tonemap clamp \
-                        (tick is the course's exact, undithered output)"
-                .into());
-        }
-        if self.dither && self.png_depth == 16 {
-            return Err("--dither applies to 8-bit PNGs only (16 bits need none)".into());
-        }
-        Ok(PngEncoding {
-            tonemap: self.tonemap,
+    pub fn request(&self) -> ToneRequest {
+        ToneRequest {
+            tonemap: self.tonemap.into(),
             exposure: self.exposure,
             depth: self.png_depth,
             dither: self.dither,
-        })
+        }
     }
 }
 
@@ -250,8 +244,8 @@ pub struct RenderArgs {
     pub half: bool,
 
     /// EXR compression (all lossless)
-    #[arg(long, value_name = "C", value_enum, default_value_t = ExrCompression::Zip)]
-    pub compression: ExrCompression,
+    #[arg(long, value_name = "C", value_enum, default_value_t = CompressionArg::Zip)]
+    pub compression: CompressionArg,
 
     /// Record the render time in the EXR (`capDate`); without it, files are reproducible
     #[arg(long)]
@@ -267,6 +261,99 @@ pub struct RenderArgs {
     /// No progress bar and no summary line
     #[arg(short, long)]
     pub quiet: bool,
+}
+
+/// `--tonemap` values: the tone maps of tonemap.md, named for the command line.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ToneMapArg {
+    /// The course's output: clamp, no transfer function, truncating quantisation
+    Tick,
+    /// Clamp to [0, 1], then sRGB
+    Clamp,
+    /// v / (1 + v), then sRGB
+    Reinhard,
+    /// Narkowicz's ACES fit, then sRGB
+    Aces,
+    /// Blender 4's AgX base look, then sRGB
+    Agx,
+    /// Khronos PBR Neutral, then sRGB
+    Neutral,
+}
+
+impl From<ToneMapArg> for ToneMap {
+    fn from(arg: ToneMapArg) -> Self {
+        match arg {
+            ToneMapArg::Tick => ToneMap::Tick,
+            ToneMapArg::Clamp => ToneMap::Clamp,
+            ToneMapArg::Reinhard => ToneMap::Reinhard,
+            ToneMapArg::Aces => ToneMap::Aces,
+            ToneMapArg::Agx => ToneMap::Agx,
+            ToneMapArg::Neutral => ToneMap::Neutral,
+        }
+    }
+}
+
+/// `--compression` values: the lossless OpenEXR codecs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum CompressionArg {
+    None,
+    Rle,
+    /// ZIP, one scanline per block
+    Zips,
+    /// ZIP, 16 scanlines per block (the default, as in most renderers)
+    Zip,
+    Piz,
+}
+
+impl From<CompressionArg> for ExrCompression {
+    fn from(arg: CompressionArg) -> Self {
+        match arg {
+            CompressionArg::None => ExrCompression::None,
+            CompressionArg::Rle => ExrCompression::Rle,
+            CompressionArg::Zips => ExrCompression::Zips,
+            CompressionArg::Zip => ExrCompression::Zip,
+            CompressionArg::Piz => ExrCompression::Piz,
+        }
+    }
+}
+
+impl RenderArgs {
+    /// The render asked for, as plain data for `RenderPlan::new` to check.
+    pub fn request(&self) -> RenderRequest {
+        RenderRequest {
+            input: self.input.clone(),
+            png: (!self.no_png).then(|| self.output.clone()),
+            exr: self.exr.clone(),
+            frame: FrameSpec {
+                width: self.width,
+                height: self.height,
+                region: self.region,
+                spp: self.spp,
+                bounces: self.bounces,
+                shadows: !self.no_shadows,
+                aovs: self.aovs.clone(),
+                ..FrameSpec::default()
+            },
+            exr_options: ExrOptions {
+                compression: self.compression.into(),
+                half: self.half,
+            },
+            tone: self.tone.request(),
+            threads: self.threads,
+            stamp_date: self.stamp_date,
+        }
+    }
+}
+
+impl SheetArgs {
+    pub fn options(&self) -> SheetOptions {
+        SheetOptions {
+            columns: self.columns,
+            tile_width: self.tile_width,
+            tonemap: self.tonemap.into(),
+            exposure: self.exposure,
+        }
+    }
 }
 
 fn parse_bounces(s: &str) -> Result<u32, String> {
@@ -347,8 +434,10 @@ fn parse_depth(s: &str) -> Result<u8, String> {
 
 fn parse_threads(s: &str) -> Result<usize, String> {
     match s.trim().parse::<usize>() {
-        Ok(n) if n >= 1 => Ok(n),
-        _ => Err(format!("expected a number of threads >= 1, got `{s}`")),
+        Ok(n) if (1..=MAX_THREADS).contains(&n) => Ok(n),
+        _ => Err(format!(
+            "expected a number of threads >= 1 and <= {MAX_THREADS}, got `{s}`"
+        )),
     }
 }
 

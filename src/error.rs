@@ -3,8 +3,9 @@
 
 use std::path::PathBuf;
 
-/// Everything that can stop a run. Every variant is the user's input or environment, never a
-/// bug: bugs panic, user mistakes come back as one of these and exit with status 2.
+/// Everything that can stop a run, by cause. Every variant is the user's input or environment,
+/// never a bug: bugs panic with a message, everything else comes back as one of these and
+/// exits with status 2 (130 for an interruption).
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
     /// A scene file that does not say what the scene format allows. `line` and `col` are 1-based;
@@ -29,9 +30,12 @@ pub enum Error {
     /// A PNG file that cannot be encoded or decoded.
     #[error("{}: {msg}", path.display())]
     Png { path: PathBuf, msg: String },
-    /// A command line that asks for something impossible.
+    /// A command line that asks for something impossible: the user's mistake only.
     #[error("{0}")]
     Usage(String),
+    /// Memory that was needed and could not be had, with the numbers.
+    #[error("cannot allocate {} for {what}", crate::memory::gib(*bytes))]
+    Allocation { what: String, bytes: u64 },
     /// The user pressed Ctrl-C; nothing was written.
     #[error("interrupted; no output was written")]
     Interrupted,

@@ -7,7 +7,7 @@
 use glam::DVec3;
 
 use crate::aov::{Layer, Reduction};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::memory;
 use crate::sample::Sample;
 
@@ -28,31 +28,22 @@ pub struct Film {
     pub channel_names: Vec<String>,
     /// Pixel-major: channel c of pixel i is `data[i * channel_count + c]`. Always finite.
     pub data: Vec<f32>,
-    /// Samples per pixel.
-    pub spp: u32,
-    /// Rays cast while rendering (primary, shadow, reflected).
-    pub rays: u64,
-    /// Channel values that were NaN or infinite and were stored as 0.
-    pub non_finite: u64,
-    /// Time spent building the acceleration hierarchy before tracing.
-    pub hierarchy_time: std::time::Duration,
 }
 
 impl Film {
-    /// An empty film for `layers`. Two layers with a channel of the same name are an error:
-    /// one of them would silently vanish from the file.
-    pub fn new(width: u32, height: u32, spp: u32, layers: Vec<Layer>) -> Result<Self> {
+    /// An empty film for `layers`; an error only when memory cannot be had.
+    ///
+    /// # Panics
+    /// With no layers, or two layers declaring a channel of the same name (one would silently
+    /// vanish from the file): the layer catalogue never does either, so that is a bug.
+    pub fn new(width: u32, height: u32, layers: Vec<Layer>) -> Result<Self> {
         let channel_names: Vec<String> = layers.iter().flat_map(Layer::channel_names).collect();
-        for (i, name) in channel_names.iter().enumerate() {
-            if channel_names[..i].contains(name) {
-                return Err(Error::Usage(format!(
-                    "two layers declare the channel `{name}`"
-                )));
-            }
+        let mut sorted = channel_names.clone();
+        sorted.sort_unstable();
+        if let Some(pair) = sorted.windows(2).find(|pair| pair[0] == pair[1]) {
+            panic!("two layers declare the channel `{}`", pair[0]);
         }
-        if layers.is_empty() {
-            return Err(Error::Usage("a film needs at least one layer".into()));
-        }
+        assert!(!layers.is_empty(), "a film needs at least one layer");
         let pixels = width as usize * height as usize;
         Ok(Film {
             width,
@@ -63,10 +54,6 @@ impl Film {
             data: memory::filled(pixels.saturating_mul(channel_names.len()), 0.0)?,
             layers,
             channel_names,
-            spp,
-            rays: 0,
-            non_finite: 0,
-            hierarchy_time: std::time::Duration::ZERO,
         })
     }
 
@@ -189,15 +176,16 @@ mod tests {
     }
 
     #[test]
-    fn duplicate_channels_are_refused() {
+    #[should_panic(expected = "two layers declare the channel `direct.")]
+    fn duplicate_channels_are_a_bug() {
         let layer = all_layers(&[], 0).remove(1);
-        assert!(Film::new(2, 2, 1, vec![layer.clone(), layer]).is_err());
+        let _ = Film::new(2, 2, vec![layer.clone(), layer]);
     }
 
     #[test]
     fn colour_is_averaged_and_depth_comes_from_the_centre_sample() {
         let layers = all_layers(&["a".into()], 0);
-        let film = Film::new(1, 1, 2, layers.clone()).expect("film");
+        let film = Film::new(1, 1, layers.clone()).expect("film");
         let mut acc = PixelAccumulator::new(&layers, film.channel_count());
         acc.add(&sample(1.0, 3.0), false);
         acc.add(&sample(0.5, 7.0), true);

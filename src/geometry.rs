@@ -211,8 +211,8 @@ mod tests {
             sphere(DVec3::new(0.0, 0.0, 5.0), 1.0),
             plane(DVec3::new(0.0, 0.0, 4.0), DVec3::Z),
         ];
-        let hit = closest_hit(shapes.iter().enumerate(), &Ray::new(DVec3::ZERO, DVec3::Z))
-            .expect("hits");
+        let hit =
+            closest_hit(shapes.iter().enumerate(), &Ray::new(DVec3::ZERO, DVec3::Z)).expect("hits");
         assert_eq!(
             hit,
             Hit {

@@ -26,16 +26,19 @@ pub fn available_bytes() -> Option<u64> {
 /// An error if `needed` bytes are more than `available`.
 pub fn check(needed: u64, available: Option<u64>, what: &str) -> Result<()> {
     match available {
-        Some(available) if needed > available => Err(Error::Usage(format!(
-            "{what} needs about {} of memory and {} is available (try a smaller size or --aovs beauty)",
-            gib(needed),
-            gib(available)
-        ))),
+        Some(available) if needed > available => Err(Error::Allocation {
+            what: format!(
+                "{what}: {} is available (try a smaller size or --aovs beauty)",
+                gib(available)
+            ),
+            bytes: needed,
+        }),
         _ => Ok(()),
     }
 }
 
-fn gib(bytes: u64) -> String {
+/// `bytes` in GiB, one decimal, as messages show sizes.
+pub fn gib(bytes: u64) -> String {
     format!("{:.1} GiB", bytes as f64 / f64::from(1u32 << 30))
 }
 
@@ -44,8 +47,10 @@ fn gib(bytes: u64) -> String {
 /// serial step otherwise.
 pub fn filled<T: Clone + Send + Sync>(len: usize, value: T) -> Result<Vec<T>> {
     let mut v = Vec::new();
-    v.try_reserve_exact(len)
-        .map_err(|_| Error::Usage(format!("cannot allocate memory for {len} values")))?;
+    v.try_reserve_exact(len).map_err(|_| Error::Allocation {
+        what: format!("{len} values"),
+        bytes: (len as u64).saturating_mul(std::mem::size_of::<T>() as u64),
+    })?;
     v.par_extend(rayon::iter::repeat_n(value, len));
     Ok(v)
 }

@@ -2,84 +2,32 @@
 //! parallel; every pixel depends only on its own rays and is written by exactly one task, so
 //! the image is the same for any number of threads and no lock is taken while tracing.
 
+use std::time::{Duration, Instant};
+
 use rayon::prelude::*;
 
 use crate::accel::Accelerator;
-use crate::aov::Layer;
-use crate::camera::Camera;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::film::{Film, PixelAccumulator};
+use crate::frame::{Acceleration, Frame};
 use crate::interrupt;
 use crate::sample::Sample;
 use crate::scene::Scene;
-use crate::trace::{trace_into, TraceOptions};
+use crate::trace::trace_into;
 
 /// Side of a tile in pixels: small enough to balance two or many cores, large enough that
 /// neighbouring rays reuse the same hierarchy nodes from cache.
 const TILE: usize = 16;
 
-/// A rectangle of the full image, `[x0, x1) x [y0, y1)`: the part a farm node renders.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Region {
-    pub x0: u32,
-    pub y0: u32,
-    pub x1: u32,
-    pub y1: u32,
-}
-
-impl Region {
-    pub fn full(camera: &Camera) -> Self {
-        Region {
-            x0: 0,
-            y0: 0,
-            x1: camera.width,
-            y1: camera.height,
-        }
-    }
-
-    pub fn width(&self) -> u32 {
-        self.x1 - self.x0
-    }
-
-    pub fn height(&self) -> u32 {
-        self.y1 - self.y0
-    }
-}
-
-/// How nearest hits are found.
+/// How a render went: what the summary line and the warnings report. Not part of the image.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Acceleration {
-    /// The bounding volume hierarchy (the normal path).
-    #[default]
-    Bvh,
-    /// Every object for every ray: the reference the hierarchy is tested against.
-    BruteForce,
-}
-
-/// How to sample each pixel, and which pixels.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct RenderSettings {
-    pub trace: TraceOptions,
-    /// Samples per pixel, a square k*k: a fixed stratified grid, no randomness.
-    pub spp: u32,
-    /// The part of the image to render; `None` for all of it.
-    pub region: Option<Region>,
-    pub acceleration: Acceleration,
-}
-
-impl Default for RenderSettings {
-    /// The course's render: 2 bounces, shadows, one sample at each pixel's centre.
-    fn default() -> Self {
-        RenderSettings {
-            trace: TraceOptions {
-                bounces: 2,
-                shadows: true,
-            },
-            spp: 1,
-            region: None,
-            acceleration: Acceleration::Bvh,
-        }
-    }
+pub struct RenderStats {
+    /// Rays cast (primary, shadow, reflected).
+    pub rays: u64,
+    /// Channel values that were NaN or infinite and were stored as 0.
+    pub non_finite: u64,
+    /// Time spent building the acceleration hierarchy before tracing.
+    pub hierarchy_time: Duration,
 }
 
 /// The sub-pixel positions of a k*k grid: cell centres, row by row, and the index of the one
@@ -97,38 +45,25 @@ fn sample_grid(spp: u32) -> (Vec<(f64, f64)>, usize) {
     (grid, centre)
 }
 
-/// Renders `scene` into a film holding `layers`: the whole of `camera`'s image, or the region
-/// the settings name. `rows_done` is told how many rows have finished (from any thread), for
+/// Renders `scene` as `frame` says: the frame's region of its camera's image, into a film
+/// holding the frame's layers. `rows_done` is told how many rows have finished (from any thread), for
 /// progress. Stops early with `Error::Interrupted` when the user presses Ctrl-C.
 pub fn render(
     scene: &Scene,
-    camera: &Camera,
-    settings: RenderSettings,
-    layers: Vec<Layer>,
+    frame: &Frame,
     rows_done: &(dyn Fn(u64) + Sync),
-) -> Result<Film> {
-    let region = settings.region.unwrap_or(Region::full(camera));
-    if region.x0 >= region.x1
-        || region.y0 >= region.y1
-        || region.x1 > camera.width
-        || region.y1 > camera.height
-    {
-        return Err(Error::Usage(format!(
-            "the region {},{},{},{} is not a non-empty part of the {}x{} image",
-            region.x0, region.y0, region.x1, region.y1, camera.width, camera.height
-        )));
-    }
-    let started = std::time::Instant::now();
-    let accel = match settings.acceleration {
+) -> Result<(Film, RenderStats)> {
+    let (camera, region, trace) = (&frame.camera, frame.region, frame.trace);
+    let started = Instant::now();
+    let accel = match frame.acceleration {
         Acceleration::Bvh => Accelerator::build(&scene.objects),
         Acceleration::BruteForce => Accelerator::brute_force(&scene.objects),
     };
     let hierarchy_time = started.elapsed();
-    let mut film = Film::new(region.width(), region.height(), settings.spp, layers)?;
-    film.hierarchy_time = hierarchy_time;
+    let mut film = Film::new(region.width(), region.height(), frame.layers.clone())?;
     film.origin = (region.x0, region.y0);
     film.display = (camera.width, camera.height);
-    let (grid, centre) = sample_grid(settings.spp);
+    let (grid, centre) = sample_grid(frame.spp);
     let width = region.width() as usize;
     let channels = film.channel_count();
     let layers = &film.layers;
@@ -143,7 +78,7 @@ pub fn render(
             }
             let rows = beauty.len() / width;
             let mut accumulator = PixelAccumulator::new(layers, channels);
-            let mut sample = Sample::empty(scene.lights.len(), settings.trace.bounces);
+            let mut sample = Sample::empty(scene.lights.len(), trace.bounces);
             let (mut rays, mut non_finite) = (0, 0);
             for tile_x in (0..width).step_by(TILE) {
                 for row in 0..rows {
@@ -157,7 +92,7 @@ pub fn render(
                             } else {
                                 camera.sub_pixel_ray(x, y, u, v)
                             };
-                            trace_into(scene, &accel, ray, settings.trace, &mut sample);
+                            trace_into(scene, &accel, ray, trace, &mut sample);
                             rays += sample.rays;
                             accumulator.add(&sample, i == centre);
                         }
@@ -174,9 +109,12 @@ pub fn render(
         })
         .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
     interrupt::check()?;
-    film.rays = rays;
-    film.non_finite = non_finite;
-    Ok(film)
+    let stats = RenderStats {
+        rays,
+        non_finite,
+        hierarchy_time,
+    };
+    Ok((film, stats))
 }
 
 #[cfg(test)]
@@ -193,33 +131,5 @@ mod tests {
         assert_eq!(g9[0], (1.0 / 6.0, 1.0 / 6.0));
         let (g4, c4) = sample_grid(4);
         assert_eq!((g4[c4], c4), ((0.25, 0.25), 0));
-    }
-
-    #[test]
-    fn regions_must_lie_inside_the_image() {
-        let scene = crate::scene::parse_str("t.xml", "<scene/>").expect("scene");
-        let camera = Camera::new(10, 10);
-        let layers = crate::aov::all_layers(&[], 0)[..1].to_vec();
-        for (x0, y0, x1, y1) in [(0, 0, 11, 10), (5, 5, 5, 9), (3, 0, 2, 10)] {
-            let settings = RenderSettings {
-                region: Some(Region { x0, y0, x1, y1 }),
-                ..RenderSettings::default()
-            };
-            assert!(render(&scene, &camera, settings, layers.clone(), &|_| {}).is_err());
-        }
-        let settings = RenderSettings {
-            region: Some(Region {
-                x0: 2,
-                y0: 3,
-                x1: 7,
-                y1: 4,
-            }),
-            ..RenderSettings::default()
-        };
-        let film = render(&scene, &camera, settings, layers, &|_| {}).expect("render");
-        assert_eq!(
-            (film.width, film.height, film.origin, film.display),
-            (5, 1, (2, 3), (10, 10))
-        );
     }
 }

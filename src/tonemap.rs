@@ -5,7 +5,7 @@ use glam::{DMat3, DVec3};
 use palette::encoding::{FromLinear, Srgb};
 
 /// The operators `--tonemap` offers.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ToneMap {
     /// The course's output: clamp to [0, 1], no transfer function, truncating quantisation.
     #[default]
@@ -62,9 +62,16 @@ pub fn srgb_oetf(t: f64) -> f64 {
     <Srgb as FromLinear<f64, f64>>::from_linear(t)
 }
 
-/// The course's byte: `floor(255 * clamp(v, 0, 1))`, NaN -> 0.
-pub fn tick_bytes(v: DVec3) -> [u8; 3] {
-    ToneMap::Tick.apply(v).to_array().map(|t| (255.0 * t) as u8)
+/// Linear `v` as display values in [0, 1], ready to quantise: exposure, the tone map, then
+/// the sRGB curve for every operator but `tick`. The one place the PNG writer and the contact
+/// sheet share.
+pub fn to_display(v: DVec3, tone_map: ToneMap, exposure: f64) -> [f64; 3] {
+    let t = tone_map.apply(expose(v, exposure)).to_array();
+    if tone_map.srgb_encoded() {
+        t.map(srgb_oetf)
+    } else {
+        t
+    }
 }
 
 fn aces(v: f64) -> f64 {
@@ -142,18 +149,6 @@ mod tests {
 
     fn close(a: f64, b: f64) {
         assert!((a - b).abs() < 1e-6, "{a} vs {b}");
-    }
-
-    #[test]
-    fn tick_truncates_clamps_and_zeroes_nan() {
-        assert_eq!(tick_bytes(DVec3::new(0.0, 1.0, 0.5)), [0, 255, 127]);
-        assert_eq!(tick_bytes(DVec3::new(-3.0, 7.0, f64::NAN)), [0, 255, 0]);
-        assert_eq!(tick_bytes(DVec3::new(0.18, 4.0, 100.0)), [45, 255, 255]);
-        assert_eq!(
-            tick_bytes(DVec3::new(254.999 / 255.0, 1.0 / 255.0, 0.999 / 255.0)),
-            [254, 1, 0]
-        );
-        assert_eq!(tick_bytes(DVec3::splat(f64::INFINITY)), [255, 255, 255]);
     }
 
     #[test]

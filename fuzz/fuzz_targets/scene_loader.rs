@@ -3,10 +3,8 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use whitted::aov::all_layers;
-use whitted::camera::Camera;
-use whitted::render::{render, RenderSettings};
-use whitted::trace::TraceOptions;
+use whitted::frame::{Frame, FrameSpec};
+use whitted::render::render;
 
 fuzz_target!(|data: &[u8]| {
     let scene = match whitted::scene::parse_bytes("fuzz.xml", data) {
@@ -20,20 +18,12 @@ fuzz_target!(|data: &[u8]| {
             return;
         }
     };
-    let names: Vec<String> = scene.lights.iter().map(|l| l.name.clone()).collect();
-    let settings = RenderSettings {
-        trace: TraceOptions {
-            bounces: 2,
-            shadows: true,
-        },
-        spp: 1, ..RenderSettings::default() };
-    let film = render(
-        &scene,
-        &Camera::new(8, 6),
-        settings,
-        all_layers(&names, 2),
-        &|_| {},
-    )
-    .expect("a loaded scene renders");
+    let spec = FrameSpec {
+        width: 8,
+        height: 6,
+        ..FrameSpec::default()
+    };
+    let frame = Frame::new(&scene, &spec).expect("a loaded scene has a frame");
+    let (film, _) = render(&scene, &frame, &|_| {}).expect("a loaded scene renders");
     assert!(film.data.iter().all(|v| v.is_finite()));
 });

@@ -77,4 +77,3 @@ pub(super) fn bounds(shape: &Shape) -> Option<Aabb> {
 
 /// 2^-40: relative slack for storing a box's corners in f64 (whose rounding is 2^-53).
 pub(super) const REPRESENTATION_SLACK: f64 = 1.0 / (1u64 << 40) as f64;
-

@@ -214,4 +214,3 @@ fn best_split(boxes: &[(u32, Aabb)], extent: Extent, axis: usize) -> Option<Spli
     split.right = right;
     Some(split)
 }
-

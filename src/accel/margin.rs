@@ -93,4 +93,3 @@ pub(super) fn near_zone(root: Aabb) -> (Aabb, f64) {
     let margin = 6.0 * side * CONDITIONING_BOUND + size * REPRESENTATION_SLACK;
     (zone, margin)
 }
-

@@ -1,8 +1,8 @@
 //! The hierarchy against brute force: random rays, ties, long badly conditioned rays.
 
 use super::*;
-use crate::geometry::Shape;
 use crate::geometry::normalise;
+use crate::geometry::Shape;
 use crate::scene::{Material, Object};
 
 /// Brute force over every object, the reference.
@@ -11,7 +11,11 @@ fn closest_hit(objects: &[Object], ray: &Ray) -> Option<Hit> {
 }
 
 fn occluded(objects: &[Object], ray: &Ray, max_distance: f64) -> bool {
-    geometry::occluded(objects.iter().map(|o| &o.shape).enumerate(), ray, max_distance)
+    geometry::occluded(
+        objects.iter().map(|o| &o.shape).enumerate(),
+        ray,
+        max_distance,
+    )
 }
 
 /// A small deterministic generator, so the test needs no randomness crate.
@@ -83,10 +87,7 @@ fn agrees_with_brute_force_on_random_rays_including_ties() {
             assert_eq!(accel.closest_hit(&ray), expected);
             assert_eq!(brute.closest_hit(&ray), expected);
             let d = rng.range(0.1, 20.0);
-            assert_eq!(
-                accel.occluded(&ray, d),
-                occluded(&objects, &ray, d)
-            );
+            assert_eq!(accel.occluded(&ray, d), occluded(&objects, &ray, d));
         }
     }
 }
@@ -184,7 +185,10 @@ fn reported_hits_stay_within_the_conditioning_bound() {
         }
     }
     assert!(worst > 1e-9, "no badly conditioned hit was generated");
-    assert!(worst < margin::CONDITIONING_BOUND / 2.0, "worst ratio {worst:e}");
+    assert!(
+        worst < margin::CONDITIONING_BOUND / 2.0,
+        "worst ratio {worst:e}"
+    );
 }
 
 #[test]

@@ -4,10 +4,10 @@
 use serde_json::json;
 
 use crate::cli::DiffArgs;
-use crate::commands::info::number;
 use crate::compare::{compare, excess_map, LayerReport, Tolerance};
 use crate::error::{Error, Result};
-use crate::input::Image;
+use crate::input::{self, Image};
+use crate::numbers::compact as number;
 use crate::output::destination::Destination;
 use crate::output::png::{PngImage, PngPixels};
 
@@ -18,8 +18,8 @@ pub fn run(args: &DiffArgs) -> Result<bool> {
         rel: args.rel,
     };
     let mut heatmap = args.heatmap.as_deref().map(Destination::open).transpose()?;
-    let actual = Image::read(&args.actual)?;
-    let reference = Image::read(&args.reference)?;
+    let actual = input::read(&args.actual)?;
+    let reference = input::read(&args.reference)?;
     if actual.format != reference.format {
         return Err(Error::Usage(format!(
             "cannot compare a {:?} with a {:?}: give two EXRs or two PNGs",

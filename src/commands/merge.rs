@@ -1,165 +1,31 @@
-//! `whitted merge PARTS... -o FULL.exr`: reassemble EXRs rendered with `--region` (on one
-//! machine or many) into the full frame, byte-identical to rendering it in one go.
-//!
-//! Parts must agree on the display window, the channels and their pixel types, and together
-//! cover every pixel exactly once. The header is the first part's, with the data window set
-//! to the whole frame; since a region render records the same header as a full render (the
-//! region is not part of the recorded command), the merged file equals the full render's.
+//! `whitted merge PARTS... -o FULL.exr`: reassemble `--region` parts into the full frame.
 
-use std::io::{BufWriter, Write};
+use std::fs::File;
 use std::path::Path;
-
-use exr::prelude::{self as x, ReadChannels as _, ReadLayers as _, WritableImage as _};
 
 use crate::cli::MergeArgs;
 use crate::error::{Error, Result};
+use crate::merge::merge;
+use crate::openexr::{self, FlatImage};
 use crate::output::atomic::AtomicFile;
-use crate::output::exr_header;
-
-type Part = x::Image<x::Layer<x::AnyChannels<x::FlatSamples>>>;
+use crate::output::exr::write_image;
 
 pub fn run(args: &MergeArgs) -> Result<()> {
     let mut output = AtomicFile::create(&args.output)?;
-    let parts: Vec<Part> = args.parts.iter().map(|p| read(p)).collect::<Result<_>>()?;
+    let parts: Vec<FlatImage> = args.parts.iter().map(|p| read(p)).collect::<Result<_>>()?;
     let merged = merge(&parts, &args.parts)?;
-    let path = args.output.clone();
-    let fail = |msg: String| Error::Exr {
-        path: path.clone(),
+    write_image(output.file(), &merged).map_err(|msg| Error::Exr {
+        path: args.output.clone(),
         msg,
-    };
-    {
-        let mut out = BufWriter::new(output.file());
-        merged
-            .write()
-            .to_buffered(&mut out)
-            .map_err(|e| fail(e.to_string()))?;
-        out.flush().map_err(|e| fail(e.to_string()))?;
-    }
-    exr_header::sort_attributes(output.file()).map_err(|e| fail(e.to_string()))?;
+    })?;
     output.commit()
 }
 
-fn read(path: &Path) -> Result<Part> {
-    x::read()
-        .no_deep_data()
-        .largest_resolution_level()
-        .all_channels()
-        .first_valid_layer()
-        .all_attributes()
-        .from_file(path)
-        .map_err(|e| Error::Exr {
-            path: path.to_path_buf(),
-            msg: format!("not a readable OpenEXR file ({e})"),
-        })
-}
-
-/// Places every part's pixels into one full-frame image.
-fn merge(parts: &[Part], names: &[std::path::PathBuf]) -> Result<Part> {
-    let usage = |msg: String| Error::Usage(msg);
-    let first = &parts[0];
-    let display = first.attributes.display_window;
-    let (width, height) = (display.size.0, display.size.1);
-    let signature = |p: &Part| -> Vec<(String, &'static str)> {
-        p.layer_data
-            .channel_data
-            .list
-            .iter()
-            .map(|c| {
-                let kind = match c.sample_data {
-                    x::FlatSamples::F16(_) => "half",
-                    x::FlatSamples::F32(_) => "float",
-                    x::FlatSamples::U32(_) => "uint",
-                };
-                (c.name.to_string(), kind)
-            })
-            .collect()
+fn read(path: &Path) -> Result<FlatImage> {
+    let fail = |msg: String| Error::Exr {
+        path: path.to_path_buf(),
+        msg,
     };
-    let channels = signature(first);
-    let mut covered = vec![None::<usize>; width * height];
-    for (i, part) in parts.iter().enumerate() {
-        let name = names[i].display();
-        if part.attributes.display_window != display {
-            return Err(usage(format!(
-                "{name}: its display window differs from the first part's"
-            )));
-        }
-        if signature(part) != channels {
-            return Err(usage(format!(
-                "{name}: its channels or pixel types differ from the first part's"
-            )));
-        }
-        let position = part.layer_data.attributes.layer_position;
-        let size = part.layer_data.size;
-        let (x0, y0) = (
-            position.0 - display.position.0,
-            position.1 - display.position.1,
-        );
-        if x0 < 0 || y0 < 0 || x0 as usize + size.0 > width || y0 as usize + size.1 > height {
-            return Err(usage(format!(
-                "{name}: its data window lies outside the frame"
-            )));
-        }
-        for y in y0 as usize..y0 as usize + size.1 {
-            for x in x0 as usize..x0 as usize + size.0 {
-                if let Some(other) = covered[y * width + x].replace(i) {
-                    return Err(usage(format!(
-                        "{name} and {} both cover pixel ({x}, {y})",
-                        names[other].display()
-                    )));
-                }
-            }
-        }
-    }
-    if let Some(gap) = covered.iter().position(Option::is_none) {
-        return Err(usage(format!(
-            "no part covers pixel ({}, {}); the parts must tile the whole {width}x{height} frame",
-            gap % width,
-            gap / width
-        )));
-    }
-
-    let mut list = x::SmallVec::new();
-    for (c, channel) in first.layer_data.channel_data.list.iter().enumerate() {
-        let mut samples = match &channel.sample_data {
-            x::FlatSamples::F16(_) => x::FlatSamples::F16(vec![x::f16::ZERO; width * height]),
-            x::FlatSamples::F32(_) => x::FlatSamples::F32(vec![0.0; width * height]),
-            x::FlatSamples::U32(_) => x::FlatSamples::U32(vec![0; width * height]),
-        };
-        for part in parts {
-            let position = part.layer_data.attributes.layer_position;
-            let (x0, y0) = (
-                (position.0 - display.position.0) as usize,
-                (position.1 - display.position.1) as usize,
-            );
-            let w = part.layer_data.size.0;
-            let source = &part.layer_data.channel_data.list[c].sample_data;
-            for row in 0..part.layer_data.size.1 {
-                let (from, to) = (row * w, (y0 + row) * width + x0);
-                match (&mut samples, source) {
-                    (x::FlatSamples::F16(d), x::FlatSamples::F16(s)) => {
-                        d[to..to + w].copy_from_slice(&s[from..from + w])
-                    }
-                    (x::FlatSamples::F32(d), x::FlatSamples::F32(s)) => {
-                        d[to..to + w].copy_from_slice(&s[from..from + w])
-                    }
-                    (x::FlatSamples::U32(d), x::FlatSamples::U32(s)) => {
-                        d[to..to + w].copy_from_slice(&s[from..from + w])
-                    }
-                    _ => return Err(usage("pixel types differ between parts".into())),
-                }
-            }
-        }
-        let mut merged = channel.clone();
-        merged.sample_data = samples;
-        list.push(merged);
-    }
-    let mut attributes = first.layer_data.attributes.clone();
-    attributes.layer_position = display.position;
-    let layer = x::Layer::new(
-        (width, height),
-        attributes,
-        first.layer_data.encoding,
-        x::AnyChannels::sort(list),
-    );
-    Ok(x::Image::new(first.attributes.clone(), layer))
+    let file = File::open(path).map_err(|e| Error::io(path, "cannot read", e))?;
+    openexr::read_first_part(file).map_err(|e| fail(format!("not a readable OpenEXR file ({e})")))
 }

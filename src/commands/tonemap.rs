@@ -3,14 +3,14 @@
 
 use crate::cli::TonemapArgs;
 use crate::error::{Error, Result};
-use crate::input::Image;
+use crate::input;
 use crate::output::destination::Destination;
 use crate::output::png::encode;
 
 pub fn run(args: &TonemapArgs) -> Result<()> {
-    let encoding = args.tone.encoding().map_err(Error::Usage)?;
+    let encoding = args.tone.request().encoding()?;
     let mut output = Destination::open(&args.output)?;
-    let image = Image::read_exr(&args.input)?;
+    let image = input::read_exr(&args.input)?;
     let pixels = image.colour_layer(&args.layer).map_err(|msg| Error::Exr {
         path: args.input.clone(),
         msg,

@@ -3,10 +3,11 @@
 
 use std::path::Path;
 
-use exr::prelude::{self as x, ReadChannels as _, ReadLayers as _};
+use exr::prelude as x;
 
 use crate::error::{Error, Result};
 use crate::input::image::{Channel, Format, Image};
+use crate::openexr;
 
 /// Decodes the first part of an OpenEXR file (scanline or tiled, any pixel types).
 pub fn decode(path: &Path, bytes: Vec<u8>) -> Result<Image> {
@@ -14,13 +15,7 @@ pub fn decode(path: &Path, bytes: Vec<u8>) -> Result<Image> {
         path: path.to_path_buf(),
         msg,
     };
-    let image = x::read()
-        .no_deep_data()
-        .largest_resolution_level()
-        .all_channels()
-        .first_valid_layer()
-        .all_attributes()
-        .from_buffered(std::io::Cursor::new(bytes))
+    let image = openexr::read_first_part(std::io::Cursor::new(bytes))
         .map_err(|e| fail(format!("not a readable OpenEXR file ({e})")))?;
     let layer = image.layer_data;
     let channels = layer
@@ -28,10 +23,11 @@ pub fn decode(path: &Path, bytes: Vec<u8>) -> Result<Image> {
         .list
         .into_iter()
         .map(|c| {
-            let (pixel_type, values) = match c.sample_data {
-                x::FlatSamples::F16(v) => ("half", v.iter().map(|h| h.to_f32()).collect()),
-                x::FlatSamples::F32(v) => ("float", v),
-                x::FlatSamples::U32(v) => ("uint", v.iter().map(|&u| u as f32).collect()),
+            let pixel_type = openexr::pixel_type(&c.sample_data);
+            let values = match c.sample_data {
+                x::FlatSamples::F16(v) => v.iter().map(|h| h.to_f32()).collect(),
+                x::FlatSamples::F32(v) => v,
+                x::FlatSamples::U32(v) => v.iter().map(|&u| u as f32).collect(),
             };
             Channel {
                 name: c.name.to_string(),

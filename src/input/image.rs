@@ -1,11 +1,9 @@
 //! An image as named float channels grouped into layers: the common form in which `tonemap`,
 //! `info`, `diff` and `sheet` see EXRs and PNGs.
 
-use std::path::Path;
-
 use glam::DVec3;
 
-use crate::error::{Error, Result};
+use crate::aov;
 
 /// One channel.
 #[derive(Debug, Clone, PartialEq)]
@@ -27,7 +25,7 @@ pub struct Layer {
     pub channels: Vec<usize>,
 }
 
-/// The file formats `Image::read` understands.
+/// The file formats `input::read` understands.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Format {
     Exr,
@@ -46,33 +44,6 @@ pub struct Image {
 }
 
 impl Image {
-    /// Reads an OpenEXR file; anything else is an error.
-    pub fn read_exr(path: &Path) -> Result<Self> {
-        let image = Self::read(path)?;
-        if image.format != Format::Exr {
-            return Err(Error::Usage(format!(
-                "{}: not an OpenEXR file (this command reads EXRs)",
-                path.display()
-            )));
-        }
-        Ok(image)
-    }
-
-    /// Reads an OpenEXR or PNG file, recognised by its first bytes.
-    pub fn read(path: &Path) -> Result<Self> {
-        let bytes = std::fs::read(path).map_err(|e| Error::io(path, "cannot read", e))?;
-        if bytes.starts_with(&[0x76, 0x2f, 0x31, 0x01]) {
-            crate::input::exr::decode(path, bytes)
-        } else if bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
-            crate::input::png::decode(path, &bytes)
-        } else {
-            Err(Error::Usage(format!(
-                "{}: not an OpenEXR or PNG file",
-                path.display()
-            )))
-        }
-    }
-
     pub fn channel(&self, name: &str) -> Option<&Channel> {
         self.channels.iter().find(|c| c.name == name)
     }
@@ -81,7 +52,7 @@ impl Image {
     pub fn layers(&self) -> Vec<Layer> {
         let mut layers: Vec<Layer> = Vec::new();
         for (i, channel) in self.channels.iter().enumerate() {
-            let name = layer_of(&channel.name);
+            let name = aov::layer_of_channel(&channel.name).to_string();
             match layers.iter_mut().find(|l| l.name == name) {
                 Some(layer) => layer.channels.push(i),
                 None => layers.push(Layer {
@@ -149,15 +120,6 @@ impl Image {
                 ))
             }
         }
-    }
-}
-
-/// `direct.R` -> `direct`; bare `R G B A` -> `beauty`; other bare names are their own layer.
-pub fn layer_of(channel: &str) -> String {
-    match channel.rsplit_once('.') {
-        Some((layer, _)) => layer.to_string(),
-        None if ["R", "G", "B", "A"].contains(&channel) => "beauty".to_string(),
-        None => channel.to_string(),
     }
 }
 

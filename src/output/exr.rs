@@ -1,15 +1,17 @@
 //! Film -> one-part, scanline, multi-layer OpenEXR (aovs.md, File structure and Header).
 
 use std::fs::File;
+use std::io::Write as _;
 
 use exr::prelude::{self as x, f16, AttributeValue, Text, WritableImage as _};
 
 use crate::aov::{Kind, Z_MISS};
 use crate::film::Film;
+use crate::openexr::FlatImage;
 use crate::output::exr_header;
 
 /// Lossless codecs offered on the command line. Lossy ones would corrupt the data layers.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ExrCompression {
     None,
     Rle,
@@ -22,6 +24,17 @@ pub enum ExrCompression {
 }
 
 impl ExrCompression {
+    /// The name the command line and the recorded render command use.
+    pub fn name(self) -> &'static str {
+        match self {
+            ExrCompression::None => "none",
+            ExrCompression::Rle => "rle",
+            ExrCompression::Zips => "zips",
+            ExrCompression::Zip => "zip",
+            ExrCompression::Piz => "piz",
+        }
+    }
+
     fn codec(self) -> x::Compression {
         match self {
             ExrCompression::None => x::Compression::Uncompressed,
@@ -148,11 +161,20 @@ pub fn write_exr(
     let display = x::IntegerBounds::new((0, 0), (film.display.0 as usize, film.display.1 as usize));
     let mut image = x::Image::new(x::ImageAttributes::new(display), layer);
     image.attributes.chromaticities = Some(REC709_D65);
+    write_image(file, &image)
+}
 
+/// Writes any flat image as an EXR into `file` (positioned at its start), its header
+/// attributes in name order so that equal images give equal bytes. Renders and merges both
+/// end here.
+pub fn write_image(file: &mut File, image: &FlatImage) -> Result<(), String> {
+    let mut out = std::io::BufWriter::new(&mut *file);
     image
         .write()
-        .to_buffered(std::io::BufWriter::new(&mut *file))
+        .to_buffered(&mut out)
         .map_err(|e| e.to_string())?;
+    out.flush().map_err(|e| e.to_string())?;
+    drop(out);
     exr_header::sort_attributes(file).map_err(|e| e.to_string())
 }
 

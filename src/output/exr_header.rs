@@ -8,7 +8,8 @@
 
 use std::io::{self, Read, Seek, SeekFrom, Write};
 
-const MAGIC: [u8; 4] = [0x76, 0x2f, 0x31, 0x01];
+use crate::openexr::MAGIC;
+
 /// Version-field flag: the file has several parts (we only write one).
 const MULTIPART: u32 = 0x1000;
 

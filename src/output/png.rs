@@ -5,7 +5,7 @@ use std::io::Write;
 use glam::DVec3;
 use rayon::prelude::*;
 
-use crate::tonemap::{expose, srgb_oetf, ToneMap};
+use crate::tonemap::{to_display, ToneMap};
 
 /// How linear values become display bytes.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -53,14 +53,7 @@ pub enum PngPixels {
 pub fn encode(pixels: &[DVec3], width: u32, height: u32, encoding: &PngEncoding) -> PngImage {
     let display: Vec<[f64; 3]> = pixels
         .par_iter()
-        .map(|&v| {
-            let t = encoding.tonemap.apply(expose(v, encoding.exposure));
-            if encoding.tonemap.srgb_encoded() {
-                t.to_array().map(srgb_oetf)
-            } else {
-                t.to_array()
-            }
-        })
+        .map(|&v| to_display(v, encoding.tonemap, encoding.exposure))
         .collect();
     let tick = !encoding.tonemap.srgb_encoded();
     let pixels = if encoding.depth == 16 {
@@ -178,6 +171,26 @@ pub fn write_png(out: impl Write, image: &PngImage) -> Result<(), png::EncodingE
 mod tests {
     use super::*;
 
+    /// The course's byte for one linear pixel, through the whole PNG encoding.
+    fn tick(v: DVec3) -> [u8; 3] {
+        match encode(&[v], 1, 1, &PngEncoding::default()).pixels {
+            PngPixels::Eight(bytes) => [bytes[0], bytes[1], bytes[2]],
+            PngPixels::Sixteen(_) => unreachable!("the default is 8-bit"),
+        }
+    }
+
+    #[test]
+    fn tick_truncates_clamps_and_zeroes_nan() {
+        assert_eq!(tick(DVec3::new(0.0, 1.0, 0.5)), [0, 255, 127]);
+        assert_eq!(tick(DVec3::new(-3.0, 7.0, f64::NAN)), [0, 255, 0]);
+        assert_eq!(tick(DVec3::new(0.18, 4.0, 100.0)), [45, 255, 255]);
+        assert_eq!(
+            tick(DVec3::new(254.999 / 255.0, 1.0 / 255.0, 0.999 / 255.0)),
+            [254, 1, 0]
+        );
+        assert_eq!(tick(DVec3::splat(f64::INFINITY)), [255, 255, 255]);
+    }
+
     fn eight(image: &PngImage) -> &[u8] {
         match &image.pixels {
             PngPixels::Eight(b) => b,
@@ -216,7 +229,7 @@ mod tests {
         let PngPixels::Sixteen(v) = encode(&px, 1, 1, &enc).pixels else {
             panic!("8-bit")
         };
-        let want = (65535.0 * srgb_oetf(0.18) + 0.5).floor() as u16;
+        let want = (65535.0 * crate::tonemap::srgb_oetf(0.18) + 0.5).floor() as u16;
         assert_eq!(v, [0, 65535, want]);
     }
 

@@ -5,12 +5,11 @@
 //! `cargo test` runs a few scenes of every class. `WHITTED_DIFFERENTIAL_SCENES=N` runs N
 //! scenes per class instead (the longer run reported in issue notes).
 
-use whitted::aov::all_layers;
-use whitted::camera::Camera;
+use crate::common::render_frame;
 use whitted::film::Film;
-use whitted::render::{render, Acceleration, RenderSettings};
+use whitted::frame::{Acceleration, FrameSpec};
+use whitted::render::RenderStats;
 use whitted::scene::parse_str;
-use whitted::trace::TraceOptions;
 
 /// A small deterministic generator, so scenes are the same on every run.
 struct Lcg(u64);
@@ -249,25 +248,16 @@ fn generate(class: Class, rng: &mut Lcg) -> String {
     xml + "</scene>\n"
 }
 
-fn film(xml: &str, bounces: u32, acceleration: Acceleration) -> Film {
+fn film(xml: &str, bounces: u32, acceleration: Acceleration) -> (Film, RenderStats) {
     let scene = parse_str("differential.xml", xml).unwrap_or_else(|e| panic!("{e}\n{xml}"));
-    let names: Vec<String> = scene.lights.iter().map(|l| l.name.clone()).collect();
-    let settings = RenderSettings {
-        trace: TraceOptions {
-            bounces,
-            shadows: true,
-        },
+    let spec = FrameSpec {
+        width: 40,
+        height: 30,
+        bounces,
         acceleration,
-        ..RenderSettings::default()
+        ..FrameSpec::default()
     };
-    render(
-        &scene,
-        &Camera::new(40, 30),
-        settings,
-        all_layers(&names, bounces),
-        &|_| {},
-    )
-    .expect("render")
+    render_frame(&scene, &spec)
 }
 
 /// Every bit of the beauty (f64, NaN included) and of every stored layer.
@@ -293,13 +283,13 @@ fn hierarchy_renders_bit_identical_films_on_adversarial_scenes() {
             let mut rng = Lcg(1000 * c as u64 + seed);
             let xml = generate(*class, &mut rng);
             for bounces in [0, 2, 5] {
-                let fast = film(&xml, bounces, Acceleration::Bvh);
-                let slow = film(&xml, bounces, Acceleration::BruteForce);
+                let (fast, fast_stats) = film(&xml, bounces, Acceleration::Bvh);
+                let (slow, slow_stats) = film(&xml, bounces, Acceleration::BruteForce);
                 assert!(
                     bits(&fast) == bits(&slow),
                     "{class:?} seed {seed} bounces {bounces}: the hierarchy differs from brute force\n{xml}"
                 );
-                assert_eq!(fast.rays, slow.rays);
+                assert_eq!(fast_stats.rays, slow_stats.rays);
                 nan_pixels += fast.beauty.iter().filter(|v| v.is_nan()).count();
             }
         }

@@ -1,38 +1,29 @@
 //! Every scene shipped in `scenes/` loads and renders to a finite, non-blank image, and the
 //! showcase scenes show the effect they are there for.
 
-mod common;
-
+use crate::common::render_frame;
 use glam::DVec3;
-use whitted::aov;
-use whitted::camera::Camera;
 use whitted::film::Film;
-use whitted::render::{render, RenderSettings};
+use whitted::frame::FrameSpec;
 use whitted::scene;
-use whitted::trace::TraceOptions;
 
 fn render_scene(name: &str, width: u32, height: u32, bounces: u32, shadows: bool) -> Film {
-    let scene = scene::load(&common::scene(name)).unwrap_or_else(|e| panic!("{e}"));
-    let settings = RenderSettings {
-        trace: TraceOptions { bounces, shadows },
-        spp: 1,
-        ..RenderSettings::default()
+    let scene = scene::load(&crate::common::scene(name)).unwrap_or_else(|e| panic!("{e}"));
+    let spec = FrameSpec {
+        width,
+        height,
+        bounces,
+        shadows,
+        aovs: "beauty".into(),
+        ..FrameSpec::default()
     };
-    let beauty = aov::all_layers(&[], 0)[..1].to_vec();
-    render(
-        &scene,
-        &Camera::new(width, height),
-        settings,
-        beauty,
-        &|_| {},
-    )
-    .expect("render")
+    render_frame(&scene, &spec).0
 }
 
 #[test]
 fn every_scene_loads_and_renders_finite_non_blank_images() {
     let mut count = 0;
-    for entry in std::fs::read_dir(common::root().join("scenes")).expect("scenes/") {
+    for entry in std::fs::read_dir(crate::common::root().join("scenes")).expect("scenes/") {
         let path = entry.expect("entry").path();
         if path.extension().is_none_or(|e| e != "xml") {
             continue;
@@ -52,7 +43,7 @@ fn every_scene_loads_and_renders_finite_non_blank_images() {
 
 #[test]
 fn the_embedded_scene_is_the_shipped_tick2() {
-    let shipped = std::fs::read_to_string(common::scene("tick2.xml")).expect("read");
+    let shipped = std::fs::read_to_string(crate::common::scene("tick2.xml")).expect("read");
     assert_eq!(shipped, scene::EMBEDDED_TICK2);
 }
 

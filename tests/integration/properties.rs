@@ -1,13 +1,12 @@
 //! Property tests: random valid scenes load to exactly what they say and render finite layers
 //! that add up; random damage to a scene never panics and always gives a located error.
 
+use crate::common::render_frame;
 use proptest::prelude::*;
-use whitted::aov::all_layers;
-use whitted::camera::Camera;
 use whitted::film::Film;
-use whitted::render::{render, RenderSettings};
+use whitted::frame::FrameSpec;
+use whitted::render::RenderStats;
 use whitted::scene::parse_str;
-use whitted::trace::TraceOptions;
 
 #[derive(Debug, Clone)]
 enum Element {
@@ -144,22 +143,16 @@ fn scene_xml(elements: &[Element], ambient: Option<u32>) -> String {
     xml + "</scene>\n"
 }
 
-fn render_all(xml: &str, bounces: u32, shadows: bool) -> Film {
+fn render_all(xml: &str, bounces: u32, shadows: bool) -> (Film, RenderStats) {
     let scene = parse_str("test.xml", xml).expect("valid");
-    let names: Vec<String> = scene.lights.iter().map(|l| l.name.clone()).collect();
-    let settings = RenderSettings {
-        trace: TraceOptions { bounces, shadows },
-        spp: 1,
-        ..RenderSettings::default()
+    let spec = FrameSpec {
+        width: 12,
+        height: 9,
+        bounces,
+        shadows,
+        ..FrameSpec::default()
     };
-    render(
-        &scene,
-        &Camera::new(12, 9),
-        settings,
-        all_layers(&names, bounces),
-        &|_| {},
-    )
-    .expect("render")
+    render_frame(&scene, &spec)
 }
 
 proptest! {
@@ -196,9 +189,9 @@ proptest! {
         bounces in 0u32..4,
         shadows in any::<bool>(),
     ) {
-        let film = render_all(&scene_xml(&elements, None), bounces, shadows);
+        let (film, stats) = render_all(&scene_xml(&elements, None), bounces, shadows);
         prop_assert!(film.data.iter().all(|v| v.is_finite()));
-        prop_assert_eq!(film.non_finite, 0);
+        prop_assert_eq!(stats.non_finite, 0);
         prop_assert!(film.beauty.iter().all(|v| v.is_finite()));
         let get = |name: &str| film.channel(name).expect(name);
         for c in ["R", "G", "B"] {

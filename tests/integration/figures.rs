@@ -1,8 +1,6 @@
 //! tools/figures reproduces the handout's figures (and the README's pictures) from renders.
 
-mod common;
-
-use common::*;
+use crate::common::*;
 
 #[test]
 fn figures_are_labelled_strips_of_distinct_panels() {

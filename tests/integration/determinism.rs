@@ -1,8 +1,6 @@
 //! The same command gives the same bytes, whatever the thread count or destination.
 
-mod common;
-
-use common::*;
+use crate::common::*;
 
 #[test]
 fn png_is_byte_identical_for_one_and_two_threads() {

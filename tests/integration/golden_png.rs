@@ -1,8 +1,6 @@
 //! Golden images: the course's reference renders reproduced with 0 differing pixels.
 
-mod common;
-
-use common::*;
+use crate::common::*;
 
 /// Renders `scene` at `bounces` and compares with `reference` exactly. On failure the actual
 /// image is kept under `target/golden-failures/` and named in the message.

@@ -1,9 +1,7 @@
 //! Every class of bad input in scene-format.md and cli.md: exit status 2, one located line on
 //! stderr, no panic, and no output file.
 
-mod common;
-
-use common::*;
+use crate::common::*;
 
 fn assert_clean_failure(dir: &std::path::Path, args: &[&str], located: &str, phrase: &str) {
     let run = whitted(dir, args);

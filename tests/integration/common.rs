@@ -1,5 +1,4 @@
 //! Helpers shared by the integration tests: run the built binary, read PNGs back.
-#![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -207,4 +206,13 @@ pub fn idiff_aov(a: &Path, b: &Path) -> Output {
         b,
     ];
     run_tool("idiff", &args, &root())
+}
+
+/// Renders `scene` with the library, as `spec` asks (a panic if the spec is refused).
+pub fn render_frame(
+    scene: &whitted::scene::Scene,
+    spec: &whitted::frame::FrameSpec,
+) -> (whitted::film::Film, whitted::render::RenderStats) {
+    let frame = whitted::frame::Frame::new(scene, spec).unwrap_or_else(|e| panic!("{e}"));
+    whitted::render::render(scene, &frame, &|_| {}).expect("render")
 }

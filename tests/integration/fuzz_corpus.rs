@@ -4,10 +4,8 @@
 
 use std::path::PathBuf;
 
-use whitted::aov::all_layers;
-use whitted::camera::Camera;
-use whitted::render::{render, RenderSettings};
-use whitted::trace::TraceOptions;
+use crate::common::render_frame;
+use whitted::frame::FrameSpec;
 
 fn inputs() -> Vec<PathBuf> {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
@@ -33,23 +31,12 @@ fn every_corpus_input_loads_or_fails_cleanly() {
         let bytes = std::fs::read(path).expect("read");
         match whitted::scene::parse_bytes("corpus.xml", &bytes) {
             Ok(scene) => {
-                let names: Vec<String> = scene.lights.iter().map(|l| l.name.clone()).collect();
-                let settings = RenderSettings {
-                    trace: TraceOptions {
-                        bounces: 2,
-                        shadows: true,
-                    },
-                    spp: 1,
-                    ..RenderSettings::default()
+                let spec = FrameSpec {
+                    width: 8,
+                    height: 6,
+                    ..FrameSpec::default()
                 };
-                let film = render(
-                    &scene,
-                    &Camera::new(8, 6),
-                    settings,
-                    all_layers(&names, 2),
-                    &|_| {},
-                )
-                .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+                let (film, _) = render_frame(&scene, &spec);
                 assert!(
                     film.data.iter().all(|v| v.is_finite()),
                     "{}",

@@ -4,11 +4,9 @@
 //! 1e-5 relative (aovs.md), which allows for another machine's libm, nothing more.
 //! On failure the actual EXR and a heat map are kept in `target/golden-failures/`.
 
-mod common;
-
 use std::path::Path;
 
-use common::*;
+use crate::common::*;
 
 fn render_args() -> Vec<String> {
     let text =

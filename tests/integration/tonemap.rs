@@ -1,12 +1,10 @@
 //! The colour pipeline end to end: tone maps against OpenImageIO and an independent evaluation
 //! of tonemap.md, PNG metadata, dither, and `whitted tonemap`.
 
-mod common;
-
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
-use common::*;
+use crate::common::*;
 
 /// tick2.xml rendered once: the tick PNG and the full-AOV EXR of the same render.
 fn tick2() -> &'static (tempfile::TempDir, PathBuf, PathBuf) {

@@ -1,10 +1,8 @@
 //! `whitted info`, `diff` and `sheet` against files whose contents the tests know.
 
-mod common;
-
 use std::path::{Path, PathBuf};
 
-use common::*;
+use crate::common::*;
 use exr::prelude::{self as x, WritableImage as _};
 
 fn s(p: &Path) -> &str {

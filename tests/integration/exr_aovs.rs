@@ -4,12 +4,10 @@
 //! Sums use idiff with `-fail 1e-6 -failrelative 1e-5` (a value fails only when it is off by
 //! more than 1e-6 absolute and 1e-5 relative), the tolerance aovs.md states.
 
-mod common;
-
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
-use common::*;
+use crate::common::*;
 
 /// tick2.xml rendered once at 2 bounces with every AOV, shared by the tests here.
 fn tick2_exr() -> &'static Path {

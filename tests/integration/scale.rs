@@ -2,73 +2,47 @@
 //! renders, regions merge into the full frame byte for byte, and supersampling keeps the
 //! exact tick image at one sample and unblended data layers at many.
 
-mod common;
-
-use common::*;
-use whitted::aov::all_layers;
-use whitted::camera::Camera;
-use whitted::render::{render, Acceleration, RenderSettings};
+use crate::common::*;
+use whitted::film::Film;
+use whitted::frame::{Acceleration, FrameSpec};
+use whitted::render::RenderStats;
 use whitted::scene::{self, Scene};
-use whitted::trace::TraceOptions;
 
-/// A grid of n x n small spheres over a reflective floor, like the benchmark scenes.
-pub fn sphere_grid(n: usize) -> String {
-    let mut xml = String::from(
-        "<scene>\n<ambient-light colour=\"#202020\"/>\n\
-         <point-light x=\"-4\" y=\"6\" z=\"0\" colour=\"#FFFFFF\" intensity=\"400\" name=\"key\"/>\n\
-         <point-light x=\"5\" y=\"3\" z=\"2\" colour=\"#8080FF\" intensity=\"150\" name=\"fill\"/>\n\
-         <plane y=\"-1\" ny=\"1\" colour=\"#404040\" reflectivity=\"0.5\"/>\n",
+/// The benchmark scene of `n` spheres, from the one generator (tools/sphere_grid.py).
+fn sphere_grid(n: usize) -> String {
+    let run = run_tool("python", &["tools/sphere_grid.py", &n.to_string()], &root());
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
     );
-    let step = 8.0 / n as f64;
-    for i in 0..n {
-        for j in 0..n {
-            xml += &format!(
-                "<sphere x=\"{:.4}\" y=\"{:.4}\" z=\"{:.4}\" radius=\"{:.4}\" colour=\"#{:02X}80{:02X}\"/>\n",
-                -4.0 + (i as f64 + 0.5) * step,
-                -0.6 + 0.3 * ((i * 7 + j * 3) % 5) as f64 / 5.0,
-                6.0 + (j as f64 + 0.5) * step,
-                0.4 * step,
-                (i * 255 / n) as u8,
-                (j * 255 / n) as u8
-            );
-        }
-    }
-    xml + "</scene>\n"
+    String::from_utf8(run.stdout).expect("utf-8")
 }
 
-fn film(scene: &Scene, acceleration: Acceleration, spp: u32) -> whitted::film::Film {
-    let names: Vec<String> = scene.lights.iter().map(|l| l.name.clone()).collect();
-    let settings = RenderSettings {
-        trace: TraceOptions {
-            bounces: 3,
-            shadows: true,
-        },
+fn film(scene: &Scene, acceleration: Acceleration, spp: u32) -> (Film, RenderStats) {
+    let spec = FrameSpec {
+        width: 96,
+        height: 72,
         spp,
+        bounces: 3,
         acceleration,
-        ..RenderSettings::default()
+        ..FrameSpec::default()
     };
-    render(
-        scene,
-        &Camera::new(96, 72),
-        settings,
-        all_layers(&names, 3),
-        &|_| {},
-    )
-    .expect("render")
+    render_frame(scene, &spec)
 }
 
 #[test]
 fn hierarchy_and_brute_force_render_identical_films() {
     for source in [
-        sphere_grid(12),
+        sphere_grid(144),
         std::fs::read_to_string(scene("tick2.xml")).expect("tick2"),
     ] {
         let scene = scene::parse_str("grid.xml", &source).expect("valid");
-        let fast = film(&scene, Acceleration::Bvh, 1);
-        let slow = film(&scene, Acceleration::BruteForce, 1);
+        let (fast, fast_stats) = film(&scene, Acceleration::Bvh, 1);
+        let (slow, slow_stats) = film(&scene, Acceleration::BruteForce, 1);
         assert_eq!(fast.beauty, slow.beauty);
         assert!(fast.data == slow.data, "AOV layers differ");
-        assert_eq!(fast.rays, slow.rays);
+        assert_eq!(fast_stats.rays, slow_stats.rays);
     }
 }
 
@@ -145,9 +119,9 @@ fn regions_merge_byte_identically_to_the_full_frame() {
 
 #[test]
 fn supersampling_averages_colour_and_keeps_data_unblended() {
-    let scene = scene::parse_str("grid.xml", &sphere_grid(6)).expect("valid");
-    let one = film(&scene, Acceleration::Bvh, 1);
-    let nine = film(&scene, Acceleration::Bvh, 9);
+    let scene = scene::parse_str("grid.xml", &sphere_grid(36)).expect("valid");
+    let (one, _) = film(&scene, Acceleration::Bvh, 1);
+    let (nine, _) = film(&scene, Acceleration::Bvh, 9);
     // With an odd grid the centre sample is the tick ray itself: data layers match exactly.
     for name in ["Z", "P.X", "P.Y", "P.Z", "objectid.X"] {
         assert!(one.channel(name) == nine.channel(name), "{name} differs");

@@ -1,0 +1,209 @@
+//! What one render computes, checked before anything runs: the image and the part of it to
+//! render, the samples, the trace options and the layers to fill. The layers are derived from
+//! the same bounce count the trace uses, so the two cannot disagree.
+
+use crate::aov::{self, Layer};
+use crate::camera::Camera;
+use crate::error::{Error, Result};
+use crate::scene::Scene;
+use crate::trace::TraceOptions;
+
+/// A rectangle of the full image, `[x0, x1) x [y0, y1)`: the part a farm node renders.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Region {
+    pub x0: u32,
+    pub y0: u32,
+    pub x1: u32,
+    pub y1: u32,
+}
+
+impl Region {
+    pub fn full(width: u32, height: u32) -> Self {
+        Region {
+            x0: 0,
+            y0: 0,
+            x1: width,
+            y1: height,
+        }
+    }
+
+    pub fn width(&self) -> u32 {
+        self.x1 - self.x0
+    }
+
+    pub fn height(&self) -> u32 {
+        self.y1 - self.y0
+    }
+
+    /// Whether this is a non-empty rectangle inside a `width` x `height` image.
+    fn fits(&self, width: u32, height: u32) -> bool {
+        self.x0 < self.x1 && self.y0 < self.y1 && self.x1 <= width && self.y1 <= height
+    }
+}
+
+/// How nearest hits are found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Acceleration {
+    /// The bounding volume hierarchy (the normal path).
+    #[default]
+    Bvh,
+    /// Every object for every ray: the reference the hierarchy is tested against.
+    BruteForce,
+}
+
+/// What is asked for, unchecked.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FrameSpec {
+    pub width: u32,
+    pub height: u32,
+    /// The part of the image to render; `None` for all of it.
+    pub region: Option<Region>,
+    /// Samples per pixel, a square k*k: a fixed stratified grid, no randomness.
+    pub spp: u32,
+    pub bounces: u32,
+    pub shadows: bool,
+    /// `--aovs`: `all`, `beauty` or a comma-separated list of layer names.
+    pub aovs: String,
+    pub acceleration: Acceleration,
+}
+
+impl Default for FrameSpec {
+    /// The course's render: 640x480, 2 bounces, shadows, one sample at each pixel's centre,
+    /// every layer.
+    fn default() -> Self {
+        FrameSpec {
+            width: 640,
+            height: 480,
+            region: None,
+            spp: 1,
+            bounces: 2,
+            shadows: true,
+            aovs: "all".into(),
+            acceleration: Acceleration::Bvh,
+        }
+    }
+}
+
+/// A checked frame: what `render::render` runs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Frame {
+    pub camera: Camera,
+    /// Inside the camera's image and not empty.
+    pub region: Region,
+    /// A square k*k >= 1.
+    pub spp: u32,
+    pub trace: TraceOptions,
+    /// The layers to fill, in file order; the beauty first. Built for `trace.bounces` and the
+    /// scene's lights.
+    pub layers: Vec<Layer>,
+    pub acceleration: Acceleration,
+}
+
+impl Frame {
+    /// Checks `spec` against `scene`: the region lies inside the image, the sample count is a
+    /// square, and every named layer exists for this scene and bounce count.
+    pub fn new(scene: &Scene, spec: &FrameSpec) -> Result<Self> {
+        let (width, height) = (spec.width, spec.height);
+        if width == 0 || height == 0 {
+            return Err(Error::Usage(format!("the image {width}x{height} is empty")));
+        }
+        let region = spec.region.unwrap_or(Region::full(width, height));
+        if !region.fits(width, height) {
+            return Err(Error::Usage(format!(
+                "the region {},{},{},{} is not a non-empty part of the {width}x{height} image",
+                region.x0, region.y0, region.x1, region.y1
+            )));
+        }
+        let k = spec.spp.isqrt();
+        if spec.spp == 0 || k * k != spec.spp {
+            return Err(Error::Usage(format!(
+                "samples per pixel must be a square k*k, got {}",
+                spec.spp
+            )));
+        }
+        let light_names: Vec<String> = scene.lights.iter().map(|l| l.name.clone()).collect();
+        let catalogue = aov::all_layers(&light_names, spec.bounces);
+        let layers = aov::select(&spec.aovs, &catalogue).map_err(Error::Usage)?;
+        Ok(Frame {
+            camera: Camera::new(width, height),
+            region,
+            spp: spec.spp,
+            trace: TraceOptions {
+                bounces: spec.bounces,
+                shadows: spec.shadows,
+            },
+            layers,
+            acceleration: spec.acceleration,
+        })
+    }
+
+    /// Values stored per pixel: the channels of every layer.
+    pub fn channel_count(&self) -> usize {
+        self.layers
+            .iter()
+            .map(|l| l.quantity.channels().len())
+            .sum()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn frame(spec: FrameSpec) -> Result<Frame> {
+        let scene = crate::scene::parse_str("t.xml", "<scene/>").expect("scene");
+        Frame::new(&scene, &spec)
+    }
+
+    #[test]
+    fn regions_must_lie_inside_the_image() {
+        for (x0, y0, x1, y1) in [(0, 0, 11, 10), (5, 5, 5, 9), (3, 0, 2, 10)] {
+            let spec = FrameSpec {
+                width: 10,
+                height: 10,
+                region: Some(Region { x0, y0, x1, y1 }),
+                ..FrameSpec::default()
+            };
+            assert!(frame(spec).is_err(), "{x0},{y0},{x1},{y1}");
+        }
+        let spec = FrameSpec {
+            width: 10,
+            height: 10,
+            region: Some(Region {
+                x0: 2,
+                y0: 3,
+                x1: 7,
+                y1: 4,
+            }),
+            ..FrameSpec::default()
+        };
+        assert_eq!(frame(spec).expect("fits").region.width(), 5);
+    }
+
+    #[test]
+    fn layers_follow_the_trace_bounces() {
+        let spec = FrameSpec {
+            bounces: 3,
+            ..FrameSpec::default()
+        };
+        let frame = frame(spec).expect("frame");
+        assert_eq!(frame.trace.bounces, 3);
+        assert!(frame.layers.iter().any(|l| l.name == "reflected_3"));
+        assert!(!frame.layers.iter().any(|l| l.name == "reflected_4"));
+    }
+
+    #[test]
+    fn bad_samples_and_layers_are_refused() {
+        let spp = FrameSpec {
+            spp: 8,
+            ..FrameSpec::default()
+        };
+        assert!(frame(spp).is_err());
+        let aovs = FrameSpec {
+            aovs: "direct,nope".into(),
+            ..FrameSpec::default()
+        };
+        let err = frame(aovs).unwrap_err().to_string();
+        assert!(err.contains("unknown AOV layer `nope`"), "{err}");
+    }
+}

@@ -1,0 +1,43 @@
+//! How numbers are written for people: compact in tables, exact in error messages.
+
+/// A compact, readable number for tables: 4 significant digits, scientific when far from 1.
+pub fn compact(v: f64) -> String {
+    if v == 0.0 {
+        "0".into()
+    } else if (1e-3..1e5).contains(&v.abs()) {
+        let digits = (3 - v.abs().log10().floor() as i32).max(0) as usize;
+        format!("{v:.digits$}")
+    } else {
+        format!("{v:.3e}")
+    }
+}
+
+/// A number quoted back in an error message: every digit it has, in scientific notation when
+/// tiny or huge, so the user recognises the value they wrote.
+pub fn exact(v: f64) -> String {
+    if v == 0.0 || (1e-6..1e15).contains(&v.abs()) {
+        v.to_string()
+    } else {
+        format!("{v:e}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn compact_numbers_have_four_significant_digits() {
+        assert_eq!(compact(0.0), "0");
+        assert_eq!(compact(0.12345), "0.1235");
+        assert_eq!(compact(12.5), "12.50");
+        assert_eq!(compact(1.5e-7), "1.500e-7");
+    }
+
+    #[test]
+    fn exact_numbers_keep_every_digit() {
+        assert_eq!(exact(0.1), "0.1");
+        assert_eq!(exact(1e200), "1e200");
+        assert_eq!(exact(-2.5e-9), "-2.5e-9");
+    }
+}

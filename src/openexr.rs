@@ -1,0 +1,36 @@
+//! Facts about the OpenEXR format that the reader, the writer and merge share, and the one
+//! call that reads a file's first part with the `exr` crate.
+
+use std::io::{Read, Seek};
+
+use exr::prelude::{self as x, ReadChannels as _, ReadLayers as _};
+
+/// The four bytes every OpenEXR file starts with.
+pub const MAGIC: [u8; 4] = [0x76, 0x2f, 0x31, 0x01];
+
+/// Longest channel name OpenEXR 2 readers accept (the 1.x header limit that many tools keep).
+pub const MAX_CHANNEL_NAME: usize = 31;
+
+/// One part with every channel as flat samples, and its header.
+pub type FlatImage = x::Image<x::Layer<x::AnyChannels<x::FlatSamples>>>;
+
+/// Reads the first valid part of an OpenEXR stream (scanline or tiled, any pixel types, the
+/// largest resolution level), with every header attribute.
+pub fn read_first_part(reader: impl Read + Seek + Send) -> Result<FlatImage, x::Error> {
+    x::read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .first_valid_layer()
+        .all_attributes()
+        .from_buffered(std::io::BufReader::new(reader))
+}
+
+/// The pixel type of a channel as OpenEXR names it.
+pub fn pixel_type(samples: &x::FlatSamples) -> &'static str {
+    match samples {
+        x::FlatSamples::F16(_) => "half",
+        x::FlatSamples::F32(_) => "float",
+        x::FlatSamples::U32(_) => "uint",
+    }
+}

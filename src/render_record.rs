@@ -1,0 +1,103 @@
+//! What an EXR records about the render that made it (aovs.md, Header attributes): the
+//! program, the command that reproduces its pixels, the capture date when asked for.
+
+use std::time::SystemTime;
+
+use crate::output::exr::ExrMetadata;
+use crate::plan::RenderPlan;
+
+/// The header metadata of `plan`'s EXR. `scene_name` is the scene file as given (or the
+/// embedded scene's name); `light_names` in layer order.
+pub fn metadata(plan: &RenderPlan, scene_name: &str, light_names: Vec<String>) -> ExrMetadata {
+    ExrMetadata {
+        software: format!("whitted {}", env!("CARGO_PKG_VERSION")),
+        comments: format!(
+            "scene: {scene_name}; command: {}",
+            render_command(plan, scene_name)
+        ),
+        bounces: plan.frame.trace.bounces,
+        spp: plan.frame.spp,
+        light_names,
+        capture_date: plan.stamp_date.then(|| capture_date(SystemTime::now())),
+        world_to_ndc: plan.frame.camera.world_to_ndc(),
+    }
+}
+
+/// The command that reproduces these pixels: every option that changes them, in canonical
+/// form. Output paths, threads and verbosity are left out, so that the same render written
+/// elsewhere, or with another thread count, has the same bytes. The region is left out too:
+/// a region's header is the full render's, which is what lets `merge` reproduce it.
+fn render_command(plan: &RenderPlan, scene_name: &str) -> String {
+    let quote = |a: &str| {
+        if a.contains(char::is_whitespace) {
+            format!("'{a}'")
+        } else {
+            a.to_string()
+        }
+    };
+    let frame = &plan.frame;
+    let mut parts = vec![
+        "whitted render".to_string(),
+        if plan.embedded_scene {
+            "(embedded tick2.xml)".to_string()
+        } else {
+            format!("--input {}", quote(scene_name))
+        },
+        format!("--bounces {}", frame.trace.bounces),
+        format!(
+            "--width {} --height {}",
+            frame.camera.width, frame.camera.height
+        ),
+        format!("--spp {}", frame.spp),
+    ];
+    if !frame.trace.shadows {
+        parts.push("--no-shadows".into());
+    }
+    parts.push(format!("--aovs {}", quote(&plan.aovs)));
+    if plan.exr_options.half {
+        parts.push("--half".into());
+    }
+    parts.push(format!(
+        "--compression {}",
+        plan.exr_options.compression.name()
+    ));
+    parts.join(" ")
+}
+
+/// `YYYY:MM:DD hh:mm:ss` in UTC, as OpenEXR's `capDate` wants (with `utcOffset` 0).
+fn capture_date(now: SystemTime) -> String {
+    let secs = now
+        .duration_since(SystemTime::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs());
+    let (days, rest) = (secs / 86_400, secs % 86_400);
+    // Civil date from days since 1970-01-01 (Howard Hinnant's algorithm).
+    let z = days as i64 + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let day = doy - (153 * mp + 2) / 5 + 1;
+    let month = if mp < 10 { mp + 3 } else { mp - 9 };
+    let year = yoe + era * 400 + i64::from(month <= 2);
+    format!(
+        "{year:04}:{month:02}:{day:02} {:02}:{:02}:{:02}",
+        rest / 3600,
+        rest / 60 % 60,
+        rest % 60
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::time::Duration;
+
+    #[test]
+    fn capture_dates_are_civil_utc() {
+        let at = |secs| capture_date(SystemTime::UNIX_EPOCH + Duration::from_secs(secs));
+        assert_eq!(at(0), "1970:01:01 00:00:00");
+        assert_eq!(at(951_782_400), "2000:02:29 00:00:00");
+        assert_eq!(at(1_795_000_000), "2026:11:18 11:06:40");
+    }
+}

@@ -1,0 +1,17 @@
+//! whitted's integration tests, one crate with a module per area: the built binary run as a
+//! user runs it, and the library rendered against its references.
+
+mod cli_errors;
+mod common;
+mod determinism;
+mod differential;
+mod exr_aovs;
+mod figures;
+mod fuzz_corpus;
+mod golden_exr;
+mod golden_png;
+mod inspect;
+mod properties;
+mod scale;
+mod scenes;
+mod tonemap;
