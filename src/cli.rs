@@ -3,13 +3,17 @@
 
 use std::path::PathBuf;
 
-use clap::{Args, Parser, Subcommand, ValueEnum};
+use clap::{Args, Parser, Subcommand};
+
+mod parse;
+mod values;
 
 use crate::frame::{FrameSpec, Region};
-use crate::output::exr::{ExrCompression, ExrOptions};
+use crate::output::exr::ExrOptions;
 use crate::plan::{RenderRequest, ToneRequest};
 use crate::sheet::SheetOptions;
-use crate::tonemap::ToneMap;
+use parse::*;
+pub use values::{CompressionArg, ToneMapArg};
 
 /// Most reflection bounces accepted: each bounce is a layer in the EXR, and past this depth a
 /// mirror chain's contribution is far below what a float image can show.
@@ -263,60 +267,6 @@ pub struct RenderArgs {
     pub quiet: bool,
 }
 
-/// `--tonemap` values: the tone maps of tonemap.md, named for the command line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum ToneMapArg {
-    /// The course's output: clamp, no transfer function, truncating quantisation
-    Tick,
-    /// Clamp to [0, 1], then sRGB
-    Clamp,
-    /// v / (1 + v), then sRGB
-    Reinhard,
-    /// Narkowicz's ACES fit, then sRGB
-    Aces,
-    /// Blender 4's AgX base look, then sRGB
-    Agx,
-    /// Khronos PBR Neutral, then sRGB
-    Neutral,
-}
-
-impl From<ToneMapArg> for ToneMap {
-    fn from(arg: ToneMapArg) -> Self {
-        match arg {
-            ToneMapArg::Tick => ToneMap::Tick,
-            ToneMapArg::Clamp => ToneMap::Clamp,
-            ToneMapArg::Reinhard => ToneMap::Reinhard,
-            ToneMapArg::Aces => ToneMap::Aces,
-            ToneMapArg::Agx => ToneMap::Agx,
-            ToneMapArg::Neutral => ToneMap::Neutral,
-        }
-    }
-}
-
-/// `--compression` values: the lossless OpenEXR codecs.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum CompressionArg {
-    None,
-    Rle,
-    /// ZIP, one scanline per block
-    Zips,
-    /// ZIP, 16 scanlines per block (the default, as in most renderers)
-    Zip,
-    Piz,
-}
-
-impl From<CompressionArg> for ExrCompression {
-    fn from(arg: CompressionArg) -> Self {
-        match arg {
-            CompressionArg::None => ExrCompression::None,
-            CompressionArg::Rle => ExrCompression::Rle,
-            CompressionArg::Zips => ExrCompression::Zips,
-            CompressionArg::Zip => ExrCompression::Zip,
-            CompressionArg::Piz => ExrCompression::Piz,
-        }
-    }
-}
-
 impl RenderArgs {
     /// The render asked for, as plain data for `RenderPlan::new` to check.
     pub fn request(&self) -> RenderRequest {
@@ -356,91 +306,6 @@ impl SheetArgs {
     }
 }
 
-fn parse_bounces(s: &str) -> Result<u32, String> {
-    let n: i64 = s
-        .trim()
-        .parse()
-        .map_err(|_| format!("expected a whole number of bounces, got `{s}`"))?;
-    if n < 0 {
-        return Err(format!("bounces must be >= 0, got {n}"));
-    }
-    u32::try_from(n)
-        .ok()
-        .filter(|&n| n <= MAX_BOUNCES)
-        .ok_or_else(|| format!("at most {MAX_BOUNCES} bounces are supported, got {n}"))
-}
-
-fn parse_side(s: &str) -> Result<u32, String> {
-    let n: u64 = s
-        .trim()
-        .parse()
-        .map_err(|_| format!("expected a whole number of pixels, got `{s}`"))?;
-    u32::try_from(n)
-        .ok()
-        .filter(|&n| (1..=MAX_SIDE).contains(&n))
-        .ok_or_else(|| format!("must be between 1 and {MAX_SIDE} pixels, got {n}"))
-}
-
-fn parse_spp(s: &str) -> Result<u32, String> {
-    let n: u32 = s
-        .trim()
-        .parse()
-        .map_err(|_| format!("expected a whole number of samples, got `{s}`"))?;
-    let k = n.isqrt();
-    if n == 0 || k * k != n || n > MAX_SPP {
-        return Err(format!(
-            "samples per pixel must be a square k*k (1, 4, 9, 16, ...) up to {MAX_SPP}, got {n}"
-        ));
-    }
-    Ok(n)
-}
-
-fn parse_exposure(s: &str) -> Result<f64, String> {
-    match s.trim().parse::<f64>() {
-        Ok(ev) if ev.is_finite() && ev.abs() <= 64.0 => Ok(ev),
-        _ => Err(format!(
-            "expected an exposure in stops between -64 and 64, got `{s}`"
-        )),
-    }
-}
-
-fn parse_region(s: &str) -> Result<Region, String> {
-    let numbers: Vec<u32> = s
-        .split(',')
-        .map(|n| n.trim().parse::<u32>())
-        .collect::<Result<_, _>>()
-        .map_err(|_| format!("expected X0,Y0,X1,Y1 in whole pixels, got `{s}`"))?;
-    match numbers[..] {
-        [x0, y0, x1, y1] if x0 < x1 && y0 < y1 => Ok(Region { x0, y0, x1, y1 }),
-        [_, _, _, _] => Err(format!("the region `{s}` is empty (X0 < X1 and Y0 < Y1)")),
-        _ => Err(format!("expected four numbers X0,Y0,X1,Y1, got `{s}`")),
-    }
-}
-
-fn parse_tolerance(s: &str) -> Result<f64, String> {
-    match s.trim().parse::<f64>() {
-        Ok(t) if t.is_finite() && t >= 0.0 => Ok(t),
-        _ => Err(format!("expected a tolerance >= 0, got `{s}`")),
-    }
-}
-
-fn parse_depth(s: &str) -> Result<u8, String> {
-    match s.trim() {
-        "8" => Ok(8),
-        "16" => Ok(16),
-        _ => Err(format!("PNG depth is 8 or 16, got `{s}`")),
-    }
-}
-
-fn parse_threads(s: &str) -> Result<usize, String> {
-    match s.trim().parse::<usize>() {
-        Ok(n) if (1..=MAX_THREADS).contains(&n) => Ok(n),
-        _ => Err(format!(
-            "expected a number of threads >= 1 and <= {MAX_THREADS}, got `{s}`"
-        )),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -449,22 +314,5 @@ mod tests {
     #[test]
     fn clap_definition_is_consistent() {
         Cli::command().debug_assert();
-    }
-
-    #[test]
-    fn bounds_are_enforced() {
-        assert_eq!(parse_bounces("3"), Ok(3));
-        assert!(parse_bounces("-1").unwrap_err().contains(">= 0"));
-        assert!(parse_bounces("101").is_err());
-        assert!(parse_side("0").is_err());
-        assert!(parse_side("70000").is_err());
-        assert_eq!(parse_side("640"), Ok(640));
-        assert!(parse_threads("0").is_err());
-        assert_eq!(parse_spp("16"), Ok(16));
-        assert!(parse_spp("8").unwrap_err().contains("square"));
-        assert!(parse_spp("0").is_err());
-        assert_eq!(parse_exposure("-1.5"), Ok(-1.5));
-        assert!(parse_exposure("nan").is_err());
-        assert!(parse_depth("12").is_err());
     }
 }

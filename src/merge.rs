@@ -13,8 +13,16 @@ use exr::prelude as x;
 use crate::error::{Error, Result};
 use crate::openexr::{self, FlatImage};
 
-/// Places every part's pixels into one full-frame image.
+/// Places every part's pixels into one full-frame image, after checking that the parts fit
+/// together.
 pub fn merge(parts: &[FlatImage], names: &[PathBuf]) -> Result<FlatImage> {
+    check_parts(parts, names)?;
+    assemble(parts)
+}
+
+/// The parts share the first part's display window, channels and pixel types, lie inside the
+/// frame, and cover every pixel exactly once.
+fn check_parts(parts: &[FlatImage], names: &[PathBuf]) -> Result<()> {
     let usage = |msg: String| Error::Usage(msg);
     let first = &parts[0];
     let display = first.attributes.display_window;
@@ -70,7 +78,15 @@ pub fn merge(parts: &[FlatImage], names: &[PathBuf]) -> Result<FlatImage> {
             gap / width
         )));
     }
+    Ok(())
+}
 
+/// Copies every part's rows into a full-frame image with the first part's header.
+fn assemble(parts: &[FlatImage]) -> Result<FlatImage> {
+    let usage = |msg: String| Error::Usage(msg);
+    let first = &parts[0];
+    let display = first.attributes.display_window;
+    let (width, height) = (display.size.0, display.size.1);
     let mut list = x::SmallVec::new();
     for (c, channel) in first.layer_data.channel_data.list.iter().enumerate() {
         let mut samples = match &channel.sample_data {

@@ -52,14 +52,6 @@ impl Destination {
         }
     }
 
-    /// The name used in messages.
-    pub fn name(&self) -> String {
-        match self {
-            Destination::Stdout(_) => "standard output".into(),
-            Destination::File(f) => f.target().display().to_string(),
-        }
-    }
-
     fn path(&self) -> PathBuf {
         match self {
             Destination::Stdout(_) => PathBuf::from(STDOUT),

@@ -85,38 +85,7 @@ pub fn write_exr(
     metadata: &ExrMetadata,
 ) -> Result<(), String> {
     let size = (film.width as usize, film.height as usize);
-    let mut channels = x::SmallVec::new();
-    let mut offset = 0;
-    for layer in &film.layers {
-        for name in layer.channel_names() {
-            let plane: Vec<f32> = film
-                .data
-                .iter()
-                .skip(offset)
-                .step_by(film.channel_count())
-                .copied()
-                .collect();
-            let samples = if options.half && layer.quantity.kind() == Kind::Colour {
-                x::FlatSamples::F16(
-                    plane
-                        .iter()
-                        .map(|&v| f16::from_f32(v.clamp(-HALF_MAX, HALF_MAX)))
-                        .collect(),
-                )
-            } else {
-                x::FlatSamples::F32(plane)
-            };
-            // Explicitly linear: the crate would flag every non-RGB name `pLinear`, which
-            // claims perceptual encoding for linear data (aovs.md).
-            channels.push(x::AnyChannel {
-                name: text(&name),
-                sample_data: samples,
-                quantize_linearly: false,
-                sampling: x::Vec2(1, 1),
-            });
-            offset += 1;
-        }
-    }
+    let channels = channels(film, options);
 
     let mut attributes = x::LayerAttributes {
         // The data window: where this film (a whole image, or a farm node's region) sits.
@@ -162,6 +131,44 @@ pub fn write_exr(
     let mut image = x::Image::new(x::ImageAttributes::new(display), layer);
     image.attributes.chromaticities = Some(REC709_D65);
     write_image(file, &image)
+}
+
+/// The film's channels as the file stores them: one plane each, colour layers as half when
+/// asked, every channel explicitly linear (the crate would flag every non-RGB name `pLinear`,
+/// which claims perceptual encoding for linear data; aovs.md).
+fn channels(film: &Film, options: ExrOptions) -> x::SmallVec<[x::AnyChannel<x::FlatSamples>; 4]> {
+    let mut channels = x::SmallVec::new();
+    let mut offset = 0;
+    for layer in &film.layers {
+        let half = options.half && layer.quantity.kind() == Kind::Colour;
+        for name in layer.channel_names() {
+            let plane: Vec<f32> = film
+                .data
+                .iter()
+                .skip(offset)
+                .step_by(film.channel_count())
+                .copied()
+                .collect();
+            let sample_data = if half {
+                x::FlatSamples::F16(
+                    plane
+                        .iter()
+                        .map(|&v| f16::from_f32(v.clamp(-HALF_MAX, HALF_MAX)))
+                        .collect(),
+                )
+            } else {
+                x::FlatSamples::F32(plane)
+            };
+            channels.push(x::AnyChannel {
+                name: text(&name),
+                sample_data,
+                quantize_linearly: false,
+                sampling: x::Vec2(1, 1),
+            });
+            offset += 1;
+        }
+    }
+    channels
 }
 
 /// Writes any flat image as an EXR into `file` (positioned at its start), its header

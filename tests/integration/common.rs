@@ -147,17 +147,13 @@ pub struct Exr {
 }
 
 pub fn read_exr(path: &Path) -> Exr {
-    use exr::prelude::*;
-    let image = read()
-        .no_deep_data()
-        .largest_resolution_level()
-        .all_channels()
-        .all_layers()
-        .all_attributes()
-        .from_file(path)
+    let meta = exr::meta::MetaData::read_from_file(path, false)
         .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    assert_eq!(image.layer_data.len(), 1, "one part");
-    let layer = image.layer_data.into_iter().next().expect("a layer");
+    assert_eq!(meta.headers.len(), 1, "one part");
+    let file = std::fs::File::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let image = whitted::openexr::read_first_part(file)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let layer = image.layer_data;
     Exr {
         width: layer.size.0,
         height: layer.size.1,

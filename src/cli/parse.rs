@@ -1,0 +1,112 @@
+//! Parsers for option values: syntax and plain ranges, with messages that say what was
+//! expected. Checks that depend on other options or on the scene are the plan's.
+
+use super::{MAX_BOUNCES, MAX_SIDE, MAX_SPP, MAX_THREADS};
+use crate::frame::Region;
+
+pub(super) fn parse_bounces(s: &str) -> Result<u32, String> {
+    let n: i64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("expected a whole number of bounces, got `{s}`"))?;
+    if n < 0 {
+        return Err(format!("bounces must be >= 0, got {n}"));
+    }
+    u32::try_from(n)
+        .ok()
+        .filter(|&n| n <= MAX_BOUNCES)
+        .ok_or_else(|| format!("at most {MAX_BOUNCES} bounces are supported, got {n}"))
+}
+
+pub(super) fn parse_side(s: &str) -> Result<u32, String> {
+    let n: u64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("expected a whole number of pixels, got `{s}`"))?;
+    u32::try_from(n)
+        .ok()
+        .filter(|&n| (1..=MAX_SIDE).contains(&n))
+        .ok_or_else(|| format!("must be between 1 and {MAX_SIDE} pixels, got {n}"))
+}
+
+pub(super) fn parse_spp(s: &str) -> Result<u32, String> {
+    let n: u32 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("expected a whole number of samples, got `{s}`"))?;
+    let k = n.isqrt();
+    if n == 0 || k * k != n || n > MAX_SPP {
+        return Err(format!(
+            "samples per pixel must be a square k*k (1, 4, 9, 16, ...) up to {MAX_SPP}, got {n}"
+        ));
+    }
+    Ok(n)
+}
+
+pub(super) fn parse_exposure(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(ev) if ev.is_finite() && ev.abs() <= 64.0 => Ok(ev),
+        _ => Err(format!(
+            "expected an exposure in stops between -64 and 64, got `{s}`"
+        )),
+    }
+}
+
+pub(super) fn parse_region(s: &str) -> Result<Region, String> {
+    let numbers: Vec<u32> = s
+        .split(',')
+        .map(|n| n.trim().parse::<u32>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| format!("expected X0,Y0,X1,Y1 in whole pixels, got `{s}`"))?;
+    match numbers[..] {
+        [x0, y0, x1, y1] if x0 < x1 && y0 < y1 => Ok(Region { x0, y0, x1, y1 }),
+        [_, _, _, _] => Err(format!("the region `{s}` is empty (X0 < X1 and Y0 < Y1)")),
+        _ => Err(format!("expected four numbers X0,Y0,X1,Y1, got `{s}`")),
+    }
+}
+
+pub(super) fn parse_tolerance(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(t) if t.is_finite() && t >= 0.0 => Ok(t),
+        _ => Err(format!("expected a tolerance >= 0, got `{s}`")),
+    }
+}
+
+pub(super) fn parse_depth(s: &str) -> Result<u8, String> {
+    match s.trim() {
+        "8" => Ok(8),
+        "16" => Ok(16),
+        _ => Err(format!("PNG depth is 8 or 16, got `{s}`")),
+    }
+}
+
+pub(super) fn parse_threads(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(n) if (1..=MAX_THREADS).contains(&n) => Ok(n),
+        _ => Err(format!(
+            "expected a number of threads >= 1 and <= {MAX_THREADS}, got `{s}`"
+        )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bounds_are_enforced() {
+        assert_eq!(parse_bounces("3"), Ok(3));
+        assert!(parse_bounces("-1").unwrap_err().contains(">= 0"));
+        assert!(parse_bounces("101").is_err());
+        assert!(parse_side("0").is_err());
+        assert!(parse_side("70000").is_err());
+        assert_eq!(parse_side("640"), Ok(640));
+        assert!(parse_threads("0").is_err());
+        assert_eq!(parse_spp("16"), Ok(16));
+        assert!(parse_spp("8").unwrap_err().contains("square"));
+        assert!(parse_spp("0").is_err());
+        assert_eq!(parse_exposure("-1.5"), Ok(-1.5));
+        assert!(parse_exposure("nan").is_err());
+        assert!(parse_depth("12").is_err());
+    }
+}

@@ -1,0 +1,148 @@
+//! The loader against every element, default and error class.
+
+use super::attributes::parse_colour;
+use super::*;
+use crate::geometry::Shape;
+use crate::scene::Material;
+use glam::DVec3;
+
+fn parse(text: &str) -> Result<Scene> {
+    parse_str("test.xml", text)
+}
+
+fn error(text: &str) -> String {
+    match parse(text) {
+        Ok(_) => panic!("expected an error for {text}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn reads_every_element_with_defaults_and_overrides() {
+    let scene = parse(
+        r##"<?xml version="1.0"?>
+<scene>
+  <!-- a comment -->
+  <ambient-light colour="#555555"/>
+  <point-light x="2" y="2" z="4.5" colour="#FFB0B2" intensity="100" name="key"/>
+  <point-light colour="#ffffff"/>
+  <sphere x="-0.95" y=" -.21884 " z="3.63261" radius="0.35" colour="#FF1D25"/>
+  <sphere colour="#000000" kD="0.5" kS="0" n="3" reflectivity="1"/>
+  <plane y="-1" nx="0" ny="2" nz="0" colour="#222222"></plane>
+</scene>"##,
+    )
+    .expect("valid");
+    assert_eq!(scene.ambient, DVec3::splat(85.0 / 255.0));
+    assert_eq!(scene.lights.len(), 2);
+    assert_eq!(scene.lights[0].name, "key");
+    assert_eq!(scene.lights[1].name, "1");
+    assert_eq!(scene.lights[1].intensity, 100.0);
+    assert_eq!(scene.lights[1].position, DVec3::ZERO);
+    assert_eq!(
+        scene.lights[0].colour,
+        DVec3::new(1.0, 176.0 / 255.0, 178.0 / 255.0)
+    );
+    assert_eq!(
+        scene.objects[0].shape,
+        Shape::Sphere {
+            centre: DVec3::new(-0.95, -0.21884, 3.63261),
+            radius: 0.35
+        }
+    );
+    assert_eq!(
+        scene.objects[0].material,
+        Material::sphere(DVec3::new(1.0, 29.0 / 255.0, 37.0 / 255.0))
+    );
+    assert_eq!(
+        scene.objects[1].shape,
+        Shape::Sphere {
+            centre: DVec3::ZERO,
+            radius: 1.0
+        }
+    );
+    let m = scene.objects[1].material;
+    assert_eq!((m.kd, m.ks, m.n, m.reflectivity), (0.5, 0.0, 3.0, 1.0));
+    assert_eq!(
+        scene.objects[2].shape,
+        Shape::Plane {
+            point: DVec3::new(0.0, -1.0, 0.0),
+            normal: DVec3::Y
+        }
+    );
+    assert_eq!(
+        scene.objects[2].material,
+        Material::plane(DVec3::splat(34.0 / 255.0))
+    );
+}
+
+#[test]
+fn missing_ambient_is_white_and_empty_scene_is_valid() {
+    let scene = parse("<scene/>").expect("valid");
+    assert_eq!(scene.ambient, DVec3::ONE);
+    assert!(scene.objects.is_empty() && scene.lights.is_empty());
+}
+
+#[test]
+fn errors_are_located_and_explain_what_was_expected() {
+    let cases = [
+        ("", "test.xml:1:1: the file is empty"),
+        ("<world/>", "test.xml:1:1: the root element is <world>, expected <scene>"),
+        ("<scene>\n  <sphear colour=\"#FF0000\"/>\n</scene>", "test.xml:2:3: unknown element <sphear> (did you mean <sphere>?"),
+        ("<scene>\n <sphere color=\"#FF0000\"/>\n</scene>", "test.xml:2:10: unknown attribute `color` on <sphere> (did you mean `colour`?"),
+        ("<scene>\n <sphere x=\"1\" x=\"2\" colour=\"#FF0000\"/></scene>", "test.xml:2:16: duplicate attribute `x` on <sphere> (first given at 2:10)"),
+        ("<scene><sphere/></scene>", "test.xml:1:8: <sphere> needs a `colour` attribute"),
+        ("<scene><sphere colour=\"#FFF\"/></scene>", "test.xml:1:16: `colour` must be #RRGGBB"),
+        ("<scene><sphere colour=\"red\"/></scene>", "`colour` must be #RRGGBB"),
+        ("<scene><sphere colour=\"#GGGGGG\"/></scene>", "`colour` must be #RRGGBB"),
+        ("<scene><sphere y=\"abc\" colour=\"#FF0000\"/></scene>", "test.xml:1:16: `y` must be a number"),
+        ("<scene><sphere x=\"NaN\" colour=\"#FF0000\"/></scene>", "`x` must be a finite number, got `NaN`"),
+        ("<scene><sphere x=\"inf\" colour=\"#FF0000\"/></scene>", "`x` must be a finite number"),
+        ("<scene><sphere radius=\"0\" colour=\"#FF0000\"/></scene>", "`radius` must be > 0"),
+        ("<scene><sphere radius=\"-1\" colour=\"#FF0000\"/></scene>", "`radius` must be > 0"),
+        ("<scene><plane colour=\"#FF0000\"/></scene>", "test.xml:1:8: <plane> normal (nx, ny, nz) = (0, 0, 0) has (near) zero length"),
+        ("<scene><point-light intensity=\"-1\" colour=\"#FF0000\"/></scene>", "`intensity` must be >= 0"),
+        ("<scene><sphere reflectivity=\"1.5\" colour=\"#FF0000\"/></scene>", "`reflectivity` must be between 0 and 1"),
+        ("<scene><sphere kD=\"-1\" colour=\"#FF0000\"/></scene>", "`kD` must be >= 0"),
+        ("<scene><sphere kS=\"-1\" colour=\"#FF0000\"/></scene>", "`kS` must be >= 0"),
+        ("<scene><sphere n=\"-1\" colour=\"#FF0000\"/></scene>", "`n` must be >= 0"),
+        ("<scene><ambient-light colour=\"#FF0000\"/>\n<ambient-light colour=\"#FF0000\"/></scene>", "test.xml:2:1: a second <ambient-light> (the first is at 1:8"),
+        ("<scene><point-light colour=\"#FF0000\" name=\"a\"/>\n<point-light colour=\"#FF0000\" name=\"a\"/></scene>", "test.xml:2:31: duplicate light name `a` (first used at 1:38"),
+        ("<scene><point-light colour=\"#FF0000\" name=\"1a\"/></scene>", "light name `1a` must be a letter"),
+        ("<scene><point-light colour=\"#FF0000\" name=\"abcdefghijklmnopq\"/></scene>", "at most 16 characters"),
+        ("<scene>\n<sphere colour=\"#FF0000\">\n<plane/></sphere></scene>", "test.xml:3:1: <plane> is nested inside <sphere>"),
+        ("<scene>\n  <sphere colour=\"#FF0000\">\n</scene>\n", "test.xml:3:1: not well-formed XML"),
+        ("<scene>\n  <sphere colour=\"#FF0000\"/>\n", "test.xml:1:1: <scene> is never closed"),
+        ("<scene>hello</scene>", "test.xml:1:8: unexpected text `hello` inside <scene>"),
+        ("<scene/><scene/>", "test.xml:1:9: a second root element <scene>"),
+        ("<scene foo=\"1\"/>", "unknown attribute `foo` on <scene> (it takes no attributes)"),
+        ("<!-- only a comment -->", "no <scene> element"),
+    ];
+    for (text, want) in cases {
+        let got = error(text);
+        assert!(
+            got.starts_with(want) || got.contains(want),
+            "for {text:?}\n got: {got}\nwant: {want}"
+        );
+    }
+}
+
+#[test]
+fn not_utf8_is_located() {
+    let err = parse_bytes("bad.xml", b"<scene>\n  <sphere colour=\"\xff\"/>").unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "bad.xml:2:19: the file is not valid UTF-8 (save it as UTF-8)"
+    );
+}
+
+#[test]
+fn colours_parse_either_case() {
+    assert_eq!(
+        parse_colour("#ff0080"),
+        Some(DVec3::new(1.0, 0.0, 128.0 / 255.0))
+    );
+    assert_eq!(parse_colour("#FF0080"), parse_colour("#ff0080"));
+    assert_eq!(parse_colour("FF0080"), None);
+    assert_eq!(parse_colour("#FF008"), None);
+    assert_eq!(parse_colour("#+F0080"), None);
+}
