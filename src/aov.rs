@@ -1,4 +1,4 @@
-//! The AOV layers of aovs.md: which layers a render can write, what each one holds, and how
+//! The AOV layers of docs/aovs.md: which layers a render can write, what each one holds, and how
 //! `--aovs` selects them. The film stores what this module declares; the EXR writer names the
 //! channels the way it says.
 
@@ -6,7 +6,7 @@ use crate::sample::Sample;
 use crate::suggest;
 
 /// `Z` where the camera ray misses: "far", as Cycles writes it, so depth-based compositing puts
-/// the sky behind everything (aovs.md). The EXR header records it as `render/zMiss`.
+/// the sky behind everything (docs/aovs.md). The EXR header records it as `render/zMiss`.
 pub const Z_MISS: f64 = 1e10;
 
 /// What a layer measures. A closed set, so the mapping from a `Sample` is one `match`.

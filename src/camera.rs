@@ -1,4 +1,4 @@
-//! The course's pinhole camera (rendering.md, Camera): at the origin, looking along +z, with a
+//! The course's pinhole camera (docs/rendering.md, Camera): at the origin, looking along +z, with a
 //! 45 degree horizontal field of view and the image plane at z = 1.
 
 use glam::DVec3;
@@ -38,7 +38,7 @@ impl Camera {
     ///
     /// Note the rows: `(step + h)/2 - y*step` is `h/2 - (y - 0.5)*step`, half a pixel *above*
     /// the top edge for row 0, so the whole picture sits one row lower than true pixel centres
-    /// would put it. rendering.md calls these "the pixel centres", but the reference image is
+    /// would put it. docs/rendering.md calls these "the pixel centres", but the reference image is
     /// only reproduced with the formula as written, so the formula is what we implement.
     pub fn plane_point(&self, x: u32, y: u32) -> (f64, f64) {
         let x_pos = (self.step - self.plane_width) / 2.0 + f64::from(x) * self.step;

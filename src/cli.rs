@@ -1,4 +1,4 @@
-//! The command line (cli.md), as clap derive types. `whitted [render options]` is
+//! The command line (docs/cli.md), as clap derive types. `whitted [render options]` is
 //! `whitted render [render options]`, so the course's `--input/--output/--bounces` just work.
 
 use std::path::PathBuf;
@@ -161,7 +161,7 @@ pub struct TonemapArgs {
     pub tone: ToneArgs,
 }
 
-/// How linear HDR values become PNG bytes (tonemap.md).
+/// How linear HDR values become PNG bytes (docs/tonemap.md).
 #[derive(Debug, Clone, Args)]
 pub struct ToneArgs {
     /// Tone map: `tick` is the course's exact output; the others are sRGB-encoded

@@ -13,7 +13,7 @@ pub struct Tolerance {
 }
 
 impl Tolerance {
-    /// The tolerance aovs.md states for sums of layers.
+    /// The tolerance docs/aovs.md states for sums of layers.
     pub const AOV: Tolerance = Tolerance {
         abs: 1e-6,
         rel: 1e-5,

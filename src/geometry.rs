@@ -1,5 +1,5 @@
 //! Rays, the closed set of shapes, and ray-shape intersection, with the exact operation order of
-//! rendering.md (Intersections): the tick reference is matched bit for bit, so every formula
+//! docs/rendering.md (Intersections): the tick reference is matched bit for bit, so every formula
 //! here is evaluated the way the course evaluates it.
 
 use glam::DVec3;
@@ -100,7 +100,7 @@ impl Shape {
 }
 
 /// The brute-force nearest hit along `ray` over `(file index, shape)` pairs given in file
-/// order: the definition of the closest hit (rendering.md). A later shape wins only when
+/// order: the definition of the closest hit (docs/rendering.md). A later shape wins only when
 /// strictly nearer, so ties go to the earlier one (`min_by` keeps the first minimum). The
 /// hierarchy uses this for its unbounded shapes, and the tests as the reference.
 pub fn closest_hit<'a>(

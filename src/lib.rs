@@ -2,7 +2,7 @@
 //! Tick 2 image bit for bit, and writes the same render as linear HDR layers.
 //!
 //! # Glossary
-//! Symbols follow the course's handout and `rendering.md`:
+//! Symbols follow the course's handout and `docs/rendering.md`:
 //! - `P`: a surface point being shaded (world space; the camera sits at the origin).
 //! - `N`: the unit surface normal at `P` (never flipped for planes).
 //! - `L`: the unit vector from `P` towards a light; `d` the distance to it.
@@ -16,17 +16,14 @@
 //! display white is 1.0. Distances are scene units.
 //!
 //! # Module map
-//! - [`scene`]: plain scene data, and [`scene::xml`] which loads it with located errors.
-//! - [`geometry`]: rays, the shapes, intersection; [`accel`]: the BVH that finds the same
-//!   nearest hit faster.
-//! - [`camera`]: pixel -> primary ray.
-//! - [`trace`]: the tick shading model; returns a [`sample::Sample`].
-//! - [`render`]: tiles in parallel, k*k samples per pixel, regions -> [`film::Film`].
-//! - [`aov`]: the EXR layers and what each holds.
-//! - [`tonemap`] and [`output`]: linear film -> display bytes -> files; [`input`] reads
-//!   EXRs and PNGs back; [`compare`] and [`canvas`] serve `diff` and `sheet`.
-//! - [`cli`] and [`commands`]: the command line; [`progress`], [`interrupt`] and [`memory`]
-//!   keep long renders watchable, stoppable and within the machine.
+//! The data path: [`scene`] (and [`scene::xml`], which loads it with located errors) ->
+//! [`frame`] and [`plan`] (everything checked before anything runs) -> [`render`] (tiles in
+//! parallel; [`camera`] rays, [`accel`] over [`geometry`], [`trace`] -> [`sample::Sample`]) ->
+//! [`film::Film`] (the layers [`aov`] declares) -> [`output`] (EXR, and PNG via [`tonemap`]).
+//! Reading back: [`input`], [`openexr`]; inspection: [`compare`], [`stats`], [`sheet`],
+//! [`merge`], [`numbers`], [`canvas`]. The command line: [`cli`] and [`commands`];
+//! [`progress`], [`interrupt`] and [`memory`] keep long renders watchable, stoppable and
+//! within the machine. The rules are in `docs/`.
 
 pub mod accel;
 pub mod aov;

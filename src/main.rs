@@ -1,5 +1,5 @@
 //! The `whitted` binary: parse the command line, run it, turn any error into one line on stderr
-//! and exit status 2 (cli.md, Exit status and errors).
+//! and exit status 2 (docs/cli.md, Exit status and errors).
 
 use std::process::ExitCode;
 

@@ -18,7 +18,7 @@ use crate::tonemap::ToneMap;
 /// would spawn threads for minutes.
 pub const MAX_THREADS: usize = 1024;
 
-/// How the PNG is to be encoded, as asked (tonemap.md); checked into a `PngEncoding`.
+/// How the PNG is to be encoded, as asked (docs/tonemap.md); checked into a `PngEncoding`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ToneRequest {
     pub tonemap: ToneMap,

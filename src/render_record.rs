@@ -1,4 +1,4 @@
-//! What an EXR records about the render that made it (aovs.md, Header attributes): the
+//! What an EXR records about the render that made it (docs/aovs.md, Header attributes): the
 //! program, the command that reproduces its pixels, the capture date when asked for.
 
 use std::time::SystemTime;

@@ -1,6 +1,6 @@
 //! What one primary ray brings back: the beauty, and the same radiance split by effect.
 //!
-//! The split follows aovs.md. Along the mirror chain of a primary ray, vertex k = 0, 1, ...
+//! The split follows docs/aovs.md. Along the mirror chain of a primary ray, vertex k = 0, 1, ...
 //! has throughput `beta_k` (`beta_0 = 1`, `beta_{k+1} = beta_k * r_k`) and its shading counts
 //! with weight `w_k = beta_k * (1 - r_k)` when the chain continues there, else `beta_k`.
 //! Every field except `beauty` is a sum of weighted terms accumulated in f64; `beauty` is the

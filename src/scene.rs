@@ -40,7 +40,7 @@ pub struct Material {
 }
 
 impl Material {
-    /// The course's fixed sphere material (rendering.md, Materials).
+    /// The course's fixed sphere material (docs/rendering.md, Materials).
     pub const fn sphere(colour: DVec3) -> Self {
         Material {
             colour,
@@ -51,7 +51,7 @@ impl Material {
         }
     }
 
-    /// The course's fixed plane material (rendering.md, Materials).
+    /// The course's fixed plane material (docs/rendering.md, Materials).
     pub const fn plane(colour: DVec3) -> Self {
         Material {
             colour,
@@ -77,7 +77,7 @@ pub struct PointLight {
 
 impl PointLight {
     /// Illumination arriving at distance `d`: `c * (k / (PI * 4 * d^2))`, with the scalar
-    /// evaluated first and in this order, as the course does (rendering.md, Lights).
+    /// evaluated first and in this order, as the course does (docs/rendering.md, Lights).
     pub fn illumination_at(&self, d: f64) -> DVec3 {
         let falloff = self.intensity / (std::f64::consts::PI * 4.0 * d * d);
         self.colour * falloff

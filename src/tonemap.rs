@@ -1,4 +1,4 @@
-//! Tone maps (tonemap.md): pure functions from linear, scene-referred Rec.709 RGB to display
+//! Tone maps (docs/tonemap.md): pure functions from linear, scene-referred Rec.709 RGB to display
 //! values in [0, 1], and the sRGB transfer function that encodes them.
 
 use glam::{DMat3, DVec3};
@@ -78,7 +78,7 @@ fn aces(v: f64) -> f64 {
     (v * (2.51 * v + 0.03) / (v * (2.43 * v + 0.59) + 0.14)).clamp(0.0, 1.0)
 }
 
-/// Builds a matrix from rows as tonemap.md lists them (glam stores columns).
+/// Builds a matrix from rows as docs/tonemap.md lists them (glam stores columns).
 fn rows(r: [[f64; 3]; 3]) -> DMat3 {
     DMat3::from_cols_array_2d(&r).transpose()
 }

@@ -1,4 +1,4 @@
-//! The tick shading model (rendering.md): Phong with several point lights, hard shadows and
+//! The tick shading model (docs/rendering.md): Phong with several point lights, hard shadows and
 //! mirror reflection, evaluated in the course's operation order so the beauty is bit-exact.
 
 use glam::DVec3;
@@ -118,7 +118,7 @@ pub fn mirror_direction(d: DVec3, n: DVec3) -> DVec3 {
 }
 
 /// `Math.max(0, x)` as Java evaluates it, which the course's reference does for every clamp
-/// in shading (rendering.md): NaN stays NaN (Rust's `f64::max` would return 0 and shade a
+/// in shading (docs/rendering.md): NaN stays NaN (Rust's `f64::max` would return 0 and shade a
 /// pixel the reference leaves NaN), and -0.0 becomes +0.0.
 pub fn java_max_zero(x: f64) -> f64 {
     // One comparison: NaN <= 0 is false, so NaN falls through unchanged.
@@ -134,13 +134,13 @@ struct Vertex<'a> {
     point: DVec3,
     normal: DVec3,
     material: &'a Material,
-    /// `w_k` of aovs.md: the share of the pixel this vertex's shading makes up.
+    /// `w_k` of docs/aovs.md: the share of the pixel this vertex's shading makes up.
     weight: f64,
     /// Whether this is the camera's own hit (shadow masks record only that one).
     primary: bool,
 }
 
-/// Phong shading at a vertex, in the course's order (rendering.md, Shading). Returns the
+/// Phong shading at a vertex, in the course's order (docs/rendering.md, Shading). Returns the
 /// unweighted colour and adds the weighted per-effect terms to `sample`.
 fn shade(
     scene: &Scene,

@@ -1,7 +1,7 @@
-"""Independent evaluation of tonemap.md, for tests/tonemap.rs.
+"""Independent evaluation of docs/tonemap.md, for tests/tonemap.rs.
 
 Reads the beauty (or a colour layer) of an EXR with OpenImageIO, applies exposure, one
-operator and the sRGB encoding exactly as tonemap.md writes them (numpy, float64), quantises
+operator and the sRGB encoding exactly as docs/tonemap.md writes them (numpy, float64), quantises
 to 8 bits, and compares with a PNG that whitted wrote. Prints one line:
     max=<max abs difference in LSB> count=<values that differ>
 usage: python tonemap_reference.py IN.exr OUT.png OPERATOR EXPOSURE [LAYER]

@@ -13,7 +13,7 @@ pub(super) const CONDITIONING_BOUND: f64 = 1.0 / (1u64 << 23) as f64;
 /// A ray prepared for box tests: `1 / direction`, and the margin every box is grown by for it.
 ///
 /// Why a margin. For a sphere (C, r) and a ray (O, D), write w = O - C and e = 2^-53
-/// (the unit roundoff). The formula of rendering.md computes `disc = b^2 - 4ac` with
+/// (the unit roundoff). The formula of docs/rendering.md computes `disc = b^2 - 4ac` with
 /// `b = 2 D.w`, `c = w.w - r^2`. Each of those dot products and products carries a rounding
 /// error of at most a few e times the size of its terms (`|D.w| <= |D||w|`), so the computed
 /// disc differs from the exact one by |err| <= 4 |D|^2 (|w|^2 + r^2) * k e with k < 16 (three

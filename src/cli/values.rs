@@ -6,7 +6,7 @@ use clap::ValueEnum;
 use crate::output::exr::ExrCompression;
 use crate::tonemap::ToneMap;
 
-/// `--tonemap` values: the tone maps of tonemap.md, named for the command line.
+/// `--tonemap` values: the tone maps of docs/tonemap.md, named for the command line.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum ToneMapArg {
     /// The course's output: clamp, no transfer function, truncating quantisation

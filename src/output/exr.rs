@@ -1,4 +1,4 @@
-//! Film -> one-part, scanline, multi-layer OpenEXR (aovs.md, File structure and Header).
+//! Film -> one-part, scanline, multi-layer OpenEXR (docs/aovs.md, File structure and Header).
 
 use std::fs::File;
 use std::io::Write as _;
@@ -70,7 +70,7 @@ pub struct ExrMetadata {
     pub world_to_ndc: [[f64; 4]; 4],
 }
 
-/// The sums a reader can check the layers against (aovs.md, Invariants).
+/// The sums a reader can check the layers against (docs/aovs.md, Invariants).
 pub const INVARIANTS: &str = "RGB = direct + reflected; reflected = sum_k reflected_k; \
 RGB = ambient + sum_i light_i + background; RGB = ambient + diffuse + specular + background";
 
@@ -135,7 +135,7 @@ pub fn write_exr(
 
 /// The film's channels as the file stores them: one plane each, colour layers as half when
 /// asked, every channel explicitly linear (the crate would flag every non-RGB name `pLinear`,
-/// which claims perceptual encoding for linear data; aovs.md).
+/// which claims perceptual encoding for linear data; docs/aovs.md).
 fn channels(film: &Film, options: ExrOptions) -> x::SmallVec<[x::AnyChannel<x::FlatSamples>; 4]> {
     let mut channels = x::SmallVec::new();
     let mut offset = 0;

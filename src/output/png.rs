@@ -1,4 +1,4 @@
-//! Linear pixels -> tone map -> encoding -> quantisation -> PNG bytes (tonemap.md).
+//! Linear pixels -> tone map -> encoding -> quantisation -> PNG bytes (docs/tonemap.md).
 
 use std::io::Write;
 

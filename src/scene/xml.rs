@@ -1,4 +1,4 @@
-//! Scene XML -> `Scene` (scene-format.md). Strict: anything the format does not allow is an
+//! Scene XML -> `Scene` (docs/scene-format.md). Strict: anything the format does not allow is an
 //! error naming the file, the line:column of the offending element or attribute, and what was
 //! expected, because a silently different picture is worse than no picture.
 //!

@@ -1,4 +1,4 @@
-//! Every class of bad input in scene-format.md and cli.md: exit status 2, one located line on
+//! Every class of bad input in docs/scene-format.md and docs/cli.md: exit status 2, one located line on
 //! stderr, no panic, and no output file.
 
 use crate::common::*;

@@ -185,7 +185,7 @@ impl Exr {
     }
 }
 
-/// Runs OpenImageIO's idiff on `a` and `b` with the AOV tolerance of aovs.md (a value fails
+/// Runs OpenImageIO's idiff on `a` and `b` with the AOV tolerance of docs/aovs.md (a value fails
 /// when off by more than 1e-6 absolute and 1e-5 relative, for failures and warnings alike).
 pub fn idiff_aov(a: &Path, b: &Path) -> Output {
     let (a, b) = (a.to_str().expect("utf-8"), b.to_str().expect("utf-8"));

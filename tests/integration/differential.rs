@@ -1,5 +1,5 @@
 //! The hierarchy is invisible: adversarial scenes rendered with the BVH and with brute force
-//! give bit-identical films, every layer, at several bounce counts (rendering.md, "Closest
+//! give bit-identical films, every layer, at several bounce counts (docs/rendering.md, "Closest
 //! hit": the brute-force loop defines the result on every ray).
 //!
 //! `cargo test` runs a few scenes of every class. `WHITTED_DIFFERENTIAL_SCENES=N` runs N

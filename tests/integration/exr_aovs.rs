@@ -1,8 +1,8 @@
-//! The AOV EXR against aovs.md, checked with OpenImageIO's `oiiotool`/`idiff`, the OpenEXR
+//! The AOV EXR against docs/aovs.md, checked with OpenImageIO's `oiiotool`/`idiff`, the OpenEXR
 //! reference library's Python binding, and the `exr` crate.
 //!
 //! Sums use idiff with `-fail 1e-6 -failrelative 1e-5` (a value fails only when it is off by
-//! more than 1e-6 absolute and 1e-5 relative), the tolerance aovs.md states.
+//! more than 1e-6 absolute and 1e-5 relative), the tolerance docs/aovs.md states.
 
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
@@ -377,7 +377,7 @@ fn header_attributes_are_present_and_correct() {
         AttributeValue::Text(t) => assert!(t.to_string().contains("RGB = direct + reflected")),
         v => panic!("render/invariants is {v:?}"),
     }
-    // Stored the way aovs.md asks: float, scanlines, ZIP, increasing lines.
+    // Stored the way docs/aovs.md asks: float, scanlines, ZIP, increasing lines.
     let meta = exr::meta::MetaData::read_from_file(tick2_exr(), false).expect("meta");
     let header = &meta.headers[0];
     assert_eq!(header.compression, exr::prelude::Compression::ZIP16);

@@ -1,7 +1,7 @@
 //! Golden EXRs: every scene in `scenes/` re-rendered with every AOV and compared with its
 //! reference in `reference/exr/` (written only by `tools/bless`), by `whitted diff` and by
 //! OpenImageIO's `idiff`. Tolerance: a value fails when off by more than 1e-6 absolute and
-//! 1e-5 relative (aovs.md), which allows for another machine's libm, nothing more.
+//! 1e-5 relative (docs/aovs.md), which allows for another machine's libm, nothing more.
 //! On failure the actual EXR and a heat map are kept in `target/golden-failures/`.
 
 use std::path::Path;

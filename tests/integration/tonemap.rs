@@ -1,5 +1,5 @@
 //! The colour pipeline end to end: tone maps against OpenImageIO and an independent evaluation
-//! of tonemap.md, PNG metadata, dither, and `whitted tonemap`.
+//! of docs/tonemap.md, PNG metadata, dither, and `whitted tonemap`.
 
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
@@ -134,7 +134,7 @@ fn clamp_agrees_with_oiiotool_colorconvert() {
 
 #[test]
 fn tick_of_the_exr_beauty_reproduces_the_render_png() {
-    // aovs.md invariant 8: <= 1 LSB (where the f32 storage crosses a quantisation step; which
+    // docs/aovs.md invariant 8: <= 1 LSB (where the f32 storage crosses a quantisation step; which
     // values those are is checked in exr_aovs.rs; no share is promised).
     let (dir, png, exr) = tick2();
     let again = tonemap(dir.path(), exr, "again.png", &[]);

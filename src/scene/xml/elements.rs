@@ -21,7 +21,7 @@ const PLANE_ATTRIBUTES: [&str; 7] = ["x", "y", "z", "nx", "ny", "nz", "colour"];
 const LIGHT_ATTRIBUTES: [&str; 6] = ["x", "y", "z", "colour", "intensity", "name"];
 const AMBIENT_ATTRIBUTES: [&str; 1] = ["colour"];
 
-/// Longest light name (scene-format.md): names become EXR layer names such as
+/// Longest light name (docs/scene-format.md): names become EXR layer names such as
 /// `unshadowed_<name>`, and this keeps them short.
 pub const MAX_LIGHT_NAME: usize = 16;
 
