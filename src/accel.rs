@@ -5,7 +5,7 @@
 //! the same intersection code runs on every candidate, and candidates are ranked by
 //! (distance, file index), which is what "earlier object wins ties" means. A box is only ever
 //! skipped when no sphere in it can be *reported* hit by the brute-force formula, including the
-//! hits that formula reports outside the sphere on badly conditioned rays: see [`RayMargin`].
+//! hits that formula reports outside the sphere on badly conditioned rays: see `accel/margin.rs`.
 
 use glam::DVec3;
 use rayon::iter::Either;
@@ -50,7 +50,7 @@ pub struct Accelerator {
     /// every ray by the brute-force search itself.
     unbounded: Vec<Unbounded>,
     /// Rays starting in here need no margin of their own: every stored box is already grown
-    /// by one that covers them ([`RayMargin`]).
+    /// by one that covers them (`accel/margin.rs`).
     near_zone: Aabb,
 }
 
@@ -106,7 +106,7 @@ impl Accelerator {
 
     /// Writes `tree` into the already reserved node `index`, its nodes depth first; the two
     /// children of a node sit next to each other, so a node needs only the first's index.
-    /// Every box is stored grown by `margin`, the near zone's share of [`RayMargin`].
+    /// Every box is stored grown by `margin`, the near zone's share of the per-ray margin.
     fn fill(&mut self, index: usize, tree: Subtree, margin: f64) {
         self.nodes[index].bounds = Aabb {
             min: tree.bounds.min - DVec3::splat(margin),

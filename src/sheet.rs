@@ -1,5 +1,5 @@
 //! A contact sheet: every layer of an image as a captioned tile, the picture to look at
-//! first. How each layer is shown is [`display`]'s business; this file lays the tiles out.
+//! first. How each layer is shown is `sheet/display.rs`'s business; this file lays the tiles out.
 
 mod display;
 

@@ -2,8 +2,8 @@
 //! error naming the file, the line:column of the offending element or attribute, and what was
 //! expected, because a silently different picture is worse than no picture.
 //!
-//! This file walks the XML events; [`source`] turns offsets into line:column, [`attributes`]
-//! reads and types an element's attributes, and [`elements`] has one function per element.
+//! This file walks the XML events; `source` turns offsets into line:column, `attributes`
+//! reads and types an element's attributes, and `elements` has one function per element.
 
 mod attributes;
 mod elements;
