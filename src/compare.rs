@@ -3,7 +3,19 @@
 //! A value fails when `|a - b| > abs + rel * |b|` (b is the reference), or when exactly one of
 //! the two is NaN; a pixel fails when any compared channel of the layer fails there.
 
-use crate::input::Image;
+use std::collections::HashMap;
+
+use crate::input::{Channel, Image, Layer};
+
+/// Layers in order, with an index from name to position.
+fn by_name(layers: Vec<Layer>) -> (Vec<Layer>, HashMap<String, usize>) {
+    let index = layers
+        .iter()
+        .enumerate()
+        .map(|(i, l)| (l.name.clone(), i))
+        .collect();
+    (layers, index)
+}
 
 /// Tolerances: absolute and relative to the reference value.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -70,26 +82,33 @@ pub fn compare(
             actual.width, actual.height, reference.width, reference.height
         ));
     }
-    let reference_layers = reference.layers();
-    let actual_layers = actual.layers();
+    // Looked up by name through maps, so that many channels take linear time.
+    let reference_layers = by_name(reference.layers());
+    let actual_layers = by_name(actual.layers());
+    let actual_channels: HashMap<&str, &Channel> = actual
+        .channels
+        .iter()
+        .map(|c| (c.name.as_str(), c))
+        .collect();
     let names: Vec<String> = if layers.is_empty() {
-        let mut all: Vec<String> = reference_layers.iter().map(|l| l.name.clone()).collect();
-        for l in &actual_layers {
-            if !all.contains(&l.name) {
-                all.push(l.name.clone());
-            }
-        }
+        let mut all: Vec<String> = reference_layers.0.iter().map(|l| l.name.clone()).collect();
+        all.extend(
+            actual_layers
+                .0
+                .iter()
+                .filter(|l| !reference_layers.1.contains_key(&l.name))
+                .map(|l| l.name.clone()),
+        );
         all
     } else {
         layers.to_vec()
     };
     let mut reports = Vec::new();
     for name in names {
-        let find = |image_layers: &[crate::input::Layer], which: &str| {
-            image_layers
-                .iter()
-                .find(|l| l.name == name)
-                .cloned()
+        let find = |(list, index): &(Vec<Layer>, HashMap<String, usize>), which: &str| {
+            index
+                .get(&name)
+                .map(|&i| list[i].clone())
                 .ok_or_else(|| format!("layer `{name}` is missing from the {which} image"))
         };
         let r = find(&reference_layers, "second (reference)")?;
@@ -98,12 +117,14 @@ pub fn compare(
         let mut pairs = Vec::new();
         for &i in &r.channels {
             let reference_channel = &reference.channels[i];
-            let actual_channel = actual.channel(&reference_channel.name).ok_or_else(|| {
-                format!(
-                    "channel `{}` is missing from the first image",
-                    reference_channel.name
-                )
-            })?;
+            let actual_channel = actual_channels
+                .get(reference_channel.name.as_str())
+                .ok_or_else(|| {
+                    format!(
+                        "channel `{}` is missing from the first image",
+                        reference_channel.name
+                    )
+                })?;
             channel_names.push(reference_channel.name.clone());
             pairs.push((&actual_channel.values, &reference_channel.values));
         }

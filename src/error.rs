@@ -36,20 +36,20 @@ pub enum Error {
     /// Memory that was needed and could not be had, with the numbers.
     #[error("cannot allocate {} for {what}", crate::memory::gib(*bytes))]
     Allocation { what: String, bytes: u64 },
-    /// The user pressed Ctrl-C; nothing was written.
-    #[error("interrupted; no output was written")]
-    Interrupted,
+    /// A signal (Ctrl-C, SIGTERM, SIGHUP, SIGQUIT) stopped the run; nothing was written.
+    #[error("interrupted by signal {signal}; no output was written")]
+    Interrupted { signal: i32 },
 }
 
 /// The crate's result type.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
 
 impl Error {
-    /// The process exit status for this error: 130 for an interruption (128 + SIGINT, as
-    /// shells report it), 2 for everything else.
+    /// The process exit status for this error: 128 + the signal for an interruption (130 for
+    /// Ctrl-C, as shells report it), 2 for everything else.
     pub fn exit_code(&self) -> u8 {
         match self {
-            Error::Interrupted => 130,
+            Error::Interrupted { signal } => u8::try_from(128 + signal).unwrap_or(130),
             _ => 2,
         }
     }

@@ -34,6 +34,7 @@ pub mod commands;
 pub mod compare;
 pub mod error;
 pub mod film;
+pub mod fingerprint;
 pub mod frame;
 pub mod geometry;
 pub mod input;

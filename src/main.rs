@@ -10,6 +10,7 @@ use whitted::cli::{Cli, Command};
 use whitted::commands;
 
 fn main() -> ExitCode {
+    whitted::output::stdout::probe();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) => return usage_error(&e),
@@ -35,8 +36,9 @@ fn main() -> ExitCode {
     }
 }
 
-/// Help and version go to stdout with status 0; a bad command line becomes the first line of
-/// clap's message (which already starts with `error:`) and status 2.
+/// Help and version go to stdout with status 0; a bad command line gets clap's whole message
+/// on stderr (what is wrong, the valid values or missing arguments, the usage line) and
+/// status 2.
 fn usage_error(e: &clap::Error) -> ExitCode {
     match e.kind() {
         ErrorKind::DisplayHelp
@@ -46,14 +48,7 @@ fn usage_error(e: &clap::Error) -> ExitCode {
             ExitCode::SUCCESS
         }
         _ => {
-            let text = e.to_string();
-            let first = text.lines().next().unwrap_or("error: bad command line");
-            let tip = text
-                .lines()
-                .map(str::trim)
-                .find(|l| l.starts_with("tip:"))
-                .map_or(String::new(), |t| format!(" ({t})"));
-            eprintln!("{first}{tip} (see `whitted --help`)");
+            let _ = e.print();
             ExitCode::from(2)
         }
     }

@@ -1,6 +1,10 @@
 //! Refusing renders that cannot fit in memory before allocating anything, so a typo in
 //! `--width` is a clear message instead of an out-of-memory kill minutes later.
 
+mod limits;
+
+pub use limits::available_bytes;
+
 use rayon::prelude::*;
 
 use crate::error::{Error, Result};
@@ -13,14 +17,6 @@ pub fn render_bytes(width: u32, height: u32, channels: usize, exr: bool) -> u64 
     let film = 24 + 4 * channels as u64;
     let writing = if exr { 2 * 4 * channels as u64 } else { 0 } + 24 + 3;
     pixels.saturating_mul(film + writing)
-}
-
-/// Memory the system can give us now (Linux `MemAvailable`), if it says.
-pub fn available_bytes() -> Option<u64> {
-    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
-    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kib * 1024)
 }
 
 /// An error if `needed` bytes are more than `available`.

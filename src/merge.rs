@@ -11,6 +11,7 @@ use std::path::PathBuf;
 use exr::prelude as x;
 
 use crate::error::{Error, Result};
+use crate::memory;
 use crate::openexr::{self, FlatImage};
 
 /// Places every part's pixels into one full-frame image, after checking that the parts fit
@@ -36,12 +37,28 @@ fn check_parts(parts: &[FlatImage], names: &[PathBuf]) -> Result<()> {
             .collect()
     };
     let channels = signature(first);
-    let mut covered = vec![None::<usize>; width * height];
+    // The frame's size comes from a header: check it fits before allocating for it (a map of
+    // which part covers each pixel, then the merged channels).
+    let per_pixel = std::mem::size_of::<Option<usize>>() as u64 + 4 * channels.len() as u64;
+    memory::check(
+        (width as u64)
+            .saturating_mul(height as u64)
+            .saturating_mul(per_pixel),
+        memory::available_bytes(),
+        &format!("a merged {width}x{height} frame"),
+    )?;
+    let mut covered = memory::filled(width * height, None::<usize>)?;
     for (i, part) in parts.iter().enumerate() {
         let name = names[i].display();
         if part.attributes.display_window != display {
             return Err(usage(format!(
                 "{name}: its display window differs from the first part's"
+            )));
+        }
+        if let Some(difference) = render_difference(first, part) {
+            return Err(usage(format!(
+                "{name}: not a part of the same render as {} ({difference})",
+                names[0].display()
             )));
         }
         if signature(part) != channels {
@@ -131,4 +148,65 @@ fn assemble(parts: &[FlatImage]) -> Result<FlatImage> {
         x::AnyChannels::sort(list),
     );
     Ok(x::Image::new(first.attributes.clone(), layer))
+}
+
+/// How `part` was rendered differently from `first`, from the render identity whitted
+/// records in every EXR (`render/identity`, `render/scene` and the recorded command), or
+/// `None` when they are parts of one render. Files without an identity (from elsewhere) are
+/// only compared by their display window and channels.
+fn render_difference(first: &FlatImage, part: &FlatImage) -> Option<String> {
+    let identity = |p: &FlatImage| text_attribute(p, "render/identity");
+    match (identity(first), identity(part)) {
+        (None, None) => return None,
+        (Some(a), Some(b)) if a == b => return None,
+        (Some(_), None) | (None, Some(_)) => {
+            return Some("only one of them records a whitted render identity".into())
+        }
+        _ => {}
+    }
+    if text_attribute(first, "render/scene") != text_attribute(part, "render/scene") {
+        return Some("rendered from a different scene file".into());
+    }
+    let options = |p: &FlatImage| -> Vec<String> {
+        let comments = p.layer_data.attributes.comments.as_ref();
+        let text = comments.map(|c| c.to_string()).unwrap_or_default();
+        let command = text.split_once("command: ").map_or("", |(_, c)| c);
+        // The scene is compared by content above, not by the path it was read from.
+        command
+            .split(" --")
+            .skip(1)
+            .map(|o| format!("--{o}"))
+            .filter(|o| !o.starts_with("--input "))
+            .collect()
+    };
+    let (a, b) = (options(first), options(part));
+    let name = |o: &str| o.split(' ').next().unwrap_or_default().to_string();
+    let names: Vec<String> = a.iter().chain(&b).map(|o| name(o)).collect();
+    for option in names {
+        let value = |list: &[String]| {
+            list.iter()
+                .find(|o| name(o) == option)
+                .cloned()
+                .unwrap_or_else(|| format!("no {option}"))
+        };
+        let (x, y) = (value(&a), value(&b));
+        if x != y {
+            return Some(format!("`{y}` where the first part has `{x}`"));
+        }
+    }
+    Some("their render identities differ".into())
+}
+
+/// A text attribute of a part's header.
+fn text_attribute(part: &FlatImage, name: &str) -> Option<String> {
+    part.layer_data
+        .attributes
+        .other
+        .iter()
+        .chain(part.attributes.other.iter())
+        .find(|(key, _)| **key == *name)
+        .and_then(|(_, value)| match value {
+            x::AttributeValue::Text(t) => Some(t.to_string()),
+            _ => None,
+        })
 }

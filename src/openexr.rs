@@ -34,3 +34,21 @@ pub fn pixel_type(samples: &x::FlatSamples) -> &'static str {
         x::FlatSamples::U32(_) => "uint",
     }
 }
+
+/// Memory that decoding the first part of a file with this header takes at its peak: every
+/// channel's samples as stored, plus the f32 copy `input` makes. Saturating, so a header
+/// declaring an absurd size gives `u64::MAX` rather than wrapping to something small.
+pub fn decoded_bytes(meta: &exr::meta::MetaData) -> u64 {
+    let Some(header) = meta.headers.first() else {
+        return 0;
+    };
+    let size = header.layer_size;
+    let pixels = (size.0 as u64).saturating_mul(size.1 as u64);
+    let per_pixel: u64 = header
+        .channels
+        .list
+        .iter()
+        .map(|c| c.sample_type.bytes_per_sample() as u64 + 4)
+        .fold(0, u64::saturating_add);
+    pixels.saturating_mul(per_pixel)
+}

@@ -5,3 +5,4 @@ pub mod destination;
 pub mod exr;
 pub mod exr_header;
 pub mod png;
+pub mod stdout;

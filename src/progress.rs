@@ -51,3 +51,20 @@ impl Progress {
         self.bar.finish_and_clear();
     }
 }
+
+impl Drop for Progress {
+    /// Also on an error or an interruption: the bar never stays on screen.
+    fn drop(&mut self) {
+        self.bar.finish_and_clear();
+    }
+}
+
+/// Erases the current terminal line on stderr (where a bar may be drawn), for a process that
+/// exits without unwinding.
+pub fn clear_line() {
+    use std::io::Write;
+    let mut err = std::io::stderr();
+    if err.is_terminal() {
+        let _ = err.write_all(b"\r\x1b[2K");
+    }
+}

@@ -84,6 +84,10 @@ pub fn render(
                 for row in 0..rows {
                     let y = region.y0 + (band * TILE + row) as u32;
                     for column in tile_x..(tile_x + TILE).min(width) {
+                        // At every pixel: a stop is seen within one pixel's samples.
+                        if interrupt::requested() {
+                            return (rays, non_finite);
+                        }
                         let x = region.x0 + column as u32;
                         for (i, &(u, v)) in grid.iter().enumerate() {
                             // The exact tick ray wherever the grid has a cell at the centre.

@@ -3,18 +3,28 @@
 
 use std::time::SystemTime;
 
+use crate::fingerprint::fingerprint;
 use crate::output::exr::ExrMetadata;
 use crate::plan::RenderPlan;
 
 /// The header metadata of `plan`'s EXR. `scene_name` is the scene file as given (or the
-/// embedded scene's name); `light_names` in layer order.
-pub fn metadata(plan: &RenderPlan, scene_name: &str, light_names: Vec<String>) -> ExrMetadata {
+/// embedded scene's name), `scene_bytes` its content; `light_names` in layer order.
+pub fn metadata(
+    plan: &RenderPlan,
+    scene_name: &str,
+    scene_bytes: &[u8],
+    light_names: Vec<String>,
+) -> ExrMetadata {
+    let command = render_command(plan, Some(scene_name));
+    // The scene's content, not its path: parts rendered on machines that mount the scene in
+    // different places are still one render.
+    let options = render_command(plan, None);
+    let scene = fingerprint(&[scene_bytes]);
     ExrMetadata {
         software: format!("whitted {}", env!("CARGO_PKG_VERSION")),
-        comments: format!(
-            "scene: {scene_name}; command: {}",
-            render_command(plan, scene_name)
-        ),
+        identity: fingerprint(&[scene.as_bytes(), options.as_bytes()]),
+        scene,
+        comments: format!("scene: {scene_name}; command: {command}"),
         bounces: plan.frame.trace.bounces,
         spp: plan.frame.spp,
         light_names,
@@ -26,8 +36,9 @@ pub fn metadata(plan: &RenderPlan, scene_name: &str, light_names: Vec<String>) -
 /// The command that reproduces these pixels: every option that changes them, in canonical
 /// form. Output paths, threads and verbosity are left out, so that the same render written
 /// elsewhere, or with another thread count, has the same bytes. The region is left out too:
-/// a region's header is the full render's, which is what lets `merge` reproduce it.
-fn render_command(plan: &RenderPlan, scene_name: &str) -> String {
+/// a region's header is the full render's, which is what lets `merge` reproduce it. With no
+/// `scene_name`, the scene is left out too.
+fn render_command(plan: &RenderPlan, scene_name: Option<&str>) -> String {
     let quote = |a: &str| {
         if a.contains(char::is_whitespace) {
             format!("'{a}'")
@@ -36,20 +47,20 @@ fn render_command(plan: &RenderPlan, scene_name: &str) -> String {
         }
     };
     let frame = &plan.frame;
-    let mut parts = vec![
-        "whitted render".to_string(),
-        if plan.embedded_scene {
-            "(embedded tick2.xml)".to_string()
-        } else {
-            format!("--input {}", quote(scene_name))
-        },
+    let mut parts = vec!["whitted render".to_string()];
+    match scene_name {
+        Some(_) if plan.embedded_scene => parts.push("(embedded tick2.xml)".to_string()),
+        Some(name) => parts.push(format!("--input {}", quote(name))),
+        None => {}
+    }
+    parts.extend([
         format!("--bounces {}", frame.trace.bounces),
         format!(
             "--width {} --height {}",
             frame.camera.width, frame.camera.height
         ),
         format!("--spp {}", frame.spp),
-    ];
+    ]);
     if !frame.trace.shadows {
         parts.push("--no-shadows".into());
     }

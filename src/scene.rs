@@ -2,7 +2,7 @@
 
 pub mod xml;
 
-pub use xml::{load, parse_bytes, parse_str};
+pub use xml::{load, parse_bytes, parse_str, read_file};
 
 /// The course's Tick 2 scene, compiled in so that `whitted` with no arguments has a scene.
 pub const EMBEDDED_TICK2: &str = include_str!("../scenes/tick2.xml");

@@ -8,8 +8,9 @@ use crate::compare::{compare, excess_map, LayerReport, Tolerance};
 use crate::error::{Error, Result};
 use crate::input::{self, Image};
 use crate::numbers::compact as number;
-use crate::output::destination::Destination;
+use crate::output::destination::{refuse_clashes, Destination};
 use crate::output::png::{PngImage, PngPixels};
+use crate::output::stdout;
 
 /// Returns whether the images match.
 pub fn run(args: &DiffArgs) -> Result<bool> {
@@ -17,6 +18,9 @@ pub fn run(args: &DiffArgs) -> Result<bool> {
         abs: args.abs,
         rel: args.rel,
     };
+    if let Some(heatmap) = &args.heatmap {
+        refuse_clashes(&[&args.actual, &args.reference], &[heatmap])?;
+    }
     let mut heatmap = args.heatmap.as_deref().map(Destination::open).transpose()?;
     let actual = input::read(&args.actual)?;
     let reference = input::read(&args.reference)?;
@@ -47,7 +51,7 @@ pub fn run(args: &DiffArgs) -> Result<bool> {
     } else {
         table(args, &reference, &reports, passed)
     };
-    println!("{text}");
+    stdout::print_line(&text)?;
     Ok(passed)
 }
 

@@ -6,6 +6,7 @@ use crate::cli::InfoArgs;
 use crate::error::Result;
 use crate::input::{self, Image, Layer};
 use crate::numbers::compact as number;
+use crate::output::stdout;
 use crate::stats::Stats;
 
 pub fn run(args: &InfoArgs) -> Result<()> {
@@ -17,8 +18,7 @@ pub fn run(args: &InfoArgs) -> Result<()> {
     } else {
         table(&image, &args.input.display().to_string())
     };
-    println!("{text}");
-    Ok(())
+    stdout::print_line(&text)
 }
 
 fn channel_names(image: &Image, layer: &Layer) -> Vec<String> {

@@ -20,7 +20,7 @@ use crate::scene::{self, Scene};
 const EMBEDDED_NAME: &str = "tick2.xml (embedded)";
 
 pub fn run(args: &RenderArgs) -> Result<()> {
-    let scene = load_scene(args.input.as_deref())?;
+    let (scene, scene_bytes) = load_scene(args.input.as_deref())?;
     let plan = RenderPlan::new(&args.request(), &scene)?;
     // Open outputs before rendering, so that an unwritable path fails in milliseconds.
     let mut png = plan.png.as_deref().map(Destination::open).transpose()?;
@@ -44,7 +44,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let started = Instant::now();
     if let Some(file) = exr_file.as_mut() {
         let light_names = scene.lights.iter().map(|l| l.name.clone()).collect();
-        let metadata = render_record::metadata(&plan, &scene_name(args), light_names);
+        let metadata = render_record::metadata(&plan, &scene_name(args), &scene_bytes, light_names);
         let path = file.target().to_path_buf();
         write_exr(file.file(), &film, plan.exr_options, &metadata)
             .map_err(|msg| Error::Exr { path, msg })?;
@@ -74,12 +74,15 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     Ok(())
 }
 
-/// The scene file, or the course's tick2 scene compiled into the binary.
-fn load_scene(input: Option<&Path>) -> Result<Scene> {
-    match input {
-        Some(path) => scene::load(path),
-        None => scene::parse_str(EMBEDDED_NAME, scene::EMBEDDED_TICK2),
-    }
+/// The scene file (and its bytes, which the EXR's render identity fingerprints), or the
+/// course's tick2 scene compiled into the binary.
+fn load_scene(input: Option<&Path>) -> Result<(Scene, Vec<u8>)> {
+    let bytes = match input {
+        Some(path) => scene::read_file(path)?,
+        None => scene::EMBEDDED_TICK2.as_bytes().to_vec(),
+    };
+    let name = input.map_or(EMBEDDED_NAME.to_string(), |p| p.display().to_string());
+    Ok((scene::parse_bytes(&name, &bytes)?, bytes))
 }
 
 fn scene_name(args: &RenderArgs) -> String {

@@ -3,10 +3,11 @@
 use crate::cli::SheetArgs;
 use crate::error::Result;
 use crate::input;
-use crate::output::destination::Destination;
+use crate::output::destination::{refuse_clashes, Destination};
 use crate::sheet::{compose, select};
 
 pub fn run(args: &SheetArgs) -> Result<()> {
+    refuse_clashes(&[&args.input], &[&args.output])?;
     let mut output = Destination::open(&args.output)?;
     let image = input::read_exr(&args.input)?;
     let layers = select(&image, &args.layers)?;

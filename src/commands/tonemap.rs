@@ -4,11 +4,12 @@
 use crate::cli::TonemapArgs;
 use crate::error::{Error, Result};
 use crate::input;
-use crate::output::destination::Destination;
+use crate::output::destination::{refuse_clashes, Destination};
 use crate::output::png::encode;
 
 pub fn run(args: &TonemapArgs) -> Result<()> {
     let encoding = args.tone.request().encoding()?;
+    refuse_clashes(&[&args.input], &[&args.output])?;
     let mut output = Destination::open(&args.output)?;
     let image = input::read_exr(&args.input)?;
     let pixels = image.colour_layer(&args.layer).map_err(|msg| Error::Exr {

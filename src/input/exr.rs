@@ -7,16 +7,44 @@ use exr::prelude as x;
 
 use crate::error::{Error, Result};
 use crate::input::image::{Channel, Format, Image};
-use crate::openexr;
+use crate::memory;
+use crate::openexr::{self, FlatImage};
+
+/// Reads the first part of the OpenEXR file at `path` as the `exr` crate's flat image (what
+/// `merge` works on), with the same checks as `input::read`.
+pub fn read_flat(path: &Path) -> Result<FlatImage> {
+    let bytes = crate::input::read_recognised(path)?;
+    if !bytes.starts_with(&openexr::MAGIC) {
+        return Err(Error::Usage(format!(
+            "{}: not an OpenEXR file (this command reads EXRs)",
+            path.display()
+        )));
+    }
+    decode_flat(path, bytes)
+}
+
+/// Decodes the first part after checking, from the header alone, that the pixels it declares
+/// fit in the memory this process may use: a tiny file declaring 100000x100000 floats is an
+/// error with numbers, not an abort.
+fn decode_flat(path: &Path, bytes: Vec<u8>) -> Result<FlatImage> {
+    let unreadable = |e: x::Error| Error::Exr {
+        path: path.to_path_buf(),
+        msg: format!("not a readable OpenEXR file ({e})"),
+    };
+    let meta =
+        exr::meta::MetaData::read_from_buffered(bytes.as_slice(), false).map_err(unreadable)?;
+    let needed = openexr::decoded_bytes(&meta).saturating_add(bytes.len() as u64);
+    memory::check(
+        needed,
+        memory::available_bytes(),
+        &format!("decoding {}", path.display()),
+    )?;
+    openexr::read_first_part(std::io::Cursor::new(bytes)).map_err(unreadable)
+}
 
 /// Decodes the first part of an OpenEXR file (scanline or tiled, any pixel types).
 pub fn decode(path: &Path, bytes: Vec<u8>) -> Result<Image> {
-    let fail = |msg: String| Error::Exr {
-        path: path.to_path_buf(),
-        msg,
-    };
-    let image = openexr::read_first_part(std::io::Cursor::new(bytes))
-        .map_err(|e| fail(format!("not a readable OpenEXR file ({e})")))?;
+    let image = decode_flat(path, bytes)?;
     let layer = image.layer_data;
     let channels = layer
         .channel_data

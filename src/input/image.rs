@@ -1,6 +1,8 @@
 //! An image as named float channels grouped into layers: the common form in which `tonemap`,
 //! `info`, `diff` and `sheet` see EXRs and PNGs.
 
+use std::collections::HashMap;
+
 use glam::DVec3;
 
 use crate::aov;
@@ -50,15 +52,20 @@ impl Image {
 
     /// The channels grouped into layers, in name order with `beauty` first.
     pub fn layers(&self) -> Vec<Layer> {
+        // Indexed by name, so that files with many channels take linear time.
         let mut layers: Vec<Layer> = Vec::new();
+        let mut index: HashMap<&str, usize> = HashMap::new();
         for (i, channel) in self.channels.iter().enumerate() {
-            let name = aov::layer_of_channel(&channel.name).to_string();
-            match layers.iter_mut().find(|l| l.name == name) {
-                Some(layer) => layer.channels.push(i),
-                None => layers.push(Layer {
-                    name,
-                    channels: vec![i],
-                }),
+            let name = aov::layer_of_channel(&channel.name);
+            match index.get(name) {
+                Some(&l) => layers[l].channels.push(i),
+                None => {
+                    index.insert(name, layers.len());
+                    layers.push(Layer {
+                        name: name.to_string(),
+                        channels: vec![i],
+                    });
+                }
             }
         }
         for layer in &mut layers {

@@ -5,20 +5,33 @@ use std::path::Path;
 
 use crate::error::{Error, Result};
 use crate::input::image::{Channel, Format, Image};
+use crate::memory;
 
 pub fn decode(path: &Path, bytes: &[u8]) -> Result<Image> {
     let fail = |msg: String| Error::Png {
         path: path.to_path_buf(),
         msg,
     };
-    let mut decoder = png::Decoder::new(std::io::Cursor::new(bytes));
+    // The crate's own limit (64 MiB) would refuse large real images; ours is the memory this
+    // process may use, checked again below against the size the header declares.
+    let budget = memory::available_bytes().unwrap_or(u64::MAX);
+    let limits = png::Limits {
+        bytes: usize::try_from(budget).unwrap_or(usize::MAX),
+    };
+    let mut decoder = png::Decoder::new_with_limits(std::io::Cursor::new(bytes), limits);
     // Expand palettes and low bit depths to 8 bits; keep 16-bit samples.
     decoder.set_transformations(png::Transformations::EXPAND);
     let mut reader = decoder.read_info().map_err(|e| fail(e.to_string()))?;
     let size = reader
         .output_buffer_size()
         .ok_or_else(|| fail("image too large".into()))?;
-    let mut buffer = vec![0; size];
+    // The decoded bytes, then up to four bytes of f32 per byte for the channels.
+    memory::check(
+        (size as u64).saturating_mul(5),
+        Some(budget),
+        &format!("decoding {}", path.display()),
+    )?;
+    let mut buffer = memory::filled(size, 0u8)?;
     let frame = reader
         .next_frame(&mut buffer)
         .map_err(|e| fail(e.to_string()))?;

@@ -1,74 +1,198 @@
 //! Outputs appear whole or not at all: each is written to a temporary file beside its target
 //! and renamed over it only when complete, so a failed or interrupted run never leaves a partial
 //! file and never clobbers a previous good one.
+//!
+//! Targets that are not regular files keep what they are: a symlink keeps its link (the file it
+//! points to is replaced), a character device or FIFO (`/dev/null`, a named pipe) is written
+//! straight through at commit from an unnamed temporary file, and anything else (a directory, a
+//! block device, a socket) is refused. Named temporary files are registered with `interrupt`,
+//! which removes them if a signal ends the process before they are renamed or dropped (a
+//! dropped file removes itself; its stale registration then names nothing).
 
-use std::fs::File;
+use std::fs::{File, OpenOptions};
+use std::io::{Seek, SeekFrom};
 use std::path::{Path, PathBuf};
 
 use tempfile::NamedTempFile;
 
 use crate::error::{Error, Result};
+use crate::interrupt;
 
 /// An output file being written. Dropping it without `commit` deletes the temporary file and
 /// leaves the target untouched.
 pub struct AtomicFile {
-    temp: NamedTempFile,
+    temp: Temp,
+    /// The path as the user gave it, for messages.
     target: PathBuf,
+}
+
+enum Temp {
+    /// Beside the file it will replace (the symlink's target, if the path is a link).
+    Named {
+        file: NamedTempFile,
+        replaces: PathBuf,
+    },
+    /// For a device or FIFO: copied into it at commit.
+    Unnamed { file: File, device: PathBuf },
+}
+
+/// What a path is, after following symlinks.
+enum Kind {
+    /// A regular file, or nothing yet: written by rename. The path has its links resolved.
+    Replaceable(PathBuf),
+    /// A character device or FIFO: written through.
+    Device(PathBuf),
+}
+
+/// Follows `target` through symlinks (even dangling ones, whose file is then created) and says
+/// how it can be written.
+fn classify(target: &Path) -> Result<Kind> {
+    let refuse = |what: &str| {
+        Error::io(
+            target,
+            "cannot write output",
+            std::io::Error::other(format!(
+                "it is {what}; outputs are regular files, character devices or FIFOs"
+            )),
+        )
+    };
+    let mut path = target.to_path_buf();
+    for _ in 0..40 {
+        let Ok(meta) = std::fs::symlink_metadata(&path) else {
+            return Ok(Kind::Replaceable(path));
+        };
+        let kind = meta.file_type();
+        if kind.is_symlink() {
+            let link = std::fs::read_link(&path)
+                .map_err(|e| Error::io(target, "cannot write output", e))?;
+            path = match path.parent() {
+                Some(dir) => dir.join(link),
+                None => link,
+            };
+            continue;
+        }
+        if kind.is_file() {
+            return Ok(Kind::Replaceable(path));
+        }
+        if kind.is_dir() {
+            return Err(refuse("a directory"));
+        }
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::FileTypeExt;
+            if kind.is_char_device() || kind.is_fifo() {
+                return Ok(Kind::Device(path));
+            }
+            if kind.is_block_device() {
+                return Err(refuse("a block device"));
+            }
+            if kind.is_socket() {
+                return Err(refuse("a socket"));
+            }
+        }
+        return Err(refuse("not a regular file"));
+    }
+    Err(refuse("a loop of symbolic links"))
 }
 
 impl AtomicFile {
     /// Creates the temporary file now, so an unwritable destination fails before any work is
     /// done rather than after a long render.
     pub fn create(target: &Path) -> Result<Self> {
-        if target.is_dir() {
-            return Err(Error::io(
-                target,
-                "cannot write output",
-                std::io::Error::other("it is a directory"),
-            ));
-        }
-        let dir = match target.parent() {
-            Some(p) if !p.as_os_str().is_empty() => p,
-            _ => Path::new("."),
+        let cannot = |e| Error::io(target, "cannot write output", e);
+        let temp = match classify(target)? {
+            Kind::Replaceable(replaces) => {
+                let dir = match replaces.parent() {
+                    Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+                    _ => PathBuf::from("."),
+                };
+                let mut builder = tempfile::Builder::new();
+                builder.prefix(".whitted-").suffix(".part");
+                // Like any newly created file (rw-r--r--), not the private 0600 of a temporary
+                // file.
+                #[cfg(unix)]
+                {
+                    use std::os::unix::fs::PermissionsExt;
+                    builder.permissions(std::fs::Permissions::from_mode(0o644));
+                }
+                let file = builder.tempfile_in(dir).map_err(cannot)?;
+                interrupt::register_temp(file.path());
+                Temp::Named { file, replaces }
+            }
+            Kind::Device(device) => {
+                // Checked now, so that an unwritable device fails before the work (a FIFO is
+                // not opened yet: that would wait for a reader).
+                if !is_fifo(&device) {
+                    OpenOptions::new()
+                        .write(true)
+                        .open(&device)
+                        .map_err(cannot)?;
+                }
+                Temp::Unnamed {
+                    file: tempfile::tempfile().map_err(cannot)?,
+                    device,
+                }
+            }
         };
-        let mut builder = tempfile::Builder::new();
-        builder.prefix(".whitted-").suffix(".part");
-        // Like any newly created file (rw-r--r--), not the private 0600 of a temporary file.
-        #[cfg(unix)]
-        {
-            use std::os::unix::fs::PermissionsExt;
-            builder.permissions(std::fs::Permissions::from_mode(0o644));
-        }
-        let temp = builder
-            .tempfile_in(dir)
-            .map_err(|e| Error::io(target, "cannot write output", e))?;
         Ok(AtomicFile {
             temp,
             target: target.to_path_buf(),
         })
     }
 
-    /// The target path this file will be renamed to.
+    /// The target path as given.
     pub fn target(&self) -> &Path {
         &self.target
     }
 
     /// The temporary file to write the content into.
     pub fn file(&mut self) -> &mut File {
-        self.temp.as_file_mut()
+        match &mut self.temp {
+            Temp::Named { file, .. } => file.as_file_mut(),
+            Temp::Unnamed { file, .. } => file,
+        }
     }
 
-    /// Makes the written content durable and renames it over the target.
+    /// Makes the written content durable and puts it in place: renamed over the file, or
+    /// copied into the device. Refused (and the temporary file removed) once a signal asked
+    /// the run to stop, so an interrupted run never publishes.
     pub fn commit(self) -> Result<()> {
-        let target = self.target.clone();
-        self.temp
-            .as_file()
-            .sync_all()
-            .map_err(|e| Error::io(&target, "cannot write output", e))?;
-        self.temp
-            .persist(&self.target)
-            .map_err(|e| Error::io(&target, "cannot write output", e.error))?;
-        Ok(())
+        let target = self.target;
+        let cannot = |e| Error::io(&target, "cannot write output", e);
+        match self.temp {
+            Temp::Named { file, replaces } => {
+                file.as_file().sync_all().map_err(cannot)?;
+                let temp_path = file.path().to_path_buf();
+                let published =
+                    interrupt::while_not_stopping(|| file.persist(&replaces).map_err(|e| e.error));
+                interrupt::unregister_temp(&temp_path);
+                published?.map_err(cannot)?;
+                Ok(())
+            }
+            Temp::Unnamed { mut file, device } => {
+                interrupt::check()?;
+                file.seek(SeekFrom::Start(0)).map_err(cannot)?;
+                let mut out = OpenOptions::new()
+                    .write(true)
+                    .open(&device)
+                    .map_err(cannot)?;
+                std::io::copy(&mut file, &mut out).map_err(cannot)?;
+                Ok(())
+            }
+        }
+    }
+}
+
+fn is_fifo(path: &Path) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        std::fs::metadata(path).is_ok_and(|m| m.file_type().is_fifo())
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = path;
+        false
     }
 }
 

@@ -6,14 +6,21 @@ use std::path::{Path, PathBuf};
 use crate::error::{Error, Result};
 use crate::output::atomic::AtomicFile;
 use crate::output::png::{write_png, PngImage};
+use crate::output::stdout;
 
 /// What `-o -` means.
 pub const STDOUT: &str = "-";
 
-/// Whether two paths name the same file once resolved (`a.png`, `./a.png` and `dir/../a.png`
-/// all do), so that one output cannot overwrite another or the input. The parent directory
-/// is resolved through symlinks when it exists.
+/// Whether two paths name the same file, so that one output cannot overwrite another or an
+/// input: the same device and inode when both exist (whatever links or `..` lead there),
+/// else the same path once the parent directory is resolved (`a.png`, `./a.png` and
+/// `dir/../a.png` all are).
 pub fn same_file(a: &Path, b: &Path) -> bool {
+    #[cfg(unix)]
+    if let (Ok(x), Ok(y)) = (std::fs::metadata(a), std::fs::metadata(b)) {
+        use std::os::unix::fs::MetadataExt;
+        return (x.dev(), x.ino()) == (y.dev(), y.ino());
+    }
     fn resolved(p: &Path) -> Option<PathBuf> {
         let parent = match p.parent() {
             Some(d) if !d.as_os_str().is_empty() => d,
@@ -25,6 +32,33 @@ pub fn same_file(a: &Path, b: &Path) -> bool {
         (Some(x), Some(y)) => x == y,
         _ => a == b,
     }
+}
+
+/// Refuses outputs that are one of the inputs or each other: `whitted tonemap a.exr -o a.exr`
+/// must not replace its own input. Standard output (`-`) is never a clash.
+pub fn refuse_clashes(inputs: &[&Path], outputs: &[&Path]) -> Result<()> {
+    let outputs: Vec<&Path> = outputs
+        .iter()
+        .copied()
+        .filter(|p| p.as_os_str() != STDOUT)
+        .collect();
+    for (i, output) in outputs.iter().enumerate() {
+        if let Some(input) = inputs.iter().find(|input| same_file(output, input)) {
+            return Err(Error::Usage(format!(
+                "the output `{}` is the input `{}`; give another path",
+                output.display(),
+                input.display()
+            )));
+        }
+        if let Some(other) = outputs[..i].iter().find(|o| same_file(output, o)) {
+            return Err(Error::Usage(format!(
+                "the outputs `{}` and `{}` are the same file; give different paths",
+                other.display(),
+                output.display()
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// An output being prepared. Nothing becomes visible until `commit`: a file stays a hidden
@@ -83,10 +117,8 @@ impl Destination {
         match self {
             Destination::File(file) => file.commit(),
             Destination::Stdout(bytes) => {
-                let mut out = std::io::stdout().lock();
-                out.write_all(&bytes)
-                    .and_then(|()| out.flush())
-                    .map_err(|e| Error::io(STDOUT, "cannot write to standard output", e))
+                crate::interrupt::check()?;
+                stdout::write_all(&bytes)
             }
         }
     }

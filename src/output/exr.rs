@@ -68,6 +68,11 @@ pub struct ExrMetadata {
     /// `YYYY:MM:DD hh:mm:ss` in UTC, only when asked for: without it files are reproducible.
     pub capture_date: Option<String>,
     pub world_to_ndc: [[f64; 4]; 4],
+    /// What tells this render from any other: a fingerprint of the scene's bytes and of every
+    /// pixel-affecting option (the recorded command, which includes the full size).
+    pub identity: String,
+    /// A fingerprint of the scene file's bytes.
+    pub scene: String,
 }
 
 /// The sums a reader can check the layers against (docs/aovs.md, Invariants).
@@ -116,6 +121,11 @@ pub fn write_exr(
         ),
         ("render/invariants", AttributeValue::Text(text(INVARIANTS))),
         ("render/zMiss", AttributeValue::F32(Z_MISS as f32)),
+        (
+            "render/identity",
+            AttributeValue::Text(text(&metadata.identity)),
+        ),
+        ("render/scene", AttributeValue::Text(text(&metadata.scene))),
     ];
     for (name, value) in custom {
         attributes.other.insert(text(name), value);

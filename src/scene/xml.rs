@@ -33,6 +33,11 @@ pub const MAX_ELEMENTS: usize = 10_000_000;
 
 /// Reads and parses the scene file at `path`. Error messages name the file as given.
 pub fn load(path: &Path) -> Result<Scene> {
+    parse_bytes(&path.display().to_string(), &read_file(path)?)
+}
+
+/// The bytes of the scene file at `path`, refusing files larger than `MAX_FILE_BYTES`.
+pub fn read_file(path: &Path) -> Result<Vec<u8>> {
     let size = std::fs::metadata(path)
         .map_err(|e| Error::io(path, "cannot read scene", e))?
         .len();
@@ -42,8 +47,7 @@ pub fn load(path: &Path) -> Result<Scene> {
             path.display()
         )));
     }
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, "cannot read scene", e))?;
-    parse_bytes(&path.display().to_string(), &bytes)
+    std::fs::read(path).map_err(|e| Error::io(path, "cannot read scene", e))
 }
 
 /// Parses a scene from raw bytes; `file` is the name used in error messages.

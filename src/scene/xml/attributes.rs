@@ -10,6 +10,10 @@ use crate::numbers::exact;
 use crate::scene::Material;
 use crate::suggest;
 
+/// Largest coordinate or radius: differences of two stay below 2e150, and the sum of three
+/// squares of those below 1.2e301, short of f64's 1.8e308.
+const MAX_LENGTH: f64 = 1e150;
+
 /// Collects the attributes of `e`, rejecting duplicates and any name not in `allowed`.
 pub(super) fn read_attributes<'a>(
     source: Source<'a>,
@@ -152,10 +156,28 @@ impl<'a> Attributes<'a> {
 
     pub(super) fn position(&self) -> Result<DVec3> {
         Ok(DVec3::new(
-            self.number("x", 0.0)?,
-            self.number("y", 0.0)?,
-            self.number("z", 0.0)?,
+            self.length("x", 0.0)?,
+            self.length("y", 0.0)?,
+            self.length("z", 0.0)?,
         ))
+    }
+
+    /// A coordinate or radius: a number small enough that the squared distances the
+    /// renderer computes from it stay finite (an overflow would make an object silently
+    /// vanish).
+    pub(super) fn length(&self, key: &str, default: f64) -> Result<f64> {
+        let v = self.number(key, default)?;
+        if v.abs() > MAX_LENGTH {
+            return Err(self.error(
+                key,
+                format!(
+                    "`{key}` = {} is too large: distances this far overflow when squared \
+                     (coordinates and radii up to {MAX_LENGTH:e})",
+                    exact(v)
+                ),
+            ));
+        }
+        Ok(v)
     }
 
     /// `colour="#RRGGBB"`, required; `element_offset` locates the error when it is missing.

@@ -75,7 +75,7 @@ impl SceneBuilder {
         let allowed = [&SPHERE_ATTRIBUTES[..], &MATERIAL_ATTRIBUTES];
         let a = read_attributes(e.source, e.tag, e.name, &allowed)?;
         let colour = a.required_colour(e.offset)?;
-        let radius = a.number("radius", 1.0)?;
+        let radius = a.length("radius", 1.0)?;
         if radius <= 0.0 {
             return Err(a.error(
                 "radius",
@@ -100,6 +100,18 @@ impl SceneBuilder {
             a.number("ny", 0.0)?,
             a.number("nz", 0.0)?,
         );
+        if n.length().is_infinite() {
+            return Err(e.source.error_at(
+                e.offset,
+                format!(
+                    "<plane> normal (nx, ny, nz) = ({}, {}, {}) is too long to normalise (its \
+                     length overflows; scale it down, only its direction matters)",
+                    exact(n.x),
+                    exact(n.y),
+                    exact(n.z)
+                ),
+            ));
+        }
         if n.length().is_nan() || n.length() <= MIN_NORMAL_LENGTH {
             return Err(e.source.error_at(
                 e.offset,
