@@ -23,12 +23,22 @@ const PNG_SIGNATURE: &[u8] = b"\x89PNG\r\n\x1a\n";
 /// this process may use is refused before it is read. The decoders then check the sizes the
 /// header declares before allocating for them.
 pub fn read(path: &Path) -> Result<Image> {
-    let bytes = read_recognised(path)?;
+    decode(path, read_recognised(path)?)
+}
+
+/// Decodes the bytes of an OpenEXR or PNG file; `path` names it in messages.
+pub fn decode(path: &Path, bytes: Vec<u8>) -> Result<Image> {
     if bytes.starts_with(&openexr::MAGIC) {
         exr::decode(path, bytes)
-    } else {
+    } else if bytes.starts_with(PNG_SIGNATURE) {
         png::decode(path, &bytes)
+    } else {
+        Err(not_an_image(path))
     }
+}
+
+fn not_an_image(path: &Path) -> Error {
+    Error::Usage(format!("{}: not an OpenEXR or PNG file", path.display()))
 }
 
 /// The whole file, once its first bytes say it is an OpenEXR or a PNG file.
@@ -45,10 +55,7 @@ pub(crate) fn read_recognised(path: &Path) -> Result<Vec<u8>> {
         .read_to_end(&mut head)
         .map_err(cannot)?;
     if !head.starts_with(&openexr::MAGIC) && !head.starts_with(PNG_SIGNATURE) {
-        return Err(Error::Usage(format!(
-            "{}: not an OpenEXR or PNG file",
-            path.display()
-        )));
+        return Err(not_an_image(path));
     }
     // A regular file says how long it is; a pipe or device is read up to what memory allows.
     let budget = memory::available_bytes().unwrap_or(u64::MAX);

@@ -23,10 +23,7 @@ pub fn render_bytes(width: u32, height: u32, channels: usize, exr: bool) -> u64 
 pub fn check(needed: u64, available: Option<u64>, what: &str) -> Result<()> {
     match available {
         Some(available) if needed > available => Err(Error::Allocation {
-            what: format!(
-                "{what}: {} is available (try a smaller size or --aovs beauty)",
-                gib(available)
-            ),
+            what: format!("{what}; {} is available", gib(available)),
             bytes: needed,
         }),
         _ => Ok(()),

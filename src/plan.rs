@@ -111,7 +111,10 @@ impl RenderPlan {
         memory::check(
             memory::render_bytes(width, height, channels, request.exr.is_some()),
             memory::available_bytes(),
-            &format!("a {width}x{height} render with {channels} channels"),
+            &format!(
+                "a {width}x{height} render with {channels} channels (try a smaller size or \
+                 --aovs beauty)"
+            ),
         )?;
         check_outputs(request)?;
         Ok(RenderPlan {

@@ -10,6 +10,7 @@ mod figures;
 mod fuzz_corpus;
 mod golden_exr;
 mod golden_png;
+mod hostile;
 mod inspect;
 mod properties;
 mod scale;

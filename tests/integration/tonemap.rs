@@ -359,7 +359,10 @@ fn bad_tonemap_requests_are_usage_errors_and_write_nothing() {
             err.contains(phrase),
             "{args:?}: expected `{phrase}` in {err}"
         );
-        assert!(err.starts_with("error: ") && !err.contains("panicked"), "{err}");
+        assert!(
+            err.starts_with("error: ") && !err.contains("panicked"),
+            "{err}"
+        );
         assert!(!dir.path().join("x.png").exists(), "{args:?} wrote a file");
     }
     // The colour layers are listed when a layer is missing.
