@@ -1,6 +1,8 @@
-//! Replays the fuzz corpus (tools/fuzz), the bad-scene corpus and the shipped scenes through
-//! the same checks as the fuzz target, so `cargo test` keeps every input the fuzzer found
-//! interesting: loading never panics and errors are located; what loads renders finite layers.
+//! Replays the fuzz corpora (tools/fuzz) through the same checks as the fuzz targets, so
+//! `cargo test` keeps every input the fuzzer found interesting. Scenes (with the bad-scene
+//! corpus and the shipped scenes): loading never panics and errors are located; what loads
+//! renders finite layers. Images (with tests/bad_images): reading never panics, and what reads
+//! is consistent.
 
 use std::path::PathBuf;
 
@@ -59,4 +61,35 @@ fn every_corpus_input_loads_or_fails_cleanly() {
         loaded >= 7 && refused >= 40,
         "loaded {loaded}, refused {refused}"
     );
+}
+
+#[test]
+fn every_image_corpus_input_reads_or_fails_cleanly() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let (mut read, mut refused) = (0, 0);
+    for dir in ["fuzz/corpus/image_reader", "tests/bad_images"] {
+        for entry in std::fs::read_dir(root.join(dir)).unwrap_or_else(|e| panic!("{dir}: {e}")) {
+            let path = entry.expect("entry").path();
+            if path.extension().is_some_and(|e| e == "expected") {
+                continue;
+            }
+            let bytes = std::fs::read(&path).expect("read");
+            match whitted::input::decode(&path, bytes) {
+                Ok(image) => {
+                    let pixels = image.width * image.height;
+                    assert!(
+                        image.channels.iter().all(|c| c.values.len() == pixels),
+                        "{}",
+                        path.display()
+                    );
+                    read += 1;
+                }
+                Err(e) => {
+                    assert!(!e.to_string().is_empty());
+                    refused += 1;
+                }
+            }
+        }
+    }
+    assert!(read >= 4 && refused >= 8, "{read} read, {refused} refused");
 }
