@@ -8,6 +8,7 @@ use clap::{Args, Parser, Subcommand};
 mod parse;
 mod values;
 
+use crate::compare::{Criteria, Tolerance};
 use crate::frame::{FrameSpec, Region};
 use crate::output::exr::ExrOptions;
 use crate::plan::{RenderRequest, ToneRequest};
@@ -50,12 +51,23 @@ pub enum Command {
     Tonemap(TonemapArgs),
     /// Show an EXR's size, layers, channels, header and per-layer statistics.
     Info(InfoArgs),
-    /// Compare two EXRs (or two PNGs) layer by layer; exit 1 when they differ.
+    /// Compare two images (EXRs, or PNG/JPEG/TIFF/HDR) layer by layer; exit 1 when they differ.
     Diff(DiffArgs),
     /// Write a labelled contact sheet of every layer of an EXR.
     Sheet(SheetArgs),
     /// Assemble EXRs rendered with --region into the full frame.
     Merge(MergeArgs),
+    /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
+    Completions(CompletionsArgs),
+    /// Print the manual page (roff) on standard output.
+    Man,
+}
+
+#[derive(Debug, Clone, Args)]
+pub struct CompletionsArgs {
+    /// The shell to complete for
+    #[arg(value_name = "SHELL", value_enum)]
+    pub shell: clap_complete::Shell,
 }
 
 #[derive(Debug, Clone, Args)]
@@ -71,7 +83,7 @@ pub struct MergeArgs {
 
 #[derive(Debug, Clone, Args)]
 pub struct InfoArgs {
-    /// The EXR (or PNG) to describe
+    /// The image to describe (OpenEXR, PNG, JPEG, TIFF or Radiance HDR)
     #[arg(value_name = "FILE.exr")]
     pub input: PathBuf,
 
@@ -101,6 +113,22 @@ pub struct DiffArgs {
     /// Relative tolerance: a value fails when |a - b| > abs + rel * |b|
     #[arg(long = "rel", value_name = "T", default_value_t = 1e-5, value_parser = parse_tolerance)]
     pub rel: f64,
+
+    /// Pass when at most this percentage of a layer's pixels fail
+    #[arg(long, value_name = "P", default_value_t = 0.0, value_parser = parse_percent)]
+    pub fail_percent: f64,
+
+    /// Pass when at most this many of a layer's pixels fail
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub allow_failures: usize,
+
+    /// Fail if any pixel is off by more than T (absolute), whatever is allowed
+    #[arg(long, value_name = "T", value_parser = parse_tolerance)]
+    pub hard_fail: Option<f64>,
+
+    /// Report pixels off by more than T (absolute) as warnings; they do not fail
+    #[arg(long, value_name = "T", value_parser = parse_tolerance)]
+    pub warn: Option<f64>,
 
     /// Write a PNG showing where and by how much they differ
     #[arg(long, value_name = "OUT.png")]
@@ -291,6 +319,22 @@ impl RenderArgs {
             tone: self.tone.request(),
             threads: self.threads,
             stamp_date: self.stamp_date,
+        }
+    }
+}
+
+impl DiffArgs {
+    /// When a layer passes.
+    pub fn criteria(&self) -> Criteria {
+        Criteria {
+            tolerance: Tolerance {
+                abs: self.abs,
+                rel: self.rel,
+            },
+            fail_percent: self.fail_percent,
+            allow_failures: self.allow_failures,
+            hard_fail: self.hard_fail,
+            warn: self.warn,
         }
     }
 }

@@ -1,7 +1,9 @@
 //! One file per subcommand: each turns parsed arguments into work and outputs.
 
+pub mod completions;
 pub mod diff;
 pub mod info;
+pub mod man;
 pub mod merge;
 pub mod render;
 pub mod sheet;

@@ -1,7 +1,18 @@
 //! Layer-aware numeric comparison of two images (`whitted diff`, the golden tests).
 //!
 //! A value fails when `|a - b| > abs + rel * |b|` (b is the reference), or when exactly one of
-//! the two is NaN; a pixel fails when any compared channel of the layer fails there.
+//! the two is NaN; a pixel fails when any compared channel of the layer fails there. A layer
+//! fails when more pixels fail than the criteria allow (`--allow-failures`, `--fail-percent`),
+//! or when any pixel is off by more than `--hard-fail`. Pixels off by more than `--warn` but
+//! within tolerance are counted as warnings, which do not fail. Images are first put on the
+//! same pixel grid (`compare/align.rs`): different data windows are a difference, different
+//! display windows cannot be compared.
+
+mod align;
+mod parts;
+
+pub use align::{align, Alignment};
+pub use parts::{compare_files, PartReport};
 
 use std::collections::HashMap;
 
@@ -42,6 +53,39 @@ impl Tolerance {
     }
 }
 
+/// When a layer passes, in the spirit of OpenImageIO's `idiff`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Criteria {
+    pub tolerance: Tolerance,
+    /// Failing pixels allowed, as a percentage of the layer's pixels.
+    pub fail_percent: f64,
+    /// Failing pixels allowed, as a count. The larger allowance of the two applies.
+    pub allow_failures: usize,
+    /// Any pixel off by more than this (absolute) fails the layer, whatever is allowed.
+    pub hard_fail: Option<f64>,
+    /// Pixels off by more than this (absolute) but within tolerance are warnings.
+    pub warn: Option<f64>,
+}
+
+impl Criteria {
+    /// Every pixel within `tolerance`, nothing else allowed.
+    pub fn strict(tolerance: Tolerance) -> Self {
+        Criteria {
+            tolerance,
+            fail_percent: 0.0,
+            allow_failures: 0,
+            hard_fail: None,
+            warn: None,
+        }
+    }
+
+    /// How many of `pixels` failing pixels are allowed.
+    pub fn allowed(&self, pixels: usize) -> usize {
+        let share = (self.fail_percent / 100.0 * pixels as f64).floor() as usize;
+        share.max(self.allow_failures)
+    }
+}
+
 /// How many failing pixels a layer report lists by position.
 pub const FIRST_FAILING: usize = 10;
 
@@ -55,16 +99,18 @@ pub struct LayerReport {
     /// Peak signal-to-noise ratio in dB, peak = max(1, largest |reference|); infinite when
     /// the layers are identical.
     pub psnr: f64,
+    /// Pixels compared.
+    pub pixels: usize,
+    /// Pixels beyond `--warn` but within tolerance.
+    pub warnings: usize,
+    /// Pixels beyond `--hard-fail`.
+    pub hard_failures: usize,
+    /// Whether the layer passes the criteria.
+    pub passed: bool,
     /// Pixels where some channel fails.
     pub failing: usize,
     /// The first failing pixels in row order, as (x, y).
     pub first_failing: Vec<(usize, usize)>,
-}
-
-impl LayerReport {
-    pub fn passed(&self) -> bool {
-        self.failing == 0
-    }
 }
 
 /// Compares layers `layers` (all layers of `reference` when empty) of `actual` against
@@ -74,7 +120,7 @@ pub fn compare(
     actual: &Image,
     reference: &Image,
     layers: &[String],
-    tolerance: Tolerance,
+    criteria: Criteria,
 ) -> Result<Vec<LayerReport>, String> {
     if (actual.width, actual.height) != (reference.width, reference.height) {
         return Err(format!(
@@ -140,7 +186,7 @@ pub fn compare(
             channel_names,
             &pairs,
             actual.width,
-            tolerance,
+            criteria,
         ));
     }
     Ok(reports)
@@ -151,20 +197,25 @@ fn compare_layer(
     channels: Vec<String>,
     pairs: &[(&Vec<f32>, &Vec<f32>)],
     width: usize,
-    tolerance: Tolerance,
+    criteria: Criteria,
 ) -> LayerReport {
     let pixels = pairs.first().map_or(0, |(a, _)| a.len());
     let (mut max_abs, mut sum_sq, mut peak) = (0.0f64, 0.0f64, 1.0f64);
-    let mut failing = 0;
+    let (mut failing, mut warnings, mut hard_failures) = (0, 0, 0);
     let mut first_failing = Vec::new();
     for p in 0..pixels {
-        let mut pixel_fails = false;
+        let (mut pixel_fails, mut pixel_max) = (false, 0.0f64);
         for (a, b) in pairs {
             let (a, b) = (f64::from(a[p]), f64::from(b[p]));
-            if tolerance.excess(a, b) > 1.0 {
+            if criteria.tolerance.excess(a, b) > 1.0 {
                 pixel_fails = true;
             }
             let d = (a - b).abs();
+            pixel_max = if d.is_nan() && a.is_nan() != b.is_nan() {
+                f64::INFINITY
+            } else {
+                pixel_max.max(d)
+            };
             if d.is_finite() {
                 max_abs = max_abs.max(d);
                 sum_sq += d * d;
@@ -176,11 +227,16 @@ fn compare_layer(
                 peak = peak.max(b.abs());
             }
         }
+        if criteria.hard_fail.is_some_and(|t| pixel_max > t) {
+            hard_failures += 1;
+        }
         if pixel_fails {
             failing += 1;
             if first_failing.len() < FIRST_FAILING {
                 first_failing.push((p % width.max(1), p / width.max(1)));
             }
+        } else if criteria.warn.is_some_and(|t| pixel_max > t) {
+            warnings += 1;
         }
     }
     let count = (pixels * pairs.len()).max(1) as f64;
@@ -196,6 +252,10 @@ fn compare_layer(
         max_abs,
         rmse,
         psnr,
+        pixels,
+        warnings,
+        hard_failures,
+        passed: hard_failures == 0 && failing <= criteria.allowed(pixels),
         failing,
         first_failing,
     }
@@ -230,13 +290,17 @@ pub fn excess_map(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::input::image::{Channel, Format};
+    use crate::input::image::{Channel, Format, Window};
 
     fn image(width: usize, values: &[(&str, Vec<f32>)]) -> Image {
+        let height = values[0].1.len() / width;
         Image {
             format: Format::Exr,
+            part: None,
             width,
-            height: values[0].1.len() / width,
+            height,
+            data_window: Window::at([0, 0], width, height),
+            display_window: Window::at([0, 0], width, height),
             channels: values
                 .iter()
                 .map(|(n, v)| Channel {
@@ -270,12 +334,13 @@ mod tests {
         z[4] = 1.5;
         z[5] = 0.5;
         let actual = image(3, &[("R", vec![0.0; 6]), ("Z", z)]);
-        let reports = compare(&actual, &reference, &[], Tolerance::AOV).expect("comparable");
+        let reports = compare(&actual, &reference, &[], Criteria::strict(Tolerance::AOV))
+            .expect("comparable");
         let r = reports
             .iter()
             .find(|r| r.layer == "beauty")
             .expect("beauty");
-        assert!(r.passed() && r.psnr.is_infinite());
+        assert!(r.passed && r.psnr.is_infinite());
         let z = reports.iter().find(|r| r.layer == "Z").expect("Z");
         assert_eq!(
             (z.failing, z.first_failing.clone()),
@@ -289,15 +354,17 @@ mod tests {
     fn mismatches_are_errors_not_failures() {
         let a = image(2, &[("R", vec![0.0; 4])]);
         let b = image(4, &[("R", vec![0.0; 4])]);
-        assert!(compare(&a, &b, &[], Tolerance::AOV)
+        assert!(compare(&a, &b, &[], Criteria::strict(Tolerance::AOV))
             .unwrap_err()
             .contains("sizes differ"));
         let c = image(2, &[("Z", vec![0.0; 4])]);
-        assert!(compare(&a, &c, &[], Tolerance::AOV)
+        assert!(compare(&a, &c, &[], Criteria::strict(Tolerance::AOV))
             .unwrap_err()
             .contains("missing"));
-        assert!(compare(&a, &a, &["nope".into()], Tolerance::AOV)
-            .unwrap_err()
-            .contains("`nope`"));
+        assert!(
+            compare(&a, &a, &["nope".into()], Criteria::strict(Tolerance::AOV))
+                .unwrap_err()
+                .contains("`nope`")
+        );
     }
 }

@@ -1,44 +1,77 @@
 //! Reading images back: whitted's own EXRs (or anyone's) and PNGs, as named float channels.
 //! The format is recognised here, by the file's first bytes, and each reader decodes one.
 
+pub mod attribute;
 pub mod exr;
 pub mod image;
-pub mod png;
+pub mod raster;
 
 use std::fs::File;
 use std::io::Read;
 use std::path::Path;
 
-pub use image::{suffix, Channel, Format, Image, Layer};
+pub use attribute::Attribute;
+pub use image::{suffix, Channel, Format, Image, Layer, Window};
 
 use crate::error::{Error, Result};
 use crate::memory;
 use crate::openexr;
 
-/// The first bytes of every PNG file.
-const PNG_SIGNATURE: &[u8] = b"\x89PNG\r\n\x1a\n";
+/// How many first bytes tell the formats apart.
+const SIGNATURE_BYTES: usize = 10;
 
-/// Reads an OpenEXR or PNG file, recognised by its first bytes: a file of another kind (or a
-/// device such as `/dev/zero`) is refused after eight bytes, and a file larger than the memory
-/// this process may use is refused before it is read. The decoders then check the sizes the
-/// header declares before allocating for them.
+/// The format a file's first bytes name, if it is one `read` understands.
+fn format_of(head: &[u8]) -> Option<Format> {
+    let starts = |magic: &[u8]| head.starts_with(magic);
+    if starts(&openexr::MAGIC) {
+        Some(Format::Exr)
+    } else if starts(b"\x89PNG\r\n\x1a\n") {
+        Some(Format::Png)
+    } else if starts(&[0xff, 0xd8, 0xff]) {
+        Some(Format::Jpeg)
+    } else if starts(b"II*\0") || starts(b"MM\0*") {
+        Some(Format::Tiff)
+    } else if starts(b"#?RADIANCE") || starts(b"#?RGBE") {
+        Some(Format::Hdr)
+    } else {
+        None
+    }
+}
+
+/// Reads an image file (OpenEXR, PNG, JPEG, TIFF or Radiance HDR), recognised by its first
+/// bytes: a file of another kind (or a device such as `/dev/zero`) is refused after ten
+/// bytes, and a file larger than the memory this process may use before it is read. The
+/// decoders then check the sizes the header declares before allocating for them. For a
+/// multi-part OpenEXR file, the first part.
 pub fn read(path: &Path) -> Result<Image> {
+    read_parts(path)?
+        .into_iter()
+        .next()
+        .ok_or_else(|| Error::Exr {
+            path: path.to_path_buf(),
+            msg: "the file has no parts".into(),
+        })
+}
+
+/// Reads every part of an image file (one for everything but multi-part OpenEXR).
+pub fn read_parts(path: &Path) -> Result<Vec<Image>> {
     decode(path, read_recognised(path)?)
 }
 
-/// Decodes the bytes of an OpenEXR or PNG file; `path` names it in messages.
-pub fn decode(path: &Path, bytes: Vec<u8>) -> Result<Image> {
-    if bytes.starts_with(&openexr::MAGIC) {
-        exr::decode(path, bytes)
-    } else if bytes.starts_with(PNG_SIGNATURE) {
-        png::decode(path, &bytes)
-    } else {
-        Err(not_an_image(path))
+/// Decodes the bytes of an image file; `path` names it in messages.
+pub fn decode(path: &Path, bytes: Vec<u8>) -> Result<Vec<Image>> {
+    match format_of(&bytes) {
+        Some(Format::Exr) => exr::decode(path, bytes),
+        Some(format) => Ok(vec![raster::decode(path, &bytes, format)?]),
+        None => Err(not_an_image(path)),
     }
 }
 
 fn not_an_image(path: &Path) -> Error {
-    Error::Usage(format!("{}: not an OpenEXR or PNG file", path.display()))
+    Error::Usage(format!(
+        "{}: not an image whitted reads (OpenEXR, PNG, JPEG, TIFF or Radiance HDR)",
+        path.display()
+    ))
 }
 
 /// The whole file, once its first bytes say it is an OpenEXR or a PNG file.
@@ -49,12 +82,12 @@ pub(crate) fn read_recognised(path: &Path) -> Result<Vec<u8>> {
     if metadata.is_dir() {
         return Err(cannot(std::io::Error::other("it is a directory")));
     }
-    let mut head = Vec::with_capacity(PNG_SIGNATURE.len());
+    let mut head = Vec::with_capacity(SIGNATURE_BYTES);
     (&mut file)
-        .take(PNG_SIGNATURE.len() as u64)
+        .take(SIGNATURE_BYTES as u64)
         .read_to_end(&mut head)
         .map_err(cannot)?;
-    if !head.starts_with(&openexr::MAGIC) && !head.starts_with(PNG_SIGNATURE) {
+    if format_of(&head).is_none() {
         return Err(not_an_image(path));
     }
     // A regular file says how long it is; a pipe or device is read up to what memory allows.

@@ -26,6 +26,19 @@ pub fn read_first_part(reader: impl Read + Seek + Send) -> Result<FlatImage, x::
         .from_buffered(std::io::BufReader::new(reader))
 }
 
+/// Every part of an OpenEXR stream, each with its channels as flat samples.
+pub fn read_all_parts(
+    reader: impl Read + Seek + Send,
+) -> Result<x::Image<x::Layers<x::AnyChannels<x::FlatSamples>>>, x::Error> {
+    x::read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .all_layers()
+        .all_attributes()
+        .from_buffered(std::io::BufReader::new(reader))
+}
+
 /// The pixel type of a channel as OpenEXR names it.
 pub fn pixel_type(samples: &x::FlatSamples) -> &'static str {
     match samples {
@@ -35,20 +48,22 @@ pub fn pixel_type(samples: &x::FlatSamples) -> &'static str {
     }
 }
 
-/// Memory that decoding the first part of a file with this header takes at its peak: every
+/// Memory that decoding every part of a file with these headers takes at its peak: every
 /// channel's samples as stored, plus the f32 copy `input` makes. Saturating, so a header
 /// declaring an absurd size gives `u64::MAX` rather than wrapping to something small.
 pub fn decoded_bytes(meta: &exr::meta::MetaData) -> u64 {
-    let Some(header) = meta.headers.first() else {
-        return 0;
-    };
-    let size = header.layer_size;
-    let pixels = (size.0 as u64).saturating_mul(size.1 as u64);
-    let per_pixel: u64 = header
-        .channels
-        .list
+    meta.headers
         .iter()
-        .map(|c| c.sample_type.bytes_per_sample() as u64 + 4)
-        .fold(0, u64::saturating_add);
-    pixels.saturating_mul(per_pixel)
+        .map(|header| {
+            let size = header.layer_size;
+            let pixels = (size.0 as u64).saturating_mul(size.1 as u64);
+            let per_pixel: u64 = header
+                .channels
+                .list
+                .iter()
+                .map(|c| c.sample_type.bytes_per_sample() as u64 + 4)
+                .fold(0, u64::saturating_add);
+            pixels.saturating_mul(per_pixel)
+        })
+        .fold(0, u64::saturating_add)
 }

@@ -45,12 +45,14 @@ impl Stats {
         }
     }
 
+    /// Over a layer's colour channels (R, G, B, not alpha), or all its channels when it is
+    /// not a colour layer.
     pub fn of_layer(image: &Image, layer: &Layer) -> Self {
         Self::of(
-            layer
-                .channels
-                .iter()
-                .map(|&i| image.channels[i].values.as_slice()),
+            image
+                .statistics_channels(layer)
+                .into_iter()
+                .map(|i| image.channels[i].values.as_slice()),
         )
     }
 }

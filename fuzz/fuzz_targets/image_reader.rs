@@ -7,11 +7,13 @@ use std::path::Path;
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
-    if let Ok(image) = whitted::input::decode(Path::new("fuzz.img"), data.to_vec()) {
-        let pixels = image.width * image.height;
-        assert!(image.channels.iter().all(|c| c.values.len() == pixels));
-        for layer in image.layers() {
-            let _ = whitted::stats::Stats::of_layer(&image, &layer);
+    if let Ok(parts) = whitted::input::decode(Path::new("fuzz.img"), data.to_vec()) {
+        for image in parts {
+            let pixels = image.width * image.height;
+            assert!(image.channels.iter().all(|c| c.values.len() == pixels));
+            for layer in image.layers() {
+                let _ = whitted::stats::Stats::of_layer(&image, &layer);
+            }
         }
     }
 });

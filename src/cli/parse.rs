@@ -72,6 +72,13 @@ pub(super) fn parse_tolerance(s: &str) -> Result<f64, String> {
     }
 }
 
+pub(super) fn parse_percent(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(p) if (0.0..=100.0).contains(&p) => Ok(p),
+        _ => Err(format!("expected a percentage from 0 to 100, got `{s}`")),
+    }
+}
+
 pub(super) fn parse_depth(s: &str) -> Result<u8, String> {
     match s.trim() {
         "8" => Ok(8),

@@ -1,12 +1,14 @@
 //! `whitted diff A B`: layer-aware numeric comparison for regression tests. Exit 0 when every
-//! compared layer is within tolerance, 1 when not, 2 when the files cannot be compared.
+//! part and layer passes (with or without warnings), 1 when not, 2 when the files cannot be
+//! compared. (`idiff` uses 1 for warnings and 2 for failures; ours keeps 2 for "cannot
+//! compare", like `diff(1)` and `cmp(1)`.)
 
 use serde_json::json;
 
 use crate::cli::DiffArgs;
-use crate::compare::{compare, excess_map, LayerReport, Tolerance};
+use crate::compare::{align, compare_files, excess_map, PartReport};
 use crate::error::{Error, Result};
-use crate::input::{self, Image};
+use crate::input;
 use crate::numbers::compact as number;
 use crate::output::destination::{refuse_clashes, Destination};
 use crate::output::png::{PngImage, PngPixels};
@@ -14,42 +16,37 @@ use crate::output::stdout;
 
 /// Returns whether the images match.
 pub fn run(args: &DiffArgs) -> Result<bool> {
-    let tolerance = Tolerance {
-        abs: args.abs,
-        rel: args.rel,
-    };
+    let criteria = args.criteria();
     if let Some(heatmap) = &args.heatmap {
         refuse_clashes(&[&args.actual, &args.reference], &[heatmap])?;
     }
     let mut heatmap = args.heatmap.as_deref().map(Destination::open).transpose()?;
-    let actual = input::read(&args.actual)?;
-    let reference = input::read(&args.reference)?;
-    if actual.format != reference.format {
-        return Err(Error::Usage(format!(
-            "cannot compare a {:?} with a {:?}: give two EXRs or two PNGs",
-            actual.format, reference.format
-        )));
-    }
-    let reports = compare(&actual, &reference, &args.layers, tolerance).map_err(|msg| {
+    let actual = input::read_parts(&args.actual)?;
+    let reference = input::read_parts(&args.reference)?;
+    let cannot = |msg: String| {
         Error::Usage(format!(
             "{} vs {}: {msg}",
             args.actual.display(),
             args.reference.display()
         ))
-    })?;
-    let passed = reports.iter().all(LayerReport::passed);
+    };
+    let reports = compare_files(&actual, &reference, &args.layers, criteria).map_err(cannot)?;
+    let passed = reports.iter().all(PartReport::passed);
     if let Some(out) = heatmap.as_mut() {
-        let map = excess_map(&actual, &reference, &args.layers, tolerance);
-        out.write_png(&heat_png(&map, reference.width, reference.height))?;
+        // The first part's, on the grid both share.
+        let aligned = align(&actual[0], &reference[0]).map_err(cannot)?;
+        let (a, b) = (&aligned.actual, &aligned.reference);
+        let map = excess_map(a, b, &args.layers, criteria.tolerance);
+        out.write_png(&heat_png(&map, b.width, b.height))?;
     }
     if let Some(out) = heatmap {
         out.commit()?;
     }
     let text = if args.json {
-        serde_json::to_string_pretty(&to_json(args, &reference, &reports, passed))
-            .unwrap_or_default()
+        // serde_json cannot fail to print a Value it built itself.
+        serde_json::to_string_pretty(&to_json(args, &reports, passed)).unwrap_or_default()
     } else {
-        table(args, &reference, &reports, passed)
+        table(args, &reports, passed)
     };
     stdout::print_line(&text)?;
     Ok(passed)
@@ -86,75 +83,110 @@ fn psnr_text(psnr: f64) -> String {
     }
 }
 
-fn table(args: &DiffArgs, reference: &Image, reports: &[LayerReport], passed: bool) -> String {
+fn table(args: &DiffArgs, parts: &[PartReport], passed: bool) -> String {
     let mut out = format!(
-        "{} vs {} ({}x{}), a value fails when |a - b| > {} + {} * |b|\n\n",
+        "{} vs {}, a value fails when |a - b| > {} + {} * |b|\n",
         args.actual.display(),
         args.reference.display(),
-        reference.width,
-        reference.height,
         args.abs,
         args.rel
     );
-    out += &format!(
-        "{:<18} {:>12} {:>12} {:>9} {:>9}  first failing pixels (x, y)\n",
-        "layer", "max abs", "RMSE", "PSNR dB", "failing"
-    );
-    for r in reports {
-        let first: Vec<String> = r
-            .first_failing
-            .iter()
-            .map(|(x, y)| format!("({x}, {y})"))
-            .collect();
+    for part in parts {
+        out += &format!("\npart {} ({}x{})\n", part.part, part.width, part.height);
+        if let Some((a, b)) = part.moved {
+            out += &format!("data windows differ: {a} vs {b} (the image moved)\n");
+        }
         out += &format!(
-            "{:<18} {:>12} {:>12} {:>9} {:>9}  {}\n",
-            r.layer,
-            number(r.max_abs),
-            number(r.rmse),
-            psnr_text(r.psnr),
-            r.failing,
-            first.join(" ")
+            "{:<18} {:>12} {:>12} {:>9} {:>9} {:>9}  first failing pixels (x, y)\n",
+            "layer", "max abs", "RMSE", "PSNR dB", "failing", "warnings"
         );
+        for r in &part.layers {
+            let first: Vec<String> = r
+                .first_failing
+                .iter()
+                .map(|(x, y)| format!("({x}, {y})"))
+                .collect();
+            out += &format!(
+                "{:<18} {:>12} {:>12} {:>9} {:>9} {:>9}  {}{}\n",
+                r.layer,
+                number(r.max_abs),
+                number(r.rmse),
+                psnr_text(r.psnr),
+                r.failing,
+                r.warnings,
+                if r.passed { "" } else { "FAIL " },
+                first.join(" ")
+            );
+        }
     }
-    let differing = reports.iter().filter(|r| !r.passed()).count();
-    out += &if passed {
-        format!("\nPASS: all {} layers within tolerance", reports.len())
+    let layers: usize = parts.iter().map(|p| p.layers.len()).sum();
+    let differing: usize = parts
+        .iter()
+        .map(|p| p.layers.iter().filter(|l| !l.passed).count())
+        .sum();
+    let moved = parts.iter().filter(|p| p.moved.is_some()).count();
+    let warnings: usize = parts.iter().map(PartReport::warnings).sum();
+    out += &if passed && warnings > 0 {
+        format!("\nPASS with {warnings} warnings: all {layers} layers within tolerance")
+    } else if passed {
+        format!("\nPASS: all {layers} layers within tolerance")
+    } else if differing == 0 {
+        format!("\nFAIL: {moved} parts moved (their data windows differ)")
     } else {
-        format!("\nFAIL: {differing} of {} layers differ", reports.len())
+        format!("\nFAIL: {differing} of {layers} layers differ")
     };
     out
 }
 
-fn to_json(
-    args: &DiffArgs,
-    reference: &Image,
-    reports: &[LayerReport],
-    passed: bool,
-) -> serde_json::Value {
-    let layers: Vec<serde_json::Value> = reports
+fn to_json(args: &DiffArgs, parts: &[PartReport], passed: bool) -> serde_json::Value {
+    let window = |w: input::Window| json!({ "min": w.min, "max": w.max });
+    let parts: Vec<serde_json::Value> = parts
         .iter()
-        .map(|r| {
+        .map(|part| {
+            let layers: Vec<serde_json::Value> = part
+                .layers
+                .iter()
+                .map(|r| {
+                    json!({
+                        "layer": r.layer,
+                        "channels": r.channels,
+                        "max_abs": finite_or_null(r.max_abs),
+                        "rmse": finite_or_null(r.rmse),
+                        "psnr": finite_or_null(r.psnr),
+                        "pixels": r.pixels,
+                        "failing": r.failing,
+                        "warnings": r.warnings,
+                        "hard_failures": r.hard_failures,
+                        "first_failing": r.first_failing.iter().map(|&(x, y)| json!([x, y])).collect::<Vec<_>>(),
+                        "passed": r.passed,
+                    })
+                })
+                .collect();
             json!({
-                "layer": r.layer,
-                "channels": r.channels,
-                "max_abs": finite_or_null(r.max_abs),
-                "rmse": finite_or_null(r.rmse),
-                "psnr": finite_or_null(r.psnr),
-                "failing": r.failing,
-                "first_failing": r.first_failing.iter().map(|&(x, y)| json!([x, y])).collect::<Vec<_>>(),
-                "passed": r.passed(),
+                "part": part.part,
+                "width": part.width,
+                "height": part.height,
+                "data_windows": part.moved.map(|(a, b)| json!([window(a), window(b)])),
+                "passed": part.passed(),
+                "layers": layers,
             })
         })
         .collect();
+    let first = parts.first().cloned().unwrap_or_default();
     json!({
         "a": args.actual.display().to_string(),
         "b": args.reference.display().to_string(),
-        "width": reference.width,
-        "height": reference.height,
+        "width": first["width"],
+        "height": first["height"],
         "abs": args.abs,
         "rel": args.rel,
+        "fail_percent": args.fail_percent,
+        "allow_failures": args.allow_failures,
+        "hard_fail": args.hard_fail,
+        "warn": args.warn,
         "passed": passed,
-        "layers": layers,
+        "layers": first["layers"],
+        "parts": parts,
     })
 }
 

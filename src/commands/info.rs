@@ -1,10 +1,11 @@
-//! `whitted info FILE.exr [--json]`: what is in an image file, and the range of every layer.
+//! `whitted info FILE [--json]`: what is in an image file, and the range of every layer (the
+//! JSON schema is docs/info-json.md).
 
 use serde_json::json;
 
 use crate::cli::InfoArgs;
 use crate::error::Result;
-use crate::input::{self, Image, Layer};
+use crate::input::{self, Image, Layer, Window};
 use crate::numbers::compact as number;
 use crate::output::stdout;
 use crate::stats::Stats;
@@ -49,9 +50,9 @@ pub fn to_json(image: &Image, file: &str) -> serde_json::Value {
                 "name": layer.name,
                 "channels": channel_names(image, layer),
                 "type": pixel_types(image, layer),
-                "min": stats.min,
-                "max": stats.max,
-                "mean": stats.mean,
+                "min": finite_or_null(stats.min),
+                "max": finite_or_null(stats.max),
+                "mean": finite_or_null(stats.mean),
                 "non_finite": stats.non_finite,
             })
         })
@@ -64,13 +65,17 @@ pub fn to_json(image: &Image, file: &str) -> serde_json::Value {
     let attributes: serde_json::Map<String, serde_json::Value> = image
         .attributes
         .iter()
-        .map(|(k, v)| (k.clone(), json!(v)))
+        .map(|(k, v)| (k.clone(), v.to_json()))
         .collect();
+    let window = |w: Window| json!({ "min": w.min, "max": w.max });
     json!({
         "file": file,
         "format": format!("{:?}", image.format).to_lowercase(),
+        "part": image.part,
         "width": image.width,
         "height": image.height,
+        "data_window": window(image.data_window),
+        "display_window": window(image.display_window),
         "channels": channels,
         "layers": layers,
         "attributes": attributes,
@@ -115,4 +120,13 @@ fn table(image: &Image, file: &str) -> String {
         }
     }
     out.trim_end().to_string()
+}
+
+/// JSON has no infinity or NaN.
+fn finite_or_null(v: f64) -> serde_json::Value {
+    if v.is_finite() {
+        json!(v)
+    } else {
+        serde_json::Value::Null
+    }
 }

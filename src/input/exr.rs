@@ -1,12 +1,13 @@
-//! OpenEXR -> `Image`: any scanline or tiled file's first part, as f32 channels and header
-//! attributes as text.
+//! OpenEXR -> `Image`s: every part of a scanline or tiled file, as f32 channels, with its
+//! windows and typed header attributes.
 
 use std::path::Path;
 
 use exr::prelude as x;
 
 use crate::error::{Error, Result};
-use crate::input::image::{Channel, Format, Image};
+use crate::input::attribute::Attribute;
+use crate::input::image::{Channel, Format, Image, Window};
 use crate::memory;
 use crate::openexr::{self, FlatImage};
 
@@ -20,32 +21,55 @@ pub fn read_flat(path: &Path) -> Result<FlatImage> {
             path.display()
         )));
     }
-    decode_flat(path, bytes)
+    check_memory(path, &bytes)?;
+    openexr::read_first_part(std::io::Cursor::new(bytes)).map_err(|e| unreadable(path, e))
 }
 
-/// Decodes the first part after checking, from the header alone, that the pixels it declares
-/// fit in the memory this process may use: a tiny file declaring 100000x100000 floats is an
-/// error with numbers, not an abort.
-fn decode_flat(path: &Path, bytes: Vec<u8>) -> Result<FlatImage> {
-    let unreadable = |e: x::Error| Error::Exr {
-        path: path.to_path_buf(),
-        msg: format!("not a readable OpenEXR file ({e})"),
-    };
+/// Decodes every part of an OpenEXR file (scanline or tiled, any pixel types).
+pub fn decode(path: &Path, bytes: Vec<u8>) -> Result<Vec<Image>> {
+    check_memory(path, &bytes)?;
+    let image =
+        openexr::read_all_parts(std::io::Cursor::new(bytes)).map_err(|e| unreadable(path, e))?;
+    let display = &image.attributes.display_window;
+    let display_window = Window::at(
+        [i64::from(display.position.0), i64::from(display.position.1)],
+        display.size.0,
+        display.size.1,
+    );
+    let shared = shared_attributes(&image.attributes);
+    let parts = image
+        .layer_data
+        .into_iter()
+        .map(|layer| part(layer, display_window, &shared))
+        .collect();
+    Ok(parts)
+}
+
+/// Checks, from the headers alone, that the pixels they declare fit in the memory this process
+/// may use: a tiny file declaring 100000x100000 floats is an error with numbers, not an abort.
+fn check_memory(path: &Path, bytes: &[u8]) -> Result<()> {
     let meta =
-        exr::meta::MetaData::read_from_buffered(bytes.as_slice(), false).map_err(unreadable)?;
-    let needed = openexr::decoded_bytes(&meta).saturating_add(bytes.len() as u64);
+        exr::meta::MetaData::read_from_buffered(bytes, false).map_err(|e| unreadable(path, e))?;
     memory::check(
-        needed,
+        openexr::decoded_bytes(&meta).saturating_add(bytes.len() as u64),
         memory::available_bytes(),
         &format!("decoding {}", path.display()),
-    )?;
-    openexr::read_first_part(std::io::Cursor::new(bytes)).map_err(unreadable)
+    )
 }
 
-/// Decodes the first part of an OpenEXR file (scanline or tiled, any pixel types).
-pub fn decode(path: &Path, bytes: Vec<u8>) -> Result<Image> {
-    let image = decode_flat(path, bytes)?;
-    let layer = image.layer_data;
+fn unreadable(path: &Path, e: x::Error) -> Error {
+    Error::Exr {
+        path: path.to_path_buf(),
+        msg: format!("not a readable OpenEXR file ({e})"),
+    }
+}
+
+/// One part as an `Image`.
+fn part(
+    layer: x::Layer<x::AnyChannels<x::FlatSamples>>,
+    display_window: Window,
+    shared: &[(String, Attribute)],
+) -> Image {
     let channels = layer
         .channel_data
         .list
@@ -64,53 +88,66 @@ pub fn decode(path: &Path, bytes: Vec<u8>) -> Result<Image> {
             }
         })
         .collect();
-    let mut attributes = header_text(&image.attributes, &layer.attributes);
-    let (x, y) = (
-        layer.attributes.layer_position.0,
-        layer.attributes.layer_position.1,
+    let position = layer.attributes.layer_position;
+    let data_window = Window::at(
+        [i64::from(position.0), i64::from(position.1)],
+        layer.size.0,
+        layer.size.1,
     );
-    attributes.push((
-        "dataWindow".into(),
-        format!(
-            "({x}, {y}) - ({}, {})",
-            x + layer.size.0 as i32 - 1,
-            y + layer.size.1 as i32 - 1
-        ),
-    ));
-    attributes.sort();
-    Ok(Image {
+    let mut attributes = shared.to_vec();
+    attributes.extend(part_attributes(&layer.attributes));
+    for (name, window) in [
+        ("dataWindow", data_window),
+        ("displayWindow", display_window),
+    ] {
+        attributes.push((
+            name.into(),
+            Attribute::Box {
+                min: window.min,
+                max: window.max,
+            },
+        ));
+    }
+    attributes.sort_by(|a, b| a.0.cmp(&b.0));
+    Image {
         format: Format::Exr,
+        part: layer.attributes.layer_name.as_ref().map(|n| n.to_string()),
         width: layer.size.0,
         height: layer.size.1,
+        data_window,
+        display_window,
         channels,
         attributes,
-    })
+    }
 }
 
-/// Every header attribute of interest as readable text.
-fn header_text(image: &x::ImageAttributes, layer: &x::LayerAttributes) -> Vec<(String, String)> {
+/// The attributes every part shares (chromaticities and anything the crate does not name).
+fn shared_attributes(image: &x::ImageAttributes) -> Vec<(String, Attribute)> {
     let mut out = Vec::new();
-    let mut put = |name: &str, value: String| out.push((name.to_string(), value));
-    let w = &image.display_window;
-    put(
-        "displayWindow",
-        format!(
-            "({}, {}) - ({}, {})",
-            w.position.0,
-            w.position.1,
-            w.position.0 + w.size.0 as i32 - 1,
-            w.position.1 + w.size.1 as i32 - 1
-        ),
-    );
     if let Some(c) = &image.chromaticities {
-        put(
-            "chromaticities",
-            format!(
-                "red ({}, {}), green ({}, {}), blue ({}, {}), white ({}, {})",
-                c.red.0, c.red.1, c.green.0, c.green.1, c.blue.0, c.blue.1, c.white.0, c.white.1
-            ),
-        );
+        let pair = |v: x::Vec2<f32>| [f64::from(v.0), f64::from(v.1)];
+        out.push((
+            "chromaticities".into(),
+            Attribute::Chromaticities {
+                red: pair(c.red),
+                green: pair(c.green),
+                blue: pair(c.blue),
+                white: pair(c.white),
+            },
+        ));
     }
+    out.extend(
+        image
+            .other
+            .iter()
+            .map(|(name, value)| (name.to_string(), typed(value))),
+    );
+    out
+}
+
+/// One part's own attributes.
+fn part_attributes(layer: &x::LayerAttributes) -> Vec<(String, Attribute)> {
+    let mut out = Vec::new();
     let texts = [
         ("software", &layer.software_name),
         ("comments", &layer.comments),
@@ -120,7 +157,7 @@ fn header_text(image: &x::ImageAttributes, layer: &x::LayerAttributes) -> Vec<(S
     ];
     for (name, value) in texts {
         if let Some(v) = value {
-            put(name, v.to_string());
+            out.push((name.to_string(), Attribute::Text(v.to_string())));
         }
     }
     for (name, matrix) in [
@@ -128,18 +165,43 @@ fn header_text(image: &x::ImageAttributes, layer: &x::LayerAttributes) -> Vec<(S
         ("worldToNDC", &layer.world_to_normalized_device),
     ] {
         if let Some(m) = matrix {
-            put(name, format!("{m:?}"));
+            out.push((name.to_string(), Attribute::matrix(m)));
         }
     }
-    for (name, value) in image.other.iter().chain(layer.other.iter()) {
-        let text = match value {
-            x::AttributeValue::Text(t) => t.to_string(),
-            x::AttributeValue::I32(i) => i.to_string(),
-            x::AttributeValue::F32(f) => f.to_string(),
-            x::AttributeValue::F64(f) => f.to_string(),
-            other => format!("{other:?}"),
-        };
-        put(&name.to_string(), text);
-    }
+    out.extend(
+        layer
+            .other
+            .iter()
+            .map(|(name, value)| (name.to_string(), typed(value))),
+    );
     out
+}
+
+/// An attribute value the crate keeps generically, typed.
+fn typed(value: &x::AttributeValue) -> Attribute {
+    match value {
+        x::AttributeValue::Text(t) => Attribute::Text(t.to_string()),
+        x::AttributeValue::I32(i) => Attribute::Integer(i64::from(*i)),
+        x::AttributeValue::F32(f) => Attribute::Number(f64::from(*f)),
+        x::AttributeValue::F64(f) => Attribute::Number(*f),
+        x::AttributeValue::IntegerBounds(b) => {
+            let window = Window::at(
+                [i64::from(b.position.0), i64::from(b.position.1)],
+                b.size.0,
+                b.size.1,
+            );
+            Attribute::Box {
+                min: window.min,
+                max: window.max,
+            }
+        }
+        x::AttributeValue::FloatVec2(v) => Attribute::Vector(vec![f64::from(v.0), f64::from(v.1)]),
+        x::AttributeValue::FloatVec3(v) => {
+            Attribute::Vector(vec![f64::from(v.0), f64::from(v.1), f64::from(v.2)])
+        }
+        x::AttributeValue::IntVec2(v) => Attribute::Vector(vec![f64::from(v.0), f64::from(v.1)]),
+        x::AttributeValue::Matrix3x3(m) => Attribute::matrix(m),
+        x::AttributeValue::Matrix4x4(m) => Attribute::matrix(m),
+        other => Attribute::Other(format!("{other:?}")),
+    }
 }

@@ -1,20 +1,22 @@
 //! An image as named float channels grouped into layers: the common form in which `tonemap`,
-//! `info`, `diff` and `sheet` see EXRs and PNGs.
+//! `info`, `diff` and `sheet` see EXRs, PNGs, JPEGs, TIFFs and Radiance HDRs.
 
 use std::collections::HashMap;
 
 use glam::DVec3;
 
 use crate::aov;
+use crate::input::attribute::Attribute;
 
 /// One channel.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Channel {
     /// Full name: `R`, `Z`, `direct.G`, ...
     pub name: String,
-    /// As stored: `half`, `float`, `uint` (EXR) or `uint8`, `uint16` (PNG).
+    /// As stored: `half`, `float`, `uint` (EXR), `uint8`, `uint16` (PNG, JPEG, TIFF) or
+    /// `float` (HDR, float TIFF).
     pub pixel_type: &'static str,
-    /// Row-major over the data window. PNG values are scaled to [0, 1].
+    /// Row-major over the data window. Integer samples are scaled to [0, 1].
     pub values: Vec<f32>,
 }
 
@@ -30,22 +32,75 @@ pub struct Layer {
 /// The file formats `input::read` understands.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Format {
+    /// OpenEXR: linear, scene-referred, any channels (read with the `exr` crate).
     Exr,
+    /// Display-referred rasters read with the `image` crate.
     Png,
+    Jpeg,
+    Tiff,
+    /// Radiance RGBE: linear floats.
+    Hdr,
 }
 
-/// A decoded image file.
+/// A rectangle of pixel coordinates, both corners inclusive (as OpenEXR states windows).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Window {
+    pub min: [i64; 2],
+    pub max: [i64; 2],
+}
+
+impl Window {
+    /// The window of a `width` x `height` image whose top-left pixel is `origin`.
+    pub fn at(origin: [i64; 2], width: usize, height: usize) -> Self {
+        Window {
+            min: origin,
+            max: [origin[0] + width as i64 - 1, origin[1] + height as i64 - 1],
+        }
+    }
+}
+
+impl std::fmt::Display for Window {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "({}, {}) - ({}, {})",
+            self.min[0], self.min[1], self.max[0], self.max[1]
+        )
+    }
+}
+
+/// One decoded image (one part of a multi-part OpenEXR file).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Image {
     pub format: Format,
+    /// The part's name in a multi-part OpenEXR file.
+    pub part: Option<String>,
     pub width: usize,
     pub height: usize,
+    /// Where the pixels are: `width` x `height` from `data_window.min`.
+    pub data_window: Window,
+    /// The frame they belong to (the same as the data window for whole images).
+    pub display_window: Window,
     pub channels: Vec<Channel>,
-    /// Header attributes as text, sorted by name (empty for PNGs).
-    pub attributes: Vec<(String, String)>,
+    /// Header attributes, sorted by name (empty for raster formats).
+    pub attributes: Vec<(String, Attribute)>,
 }
 
 impl Image {
+    /// Everything but the pixels: the same image with no channels.
+    pub fn clone_header(&self) -> Image {
+        Image {
+            format: self.format,
+            part: self.part.clone(),
+            width: self.width,
+            height: self.height,
+            data_window: self.data_window,
+            display_window: self.display_window,
+            channels: Vec::new(),
+            attributes: self.attributes.clone(),
+        }
+    }
+
     pub fn channel(&self, name: &str) -> Option<&Channel> {
         self.channels.iter().find(|c| c.name == name)
     }
@@ -86,6 +141,20 @@ impl Image {
             .into_iter()
             .filter(|l| self.is_colour(l))
             .map(|l| l.name)
+            .collect()
+    }
+
+    /// The layer's channels that statistics are taken over: R, G, B for a colour layer (alpha
+    /// is not colour), every channel otherwise.
+    pub fn statistics_channels(&self, layer: &Layer) -> Vec<usize> {
+        if !self.is_colour(layer) {
+            return layer.channels.clone();
+        }
+        layer
+            .channels
+            .iter()
+            .copied()
+            .filter(|&i| ["R", "G", "B"].contains(&suffix(&self.channels[i].name)))
             .collect()
     }
 
@@ -158,8 +227,11 @@ mod tests {
     fn channels_group_into_layers_in_display_order() {
         let image = Image {
             format: Format::Exr,
+            part: None,
             width: 1,
             height: 1,
+            data_window: Window::at([0, 0], 1, 1),
+            display_window: Window::at([0, 0], 1, 1),
             channels: [
                 "A",
                 "B",

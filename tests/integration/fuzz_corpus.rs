@@ -75,13 +75,15 @@ fn every_image_corpus_input_reads_or_fails_cleanly() {
             }
             let bytes = std::fs::read(&path).expect("read");
             match whitted::input::decode(&path, bytes) {
-                Ok(image) => {
-                    let pixels = image.width * image.height;
-                    assert!(
-                        image.channels.iter().all(|c| c.values.len() == pixels),
-                        "{}",
-                        path.display()
-                    );
+                Ok(parts) => {
+                    for image in parts {
+                        let pixels = image.width * image.height;
+                        assert!(
+                            image.channels.iter().all(|c| c.values.len() == pixels),
+                            "{}",
+                            path.display()
+                        );
+                    }
                     read += 1;
                 }
                 Err(e) => {
