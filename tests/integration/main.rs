@@ -13,6 +13,7 @@ mod golden_png;
 mod hostile;
 mod inspect;
 mod properties;
+mod readme;
 mod regression;
 mod scale;
 mod scenes;

@@ -1,0 +1,103 @@
+//! Every shell example in README.md runs as written: each ```sh block, in order, in one
+//! temporary directory that has the repository's `scenes/` and `reference/`, with the built
+//! `whitted` and OpenImageIO's `oiiotool` on PATH.
+//!
+//! Two lines of the first block are the repository's own commands and are not run again
+//! here: `tools/test` is the command running this very test, and `cargo run --release` runs
+//! the binary under test with the same arguments, which is what is run in its place.
+
+use std::path::Path;
+use std::process::Command;
+
+use crate::common::*;
+
+/// The ```sh blocks of the README, in order.
+fn shell_blocks(readme: &str) -> Vec<String> {
+    let mut blocks = Vec::new();
+    let mut current: Option<String> = None;
+    for line in readme.lines() {
+        match (&mut current, line.trim_end()) {
+            (None, "```sh") => current = Some(String::new()),
+            (Some(block), "```") => {
+                blocks.push(std::mem::take(block));
+                current = None;
+            }
+            (Some(block), line) => {
+                block.push_str(line);
+                block.push('\n');
+            }
+            (None, _) => {}
+        }
+    }
+    blocks
+}
+
+/// The block as it runs here (see the module comment for the two repository commands).
+fn runnable(block: &str) -> String {
+    block
+        .lines()
+        .filter(|l| !l.trim_start().starts_with("tools/test"))
+        .map(|l| l.replacen("cargo run --release", "whitted", 1))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+fn link(from: &Path, to: &Path) {
+    std::os::unix::fs::symlink(from, to)
+        .unwrap_or_else(|e| panic!("{} -> {}: {e}", to.display(), from.display()));
+}
+
+#[test]
+fn every_readme_example_runs_as_written() {
+    let readme = std::fs::read_to_string(root().join("README.md")).expect("README.md");
+    let blocks = shell_blocks(&readme);
+    assert!(blocks.len() >= 8, "only {} shell blocks", blocks.len());
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    for name in ["scenes", "reference"] {
+        link(&root().join(name), &d.join(name));
+    }
+    let bin = d.join(".bin");
+    std::fs::create_dir(&bin).expect("mkdir");
+    link(
+        Path::new(env!("CARGO_BIN_EXE_whitted")),
+        &bin.join("whitted"),
+    );
+    link(&tool("oiiotool"), &bin.join("oiiotool"));
+    let path = format!(
+        "{}:{}",
+        bin.display(),
+        std::env::var("PATH").unwrap_or_default()
+    );
+    for block in &blocks {
+        let script = runnable(block);
+        let run = Command::new("bash")
+            .args(["-euo", "pipefail", "-c", &script])
+            .env("PATH", &path)
+            .current_dir(d)
+            .output()
+            .expect("bash runs");
+        assert!(
+            run.status.success(),
+            "README example failed:\n{script}\n{}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+    }
+    for made in [
+        "output.png",
+        "floor.png",
+        "shadow.png",
+        "frame.exr",
+        "light0.exr",
+        "sheet.png",
+        "where.png",
+        "mine.png",
+        "whitted.bash",
+        "whitted.1",
+        "tick2_agx.png",
+        "key.png",
+    ] {
+        let meta = std::fs::metadata(d.join(made)).unwrap_or_else(|_| panic!("{made} missing"));
+        assert!(meta.len() > 0, "{made} is empty");
+    }
+}
