@@ -57,10 +57,27 @@ pub enum Command {
     Sheet(SheetArgs),
     /// Assemble EXRs rendered with --region into the full frame.
     Merge(MergeArgs),
+    /// Print a balanced split of the frame into --region values, one per line (for a farm).
+    Regions(RegionsArgs),
     /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
     Completions(CompletionsArgs),
     /// Print the manual page (roff) on standard output.
     Man,
+}
+
+#[derive(Debug, Clone, Args)]
+pub struct RegionsArgs {
+    /// How many parts (one per farm task)
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=65_535))]
+    pub parts: u32,
+
+    /// Image width in pixels
+    #[arg(long, value_name = "W", default_value_t = 640, value_parser = parse_side)]
+    pub width: u32,
+
+    /// Image height in pixels
+    #[arg(long, value_name = "H", default_value_t = 480, value_parser = parse_side)]
+    pub height: u32,
 }
 
 #[derive(Debug, Clone, Args)]

@@ -5,6 +5,7 @@ pub mod diff;
 pub mod info;
 pub mod man;
 pub mod merge;
+pub mod regions;
 pub mod render;
 pub mod sheet;
 pub mod tonemap;

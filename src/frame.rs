@@ -41,6 +41,28 @@ impl Region {
     }
 }
 
+/// The frame split into `parts` bands of whole rows, top to bottom, whose heights differ by at
+/// most one row: each farm task gets the same work to within a row. An error when there are
+/// more parts than rows.
+pub fn balanced_regions(width: u32, height: u32, parts: u32) -> Result<Vec<Region>> {
+    if parts == 0 || parts > height {
+        return Err(Error::Usage(format!(
+            "cannot split {height} rows into {parts} parts (1 to {height} parts)"
+        )));
+    }
+    Ok((0..parts)
+        .map(|i| {
+            let row = |k: u32| (u64::from(k) * u64::from(height) / u64::from(parts)) as u32;
+            Region {
+                x0: 0,
+                y0: row(i),
+                x1: width,
+                y1: row(i + 1),
+            }
+        })
+        .collect())
+}
+
 /// How nearest hits are found.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Acceleration {
@@ -178,6 +200,19 @@ mod tests {
             ..FrameSpec::default()
         };
         assert_eq!(frame(spec).expect("fits").region.width(), 5);
+    }
+
+    #[test]
+    fn balanced_regions_tile_the_frame_with_even_bands() {
+        let parts = balanced_regions(640, 480, 7).expect("split");
+        assert_eq!(parts.len(), 7);
+        assert_eq!((parts[0].y0, parts[6].y1), (0, 480));
+        for pair in parts.windows(2) {
+            assert_eq!(pair[0].y1, pair[1].y0);
+        }
+        let heights: Vec<u32> = parts.iter().map(Region::height).collect();
+        assert!(heights.iter().max().expect("max") - heights.iter().min().expect("min") <= 1);
+        assert!(balanced_regions(640, 4, 5).is_err());
     }
 
     #[test]

@@ -139,3 +139,42 @@ fn supersampling_averages_colour_and_keeps_data_unblended() {
         "the average brightness is kept"
     );
 }
+
+#[test]
+fn regions_lists_a_balanced_split_that_merges_into_the_frame() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let run = whitted(
+        dir.path(),
+        &["regions", "--parts", "3", "--width", "64", "--height", "50"],
+    );
+    assert!(run.status.success(), "{}", stderr(&run));
+    let lines: Vec<String> = String::from_utf8_lossy(&run.stdout)
+        .lines()
+        .map(str::to_string)
+        .collect();
+    assert_eq!(lines, ["0,0,64,16", "0,16,64,33", "0,33,64,50"]);
+    let tick2 = scene("tick2.xml");
+    let mut parts = Vec::new();
+    for (i, region) in lines.iter().enumerate() {
+        let name = format!("part{i}.exr");
+        let size = ["--width", "64", "--height", "50", "--region", region];
+        render_exr(dir.path(), &tick2, &name, &size);
+        parts.push(name);
+    }
+    let full = render_exr(
+        dir.path(),
+        &tick2,
+        "full.exr",
+        &["--width", "64", "--height", "50"],
+    );
+    let mut args = vec!["merge"];
+    args.extend(parts.iter().map(String::as_str));
+    args.extend(["-o", "merged.exr"]);
+    assert!(whitted(dir.path(), &args).status.success());
+    assert!(
+        std::fs::read(full).expect("full")
+            == std::fs::read(dir.path().join("merged.exr")).expect("merged")
+    );
+    let run = whitted(dir.path(), &["regions", "--parts", "60", "--height", "50"]);
+    assert_eq!(run.status.code(), Some(2));
+}

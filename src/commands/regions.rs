@@ -1,0 +1,15 @@
+//! `whitted regions --parts N [--width W --height H]`: one `--region` value per line, so a
+//! scheduler's array index can pick its line (`sed -n "$((i + 1))p"`).
+
+use crate::cli::RegionsArgs;
+use crate::error::Result;
+use crate::frame::balanced_regions;
+use crate::output::stdout;
+
+pub fn run(args: &RegionsArgs) -> Result<()> {
+    let lines: Vec<String> = balanced_regions(args.width, args.height, args.parts)?
+        .iter()
+        .map(|r| format!("{},{},{},{}", r.x0, r.y0, r.x1, r.y1))
+        .collect();
+    stdout::print_line(&lines.join("\n"))
+}
