@@ -151,6 +151,20 @@ impl Accelerator {
         if self.nodes.is_empty() {
             return best;
         }
+        // A root that is a leaf (a handful of spheres) needs no box test at all.
+        if self.nodes[0].count > 0 {
+            // Leaf order is not file order: ties are settled by `nearer`, as in the traversal.
+            for (&i, shape) in self.items.iter().zip(&self.shapes) {
+                if let Some(distance) = shape.intersect(ray) {
+                    let hit = Hit {
+                        object: i as usize,
+                        distance,
+                    };
+                    best = nearer(best, hit);
+                }
+            }
+            return best;
+        }
         let prepared = RayMargin::new(ray, self.nodes[0].bounds, self.near_zone);
         let mut stack: SmallVec<[(u32, f64); 64]> = SmallVec::new();
         if let Some(t) = self.nodes[0].bounds.entry(&prepared) {
@@ -201,6 +215,10 @@ impl Accelerator {
         }
         if self.nodes.is_empty() {
             return false;
+        }
+        if self.nodes[0].count > 0 {
+            let leaf = self.items.iter().zip(&self.shapes);
+            return geometry::occluded(leaf.map(|(&i, s)| (i as usize, s)), ray, max_distance);
         }
         let prepared = RayMargin::new(ray, self.nodes[0].bounds, self.near_zone);
         let mut stack: SmallVec<[u32; 64]> = SmallVec::new();

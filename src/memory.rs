@@ -3,7 +3,7 @@
 
 mod limits;
 
-pub use limits::available_bytes;
+pub use limits::{available_bytes, limit_to};
 
 use rayon::prelude::*;
 

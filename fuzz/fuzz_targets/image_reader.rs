@@ -7,6 +7,8 @@ use std::path::Path;
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
+    // libFuzzer's RSS limit (4 GiB in tools/fuzz) is invisible to the process: tell whitted.
+    whitted::memory::limit_to(1 << 30);
     if let Ok(parts) = whitted::input::decode(Path::new("fuzz.img"), data.to_vec()) {
         for image in parts {
             let pixels = image.width * image.height;

@@ -192,6 +192,21 @@ fn reported_hits_stay_within_the_conditioning_bound() {
 }
 
 #[test]
+fn a_single_leaf_hierarchy_keeps_brute_force_ties() {
+    // Six spheres (two duplicates) and a plane: the root is one leaf, tested without boxes.
+    let objects = scene(4, 5);
+    let accel = Accelerator::build(&objects);
+    assert!(accel.nodes.len() == 1 && accel.nodes[0].count > 0);
+    let Shape::Sphere { centre, .. } = objects[0].shape else {
+        panic!("sphere")
+    };
+    let ray = Ray::new(DVec3::new(centre.x, centre.y, -20.0), DVec3::Z);
+    assert_eq!(accel.closest_hit(&ray), closest_hit(&objects, &ray));
+    assert_eq!(accel.closest_hit(&ray).expect("hits").object, 0);
+    assert_eq!(accel.occluded(&ray, 100.0), occluded(&objects, &ray, 100.0));
+}
+
+#[test]
 fn duplicate_spheres_tie_to_the_first_in_file_order() {
     let objects = scene(50, 7);
     let accel = Accelerator::build(&objects);

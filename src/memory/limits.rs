@@ -4,14 +4,26 @@
 //! other systems every source is simply absent.
 
 use std::fs;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// A cap set by the program itself (`limit_to`), or `u64::MAX`.
+static CAP: AtomicU64 = AtomicU64::new(u64::MAX);
+
+/// Caps what `available_bytes` reports, for a host that enforces a limit the system does not
+/// show (a fuzzer's RSS limit).
+pub fn limit_to(bytes: u64) {
+    CAP.store(bytes, Ordering::Relaxed);
+}
 
 /// The least of every limit that applies now, or `None` if none could be read.
 pub fn available_bytes() -> Option<u64> {
+    let cap = CAP.load(Ordering::Relaxed);
     [
         mem_available(),
         rlimit_headroom("Max address space", "VmSize"),
         rlimit_headroom("Max data size", "VmData"),
         cgroup_headroom(),
+        (cap != u64::MAX).then_some(cap),
     ]
     .into_iter()
     .flatten()

@@ -65,6 +65,8 @@ fn every_corpus_input_loads_or_fails_cleanly() {
 
 #[test]
 fn every_image_corpus_input_reads_or_fails_cleanly() {
+    // As in the fuzz target: a budget the corpus's largest declared sizes exceed.
+    whitted::memory::limit_to(1 << 30);
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let (mut read, mut refused) = (0, 0);
     for dir in ["fuzz/corpus/image_reader", "tests/bad_images"] {
