@@ -132,6 +132,9 @@ fn splitmix64(key: u64) -> u64 {
 pub fn write_png(out: impl Write, image: &PngImage) -> Result<(), png::EncodingError> {
     let mut encoder = png::Encoder::new(out, image.width, image.height);
     encoder.set_color(png::ColorType::Rgb);
+    // fdeflate's PNG-tuned mode: the whole tick2 run takes a quarter less time than with
+    // `Balanced`, for a file a third larger (132 KB); PNGs are judged by their pixels.
+    encoder.set_compression(png::Compression::Fast);
     if image.srgb {
         encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
         // The gAMA and cHRM values the PNG spec (11.3.2.5) asks for beside sRGB, for readers
