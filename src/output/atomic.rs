@@ -56,43 +56,58 @@ fn classify(target: &Path) -> Result<Kind> {
             )),
         )
     };
+    // What is there, as the kernel resolves it (also through /proc's magic links, such as
+    // /dev/stdout, whose link text is not a path).
+    let Ok(meta) = std::fs::metadata(target) else {
+        return Ok(Kind::Replaceable(dangling_target(target)?));
+    };
+    let kind = meta.file_type();
+    if kind.is_file() {
+        let real = std::fs::canonicalize(target)
+            .map_err(|e| Error::io(target, "cannot write output", e))?;
+        return Ok(Kind::Replaceable(real));
+    }
+    if kind.is_dir() {
+        return Err(refuse("a directory"));
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if kind.is_char_device() || kind.is_fifo() {
+            return Ok(Kind::Device(target.to_path_buf()));
+        }
+        if kind.is_block_device() {
+            return Err(refuse("a block device"));
+        }
+        if kind.is_socket() {
+            return Err(refuse("a socket"));
+        }
+    }
+    Err(refuse("not a regular file"))
+}
+
+/// Where a path that names nothing yet will be created: itself, or the end of the chain of
+/// (dangling) symlinks it starts.
+fn dangling_target(target: &Path) -> Result<PathBuf> {
     let mut path = target.to_path_buf();
     for _ in 0..40 {
-        let Ok(meta) = std::fs::symlink_metadata(&path) else {
-            return Ok(Kind::Replaceable(path));
-        };
-        let kind = meta.file_type();
-        if kind.is_symlink() {
-            let link = std::fs::read_link(&path)
-                .map_err(|e| Error::io(target, "cannot write output", e))?;
-            path = match path.parent() {
-                Some(dir) => dir.join(link),
-                None => link,
-            };
-            continue;
-        }
-        if kind.is_file() {
-            return Ok(Kind::Replaceable(path));
-        }
-        if kind.is_dir() {
-            return Err(refuse("a directory"));
-        }
-        #[cfg(unix)]
-        {
-            use std::os::unix::fs::FileTypeExt;
-            if kind.is_char_device() || kind.is_fifo() {
-                return Ok(Kind::Device(path));
+        match std::fs::symlink_metadata(&path) {
+            Ok(meta) if meta.file_type().is_symlink() => {
+                let link = std::fs::read_link(&path)
+                    .map_err(|e| Error::io(target, "cannot write output", e))?;
+                path = match path.parent() {
+                    Some(dir) => dir.join(link),
+                    None => link,
+                };
             }
-            if kind.is_block_device() {
-                return Err(refuse("a block device"));
-            }
-            if kind.is_socket() {
-                return Err(refuse("a socket"));
-            }
+            _ => return Ok(path),
         }
-        return Err(refuse("not a regular file"));
     }
-    Err(refuse("a loop of symbolic links"))
+    Err(Error::io(
+        target,
+        "cannot write output",
+        std::io::Error::other("it is a loop of symbolic links"),
+    ))
 }
 
 impl AtomicFile {
