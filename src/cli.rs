@@ -158,8 +158,8 @@ pub struct DiffArgs {
 
 #[derive(Debug, Clone, Args)]
 pub struct SheetArgs {
-    /// The EXR to show
-    #[arg(value_name = "IN.exr")]
+    /// The image to show (OpenEXR, PNG, JPEG, TIFF or Radiance HDR)
+    #[arg(value_name = "IN")]
     pub input: PathBuf,
 
     /// The contact sheet PNG to write; `-` writes it to standard output

@@ -1,4 +1,5 @@
-//! `whitted sheet IN.exr -o SHEET.png`: a labelled contact sheet of every layer.
+//! `whitted sheet IN -o SHEET.png`: a labelled contact sheet of every layer of an image
+//! (OpenEXR, PNG, JPEG, TIFF or Radiance HDR).
 
 use crate::cli::SheetArgs;
 use crate::error::Result;
@@ -9,7 +10,7 @@ use crate::sheet::{compose, select};
 pub fn run(args: &SheetArgs) -> Result<()> {
     refuse_clashes(&[&args.input], &[&args.output])?;
     let mut output = Destination::open(&args.output)?;
-    let image = input::read_exr(&args.input)?;
+    let image = input::read(&args.input)?;
     let layers = select(&image, &args.layers)?;
     let sheet = compose(&image, &layers, &args.options());
     output.write_png(&sheet.into_png())?;

@@ -6,7 +6,7 @@ use glam::DVec3;
 
 use crate::aov::{self, Role};
 use crate::canvas::Canvas;
-use crate::input::{suffix, Image, Layer};
+use crate::input::{suffix, Format, Image, Layer};
 use crate::tonemap::{self, ToneMap};
 
 /// What a layer looks like, as display values in [0, 1] per pixel.
@@ -37,7 +37,11 @@ pub(super) fn display_values(
                     f64::from(g.values[p]),
                     f64::from(b.values[p]),
                 );
-                tonemap::to_display(v, tone_map, exposure)
+                match image.format {
+                    Format::Exr | Format::Hdr => tonemap::to_display(v, tone_map, exposure),
+                    // Already display values (PNG, JPEG, TIFF): shown as they are.
+                    _ => v.clamp(DVec3::ZERO, DVec3::ONE).to_array(),
+                }
             })
             .collect();
     }

@@ -205,6 +205,20 @@ fn special_files_are_written_through_and_links_are_kept() {
         .file_type()
         .is_char_device());
 
+    // /dev/stdout, whose link in /proc is not a path: written through to the pipe.
+    let piped = Command::new("sh")
+        .arg("-c")
+        .arg("\"$0\" -q -o /dev/stdout --width 16 --height 12 | wc -c")
+        .arg(env!("CARGO_BIN_EXE_whitted"))
+        .current_dir(d)
+        .output()
+        .expect("sh");
+    let bytes: usize = String::from_utf8_lossy(&piped.stdout)
+        .trim()
+        .parse()
+        .expect("a count");
+    assert!(bytes > 100, "{bytes} bytes through /dev/stdout");
+
     // A full device: an error, and the device stays.
     let run = whitted(
         d,

@@ -170,6 +170,12 @@ fn a_student_png_is_compared_with_the_course_jpeg() {
         "{}",
         String::from_utf8_lossy(&run.stdout)
     );
+    // The contact sheet reads rasters too, and shows their display values as they are.
+    let sheet = whitted(dir.path(), &["sheet", s(&jpeg), "-o", "sheet.png"]);
+    assert!(sheet.status.success(), "{}", stderr(&sheet));
+    let tile = read_png(&dir.path().join("sheet.png"));
+    let distinct: std::collections::HashSet<&[u8]> = tile.data.chunks(3).collect();
+    assert!(distinct.len() > 50, "{} colours", distinct.len());
     let info = whitted(dir.path(), &["info", "--json", s(&jpeg)]);
     let info: serde_json::Value = serde_json::from_slice(&info.stdout).expect("json");
     assert_eq!(
