@@ -57,12 +57,45 @@ pub enum Command {
     Sheet(SheetArgs),
     /// Assemble EXRs rendered with --region into the full frame.
     Merge(MergeArgs),
+    /// Recombine an EXR's light layers with new gains (light groups), without re-rendering.
+    Relight(RelightArgs),
     /// Print a balanced split of the frame into --region values, one per line (for a farm).
     Regions(RegionsArgs),
     /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
     Completions(CompletionsArgs),
     /// Print the manual page (roff) on standard output.
     Man,
+}
+
+#[derive(Debug, Clone, Args)]
+pub struct RelightArgs {
+    /// A whitted EXR with light layers (`--aovs all`)
+    #[arg(value_name = "IN.exr")]
+    pub input: PathBuf,
+
+    /// The relit image: an EXR (R, G, B, A) or a PNG (tone-mapped); `-` writes a PNG to
+    /// standard output
+    #[arg(short, long, value_name = "OUT.exr|OUT.png")]
+    pub output: PathBuf,
+
+    /// A light's gain: NAME=G or NAME=R,G,B (NAME as in its layer: `0` for `light_0`)
+    #[arg(long = "light", value_name = "NAME=GAIN", value_parser = parse_light_gain)]
+    pub lights: Vec<(String, [f64; 3])>,
+
+    /// Show this light without its shadows (its `unshadowed_` layer)
+    #[arg(long = "no-shadow", value_name = "NAME")]
+    pub no_shadow: Vec<String>,
+
+    /// Gain of the ambient term
+    #[arg(long, value_name = "GAIN", default_value_t = 1.0, value_parser = parse_gain)]
+    pub ambient: f64,
+
+    /// Gain of the background
+    #[arg(long, value_name = "GAIN", default_value_t = 1.0, value_parser = parse_gain)]
+    pub background: f64,
+
+    #[command(flatten)]
+    pub tone: ToneArgs,
 }
 
 #[derive(Debug, Clone, Args)]

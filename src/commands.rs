@@ -6,6 +6,7 @@ pub mod info;
 pub mod man;
 pub mod merge;
 pub mod regions;
+pub mod relight;
 pub mod render;
 pub mod sheet;
 pub mod tonemap;

@@ -46,6 +46,7 @@ pub mod openexr;
 pub mod output;
 pub mod plan;
 pub mod progress;
+pub mod relight;
 pub mod render;
 pub mod render_record;
 pub mod sample;

@@ -79,6 +79,26 @@ pub(super) fn parse_percent(s: &str) -> Result<f64, String> {
     }
 }
 
+pub(super) fn parse_gain(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(g) if g.is_finite() => Ok(g),
+        _ => Err(format!("expected a finite gain, got `{s}`")),
+    }
+}
+
+/// `NAME=G` or `NAME=R,G,B`.
+pub(super) fn parse_light_gain(s: &str) -> Result<(String, [f64; 3]), String> {
+    let (name, gain) = s
+        .split_once('=')
+        .ok_or_else(|| format!("expected NAME=GAIN or NAME=R,G,B, got `{s}`"))?;
+    let values: Vec<f64> = gain.split(',').map(parse_gain).collect::<Result<_, _>>()?;
+    match values[..] {
+        [g] => Ok((name.trim().to_string(), [g; 3])),
+        [r, g, b] => Ok((name.trim().to_string(), [r, g, b])),
+        _ => Err(format!("expected one gain or three (R,G,B), got `{gain}`")),
+    }
+}
+
 pub(super) fn parse_depth(s: &str) -> Result<u8, String> {
     match s.trim() {
         "8" => Ok(8),

@@ -5,8 +5,11 @@ use std::io::Write as _;
 
 use exr::prelude::{self as x, f16, AttributeValue, Text, WritableImage as _};
 
+use glam::DVec3;
+
 use crate::aov::{Kind, Z_MISS};
 use crate::film::Film;
+use crate::input::Image;
 use crate::openexr::FlatImage;
 use crate::output::exr_header;
 
@@ -179,6 +182,51 @@ fn channels(film: &Film, options: ExrOptions) -> x::SmallVec<[x::AnyChannel<x::F
         }
     }
     channels
+}
+
+/// Writes a plain linear RGBA image (alpha 1) with `like`'s windows and chromaticities: what
+/// `relight` makes.
+pub fn write_rgba(file: &mut File, like: &Image, pixels: &[DVec3]) -> Result<(), String> {
+    let channel = |name: &str, values: Vec<f32>| x::AnyChannel {
+        name: text(name),
+        sample_data: x::FlatSamples::F32(values),
+        quantize_linearly: false,
+        sampling: x::Vec2(1, 1),
+    };
+    let plane = |c: usize| pixels.iter().map(|p| p.to_array()[c] as f32).collect();
+    let mut channels = x::SmallVec::new();
+    channels.push(channel("A", vec![1.0; pixels.len()]));
+    channels.push(channel("B", plane(2)));
+    channels.push(channel("G", plane(1)));
+    channels.push(channel("R", plane(0)));
+    let window = |min: [i64; 2]| x::Vec2(min[0] as i32, min[1] as i32);
+    let attributes = x::LayerAttributes {
+        layer_position: window(like.data_window.min),
+        software_name: Some(text(&format!("whitted {}", env!("CARGO_PKG_VERSION")))),
+        ..x::LayerAttributes::default()
+    };
+    let encoding = x::Encoding {
+        compression: ExrCompression::Zip.codec(),
+        blocks: x::Blocks::ScanLines,
+        line_order: x::LineOrder::Increasing,
+    };
+    let layer = x::Layer::new(
+        (like.width, like.height),
+        attributes,
+        encoding,
+        x::AnyChannels::sort(channels),
+    );
+    let display = like.display_window;
+    let bounds = x::IntegerBounds::new(
+        window(display.min),
+        (
+            (display.max[0] - display.min[0] + 1) as usize,
+            (display.max[1] - display.min[1] + 1) as usize,
+        ),
+    );
+    let mut image = x::Image::new(x::ImageAttributes::new(bounds), layer);
+    image.attributes.chromaticities = Some(REC709_D65);
+    write_image(file, &image)
 }
 
 /// Writes any flat image as an EXR into `file` (positioned at its start), its header

@@ -15,6 +15,7 @@ mod inspect;
 mod properties;
 mod readme;
 mod regression;
+mod relight;
 mod scale;
 mod scenes;
 mod tonemap;

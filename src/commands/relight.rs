@@ -1,0 +1,54 @@
+//! `whitted relight IN.exr -o OUT`: the image with other light gains, from the light layers.
+
+use glam::DVec3;
+
+use crate::cli::RelightArgs;
+use crate::error::{Error, Result};
+use crate::input;
+use crate::output::atomic::AtomicFile;
+use crate::output::destination::{refuse_clashes, Destination};
+use crate::output::exr::write_rgba;
+use crate::output::png::encode;
+use crate::relight::{relight, RelightSpec};
+
+pub fn run(args: &RelightArgs) -> Result<()> {
+    let encoding = args.tone.request().encoding()?;
+    refuse_clashes(&[&args.input], &[&args.output])?;
+    let to_exr = args
+        .output
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("exr"));
+    let image = input::read_exr(&args.input)?;
+    let spec = RelightSpec {
+        lights: args
+            .lights
+            .iter()
+            .map(|(name, g)| (name.clone(), DVec3::from_array(*g)))
+            .collect(),
+        no_shadow: args.no_shadow.clone(),
+        ambient: DVec3::splat(args.ambient),
+        background: DVec3::splat(args.background),
+    };
+    let pixels = relight(&image, &spec).map_err(|msg| Error::Exr {
+        path: args.input.clone(),
+        msg,
+    })?;
+    if to_exr {
+        let mut file = AtomicFile::create(&args.output)?;
+        write_rgba(file.file(), &image, &pixels).map_err(|msg| Error::Exr {
+            path: args.output.clone(),
+            msg,
+        })?;
+        crate::interrupt::check()?;
+        return file.commit();
+    }
+    let mut output = Destination::open(&args.output)?;
+    let size = |n: usize| u32::try_from(n).map_err(|_| Error::Usage("image too large".into()));
+    output.write_png(&encode(
+        &pixels,
+        size(image.width)?,
+        size(image.height)?,
+        &encoding,
+    ))?;
+    output.commit()
+}

@@ -1,0 +1,79 @@
+//! Relighting from light layers, as compositors do with light groups: because every light's
+//! contribution is stored linearly and the layers add up to the beauty (docs/aovs.md,
+//! invariant 3), `ambient * a + sum_i g_i * light_i + background * b` is the image the scene
+//! would give with light i scaled by `g_i` (per channel), without re-rendering. With every
+//! gain 1 it is the beauty, to float rounding.
+
+use glam::DVec3;
+
+use crate::input::Image;
+
+/// What to change. Lights not named keep gain 1.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct RelightSpec {
+    /// Light name (the layer suffix: `0` for `light_0`, `key` for `light_key`) and its gain.
+    pub lights: Vec<(String, DVec3)>,
+    /// Lights shown without their shadows (`unshadowed_<name>` instead of `light_<name>`).
+    pub no_shadow: Vec<String>,
+    pub ambient: DVec3,
+    pub background: DVec3,
+}
+
+impl RelightSpec {
+    /// Every gain 1, every shadow kept: the beauty.
+    pub fn identity() -> Self {
+        RelightSpec {
+            lights: Vec::new(),
+            no_shadow: Vec::new(),
+            ambient: DVec3::ONE,
+            background: DVec3::ONE,
+        }
+    }
+}
+
+/// The relit image, row-major, or why it cannot be made from `image`'s layers.
+pub fn relight(image: &Image, spec: &RelightSpec) -> Result<Vec<DVec3>, String> {
+    let lights: Vec<String> = image
+        .colour_layers()
+        .into_iter()
+        .filter_map(|l| l.strip_prefix("light_").map(str::to_string))
+        .collect();
+    for name in spec.lights.iter().map(|(n, _)| n).chain(&spec.no_shadow) {
+        if !lights.contains(name) {
+            return Err(format!(
+                "no light `{name}` in the file (its lights: {})",
+                if lights.is_empty() {
+                    "none".to_string()
+                } else {
+                    lights.join(", ")
+                }
+            ));
+        }
+    }
+    let mut terms = vec![
+        (image.colour_layer("ambient")?, spec.ambient),
+        (image.colour_layer("background")?, spec.background),
+    ];
+    for name in &lights {
+        let gain = spec
+            .lights
+            .iter()
+            .rev()
+            .find(|(n, _)| n == name)
+            .map_or(DVec3::ONE, |(_, g)| *g);
+        let layer = if spec.no_shadow.contains(name) {
+            format!("unshadowed_{name}")
+        } else {
+            format!("light_{name}")
+        };
+        terms.insert(terms.len() - 1, (image.colour_layer(&layer)?, gain));
+    }
+    // ambient + lights in file order + background: the order of invariant 3.
+    let mut out = vec![DVec3::ZERO; image.width * image.height];
+    for (values, gain) in &terms {
+        for (o, v) in out.iter_mut().zip(values) {
+            *o += *v * *gain;
+        }
+    }
+    Ok(out)
+}
