@@ -57,6 +57,8 @@ pub enum Command {
     Sheet(SheetArgs),
     /// Assemble EXRs rendered with --region into the full frame.
     Merge(MergeArgs),
+    /// Explain one pixel: its ray tree in the course's model, with every term of its colour.
+    Explain(ExplainArgs),
     /// Recombine an EXR's light layers with new gains (light groups), without re-rendering.
     Relight(RelightArgs),
     /// Print a balanced split of the frame into --region values, one per line (for a farm).
@@ -65,6 +67,52 @@ pub enum Command {
     Completions(CompletionsArgs),
     /// Print the manual page (roff) on standard output.
     Man,
+}
+
+#[derive(Debug, Clone, Args)]
+pub struct ExplainArgs {
+    /// Scene XML file [default: the embedded course tick2.xml]
+    #[arg(short, long, value_name = "SCENE")]
+    pub input: Option<PathBuf>,
+
+    /// The pixel, X,Y from the top left
+    #[arg(long, value_name = "X,Y", value_parser = parse_pixel)]
+    pub pixel: (u32, u32),
+
+    /// Mirror reflection bounces after the primary hit
+    #[arg(short, long, value_name = "N", default_value_t = 2,
+          value_parser = parse_bounces, allow_negative_numbers = true)]
+    pub bounces: u32,
+
+    /// Image width in pixels
+    #[arg(long, value_name = "W", default_value_t = 640, value_parser = parse_side)]
+    pub width: u32,
+
+    /// Image height in pixels
+    #[arg(long, value_name = "H", default_value_t = 480, value_parser = parse_side)]
+    pub height: u32,
+
+    /// Ignore occlusion
+    #[arg(long)]
+    pub no_shadows: bool,
+
+    /// Print JSON instead of the tree
+    #[arg(long)]
+    pub json: bool,
+}
+
+impl ExplainArgs {
+    /// The frame the pixel belongs to.
+    pub fn frame(&self) -> FrameSpec {
+        FrameSpec {
+            width: self.width,
+            height: self.height,
+            bounces: self.bounces,
+            shadows: !self.no_shadows,
+            aovs: "beauty".into(),
+            ..FrameSpec::default()
+        }
+    }
 }
 
 #[derive(Debug, Clone, Args)]

@@ -2,6 +2,7 @@
 
 pub mod completions;
 pub mod diff;
+pub mod explain;
 pub mod info;
 pub mod man;
 pub mod merge;

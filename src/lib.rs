@@ -33,6 +33,7 @@ pub mod cli;
 pub mod commands;
 pub mod compare;
 pub mod error;
+pub mod explain;
 pub mod film;
 pub mod fingerprint;
 pub mod frame;

@@ -23,6 +23,7 @@ fn main() -> ExitCode {
         Some(Command::Diff(args)) => commands::diff::run(args),
         Some(Command::Sheet(args)) => commands::sheet::run(args).map(|()| true),
         Some(Command::Merge(args)) => commands::merge::run(args).map(|()| true),
+        Some(Command::Explain(args)) => commands::explain::run(args).map(|()| true),
         Some(Command::Relight(args)) => commands::relight::run(args).map(|()| true),
         Some(Command::Regions(args)) => commands::regions::run(args).map(|()| true),
         Some(Command::Completions(args)) => commands::completions::run(args).map(|()| true),

@@ -1,8 +1,12 @@
 //! The tick shading model (docs/rendering.md): Phong with several point lights, hard shadows and
 //! mirror reflection, evaluated in the course's operation order so the beauty is bit-exact.
 
+pub mod observe;
+
 use glam::DVec3;
 use smallvec::SmallVec;
+
+use observe::{LightRecord, Observer, Silent, VertexRecord};
 
 use crate::accel::Accelerator;
 use crate::geometry::{normalise, Ray};
@@ -42,6 +46,18 @@ pub fn trace_into(
     options: TraceOptions,
     sample: &mut Sample,
 ) {
+    trace_observed(scene, accel, primary, options, sample, &mut Silent);
+}
+
+/// `trace_into`, telling `observer` every vertex and light term on the way (`explain`).
+pub fn trace_observed(
+    scene: &Scene,
+    accel: &Accelerator,
+    primary: Ray,
+    options: TraceOptions,
+    sample: &mut Sample,
+    observer: &mut impl Observer,
+) {
     sample.reset();
     // (shaded colour, reflectivity if the chain continues there), vertex by vertex; on the
     // stack for the usual few bounces.
@@ -52,6 +68,7 @@ pub fn trace_into(
     for k in 0..=options.bounces {
         sample.rays += 1;
         let Some(hit) = accel.closest_hit(&ray) else {
+            observer.miss(k, ray);
             let background = BACKGROUND * throughput;
             sample.background += background;
             *bucket(sample, k) += background;
@@ -73,9 +90,21 @@ pub fn trace_into(
             normal,
             material,
             weight,
-            primary: k == 0,
+            depth: k,
         };
-        let colour = shade(scene, accel, &vertex, options.shadows, sample);
+        let colour = shade(scene, accel, &vertex, options.shadows, sample, observer);
+        observer.vertex(VertexRecord {
+            depth: k,
+            ray,
+            object: hit.object,
+            distance: hit.distance,
+            point,
+            normal,
+            material: *material,
+            weight,
+            continues,
+            colour,
+        });
         *bucket(sample, k) += colour * weight;
         if k == 0 {
             sample.primary = Some(PrimaryHit {
@@ -136,8 +165,8 @@ struct Vertex<'a> {
     material: &'a Material,
     /// `w_k` of docs/aovs.md: the share of the pixel this vertex's shading makes up.
     weight: f64,
-    /// Whether this is the camera's own hit (shadow masks record only that one).
-    primary: bool,
+    /// 0 for the camera's own hit (shadow masks record only that one).
+    depth: u32,
 }
 
 /// Phong shading at a vertex, in the course's order (docs/rendering.md, Shading). Returns the
@@ -148,6 +177,7 @@ fn shade(
     vertex: &Vertex,
     shadows: bool,
     sample: &mut Sample,
+    observer: &mut impl Observer,
 ) -> DVec3 {
     let Vertex {
         point: p,
@@ -161,7 +191,12 @@ fn shade(
     let mut colour = ambient;
     // Towards the camera at the origin, even for reflected rays: the reference does this.
     let v = normalise(-p);
-    for (light, out) in scene.lights.iter().zip(sample.lights.iter_mut()) {
+    for (index, (light, out)) in scene
+        .lights
+        .iter()
+        .zip(sample.lights.iter_mut())
+        .enumerate()
+    {
         let to_light = light.position - p;
         let d = to_light.length();
         let illumination = light.illumination_at(d);
@@ -170,13 +205,28 @@ fn shade(
         // Built from the clamped N.L, as the reference does.
         let r = n * (2.0 * n_dot_l) - l;
         let diffuse = ((m.colour * illumination) * m.kd) * n_dot_l;
-        let specular = (illumination * m.ks) * java_max_zero(r.dot(v)).powf(m.n);
+        let r_dot_v = java_max_zero(r.dot(v));
+        let specular = (illumination * m.ks) * r_dot_v.powf(m.n);
+        let shadow_ray = Ray::offset_from(p, l);
         let in_shadow = shadows && {
             sample.rays += 1;
-            accel.occluded(&Ray::offset_from(p, l), d)
+            accel.occluded(&shadow_ray, d)
         };
+        observer.light(LightRecord {
+            depth: vertex.depth,
+            light: index,
+            distance: d,
+            illumination,
+            to_light: l,
+            n_dot_l,
+            r_dot_v,
+            diffuse,
+            specular,
+            shadow_ray: shadows.then_some(shadow_ray),
+            in_shadow,
+        });
         out.unshadowed += (diffuse + specular) * weight;
-        if vertex.primary {
+        if vertex.depth == 0 {
             out.occluded_at_primary = in_shadow;
         }
         if !in_shadow {

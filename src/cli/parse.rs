@@ -79,6 +79,18 @@ pub(super) fn parse_percent(s: &str) -> Result<f64, String> {
     }
 }
 
+pub(super) fn parse_pixel(s: &str) -> Result<(u32, u32), String> {
+    let values: Vec<u32> = s
+        .split(',')
+        .map(|n| n.trim().parse::<u32>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| format!("expected X,Y in whole pixels, got `{s}`"))?;
+    match values[..] {
+        [x, y] => Ok((x, y)),
+        _ => Err(format!("expected two numbers X,Y, got `{s}`")),
+    }
+}
+
 pub(super) fn parse_gain(s: &str) -> Result<f64, String> {
     match s.trim().parse::<f64>() {
         Ok(g) if g.is_finite() => Ok(g),

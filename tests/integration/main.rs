@@ -5,6 +5,7 @@ mod cli_errors;
 mod common;
 mod determinism;
 mod differential;
+mod explain;
 mod exr_aovs;
 mod figures;
 mod fuzz_corpus;

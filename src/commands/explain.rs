@@ -1,0 +1,205 @@
+//! `whitted explain --input SCENE --pixel X,Y [--json]`: one pixel's ray tree, readable next to
+//! a student's own Java code, or as JSON whose `"beauty"` is what `render` stores there.
+
+use glam::DVec3;
+use serde_json::{json, Value};
+
+use crate::cli::ExplainArgs;
+use crate::error::Result;
+use crate::explain::{explain, vector, Explanation};
+use crate::output::stdout;
+use crate::scene::{self, Scene};
+
+pub fn run(args: &ExplainArgs) -> Result<()> {
+    let (scene, name) = match &args.input {
+        Some(path) => (scene::load(path)?, path.display().to_string()),
+        None => (
+            scene::parse_str("tick2.xml (embedded)", scene::EMBEDDED_TICK2)?,
+            "tick2.xml (embedded)".to_string(),
+        ),
+    };
+    let (x, y) = args.pixel;
+    let e = explain(&scene, &args.frame(), x, y)?;
+    let text = if args.json {
+        // serde_json cannot fail to print a Value it built itself.
+        serde_json::to_string_pretty(&to_json(&e, &scene)).unwrap_or_default()
+    } else {
+        tree(&e, &scene, &name)
+    };
+    stdout::print_line(&text)
+}
+
+fn kind(scene: &Scene, object: usize) -> &'static str {
+    match scene.objects[object].shape {
+        crate::geometry::Shape::Sphere { .. } => "sphere",
+        crate::geometry::Shape::Plane { .. } => "plane",
+    }
+}
+
+fn tree(e: &Explanation, scene: &Scene, name: &str) -> String {
+    let mut out = format!(
+        "pixel ({}, {}) of {name}\ncamera ray: origin {}, direction {}\n",
+        e.pixel.0,
+        e.pixel.1,
+        vector(e.camera_ray.origin),
+        vector(e.camera_ray.direction)
+    );
+    for vertex in &e.vertices {
+        let v = &vertex.record;
+        let m = &v.material;
+        out += &format!(
+            "\ndepth {}: hits object {} ({}) at s = {}\n  P = {}\n  N = {}\n  material: colour {}, kD {}, kS {}, n {}, reflectivity {}\n  weight w = {}{}\n  ambient I_a * C = {}\n",
+            v.depth,
+            v.object + 1,
+            kind(scene, v.object),
+            v.distance,
+            vector(v.point),
+            vector(v.normal),
+            vector(m.colour),
+            m.kd,
+            m.ks,
+            m.n,
+            m.reflectivity,
+            v.weight,
+            if v.continues { " (a mirror: the chain goes on)" } else { "" },
+            vector(scene.ambient * m.colour),
+        );
+        for light in &vertex.lights {
+            let l = &light.record;
+            let shadow = match (&l.shadow_ray, light.occluder) {
+                (None, _) => "shadows off: lit".to_string(),
+                (Some(_), Some((object, s))) => format!(
+                    "shadow ray from P + 0.0001 L: blocked by object {} ({}) at s = {s} < d: in shadow, adds nothing",
+                    object + 1,
+                    kind(scene, object)
+                ),
+                (Some(_), None) => "shadow ray from P + 0.0001 L: reaches the light: lit".to_string(),
+            };
+            out += &format!(
+                "  light {}: d = {}, I = {}\n    L = {}, max(0, N.L) = {}, max(0, R.V) = {}\n    diffuse = {}, specular = {}\n    {shadow}\n",
+                light.name,
+                l.distance,
+                vector(l.illumination),
+                vector(l.to_light),
+                l.n_dot_l,
+                l.r_dot_v,
+                vector(l.diffuse),
+                vector(l.specular),
+            );
+        }
+        out += &format!("  shaded colour = {}\n", vector(v.colour));
+    }
+    if let Some((depth, ray)) = e.miss {
+        out += &format!(
+            "\ndepth {depth}: the ray along {} leaves the scene: background\n",
+            vector(ray.direction)
+        );
+    }
+    out += "\nfold (far end first):\n";
+    for line in e.fold() {
+        out += &format!("  {line}\n");
+    }
+    let stored = e.stored.map(f64::from);
+    out += &format!(
+        "\nbeauty = {} (stored in the EXR as {}; the tick PNG byte is floor(255 * clamp))\n",
+        vector(e.sample.beauty),
+        vector(DVec3::from_array(stored))
+    );
+    out += "layers:\n";
+    for (layer, value) in layers(e, scene) {
+        out += &format!("  {layer:<16} {}\n", vector(value));
+    }
+    out.trim_end().to_string()
+}
+
+/// The per-layer totals of this sample, in file order.
+fn layers(e: &Explanation, scene: &Scene) -> Vec<(String, DVec3)> {
+    let s = &e.sample;
+    let mut out = vec![("direct".to_string(), s.direct)];
+    for (k, r) in s.reflected_by_bounce.iter().enumerate() {
+        out.push((format!("reflected_{}", k + 1), *r));
+    }
+    out.push(("ambient".into(), s.ambient));
+    for (light, l) in scene.lights.iter().zip(&s.lights) {
+        out.push((format!("light_{}", light.name), l.shadowed));
+    }
+    for (light, l) in scene.lights.iter().zip(&s.lights) {
+        out.push((format!("unshadowed_{}", light.name), l.unshadowed));
+    }
+    out.extend([
+        ("diffuse".to_string(), s.diffuse),
+        ("specular".to_string(), s.specular),
+        ("background".to_string(), s.background),
+    ]);
+    out
+}
+
+fn array(v: DVec3) -> Value {
+    json!(v
+        .to_array()
+        .map(|c| if c.is_finite() { json!(c) } else { Value::Null }))
+}
+
+fn to_json(e: &Explanation, scene: &Scene) -> Value {
+    let vertices: Vec<Value> = e
+        .vertices
+        .iter()
+        .map(|vertex| {
+            let v = &vertex.record;
+            let lights: Vec<Value> = vertex
+                .lights
+                .iter()
+                .map(|light| {
+                    let l = &light.record;
+                    json!({
+                        "light": light.name,
+                        "d": l.distance,
+                        "I": array(l.illumination),
+                        "L": array(l.to_light),
+                        "n_dot_l": l.n_dot_l,
+                        "r_dot_v": l.r_dot_v,
+                        "diffuse": array(l.diffuse),
+                        "specular": array(l.specular),
+                        "shadow_tested": l.shadow_ray.is_some(),
+                        "in_shadow": l.in_shadow,
+                        "occluder": light.occluder.map(|(o, s)| json!({"object": o + 1, "kind": kind(scene, o), "distance": s})),
+                    })
+                })
+                .collect();
+            json!({
+                "depth": v.depth,
+                "object": v.object + 1,
+                "kind": kind(scene, v.object),
+                "distance": v.distance,
+                "P": array(v.point),
+                "N": array(v.normal),
+                "material": {
+                    "colour": array(v.material.colour),
+                    "kD": v.material.kd,
+                    "kS": v.material.ks,
+                    "n": v.material.n,
+                    "reflectivity": v.material.reflectivity,
+                },
+                "weight": v.weight,
+                "continues": v.continues,
+                "ambient": array(scene.ambient * v.material.colour),
+                "lights": lights,
+                "colour": array(v.colour),
+            })
+        })
+        .collect();
+    let layers: serde_json::Map<String, Value> = layers(e, scene)
+        .into_iter()
+        .map(|(k, v)| (k, array(v)))
+        .collect();
+    json!({
+        "pixel": [e.pixel.0, e.pixel.1],
+        "camera_ray": {"origin": array(e.camera_ray.origin), "direction": array(e.camera_ray.direction)},
+        "vertices": vertices,
+        "miss": e.miss.map(|(depth, ray)| json!({"depth": depth, "direction": array(ray.direction)})),
+        "fold": e.fold(),
+        "beauty": e.stored.map(f64::from),
+        "beauty_f64": array(e.sample.beauty),
+        "layers": layers,
+    })
+}

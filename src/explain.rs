@@ -1,0 +1,166 @@
+//! One pixel's ray tree in the course's model: the camera ray, every vertex of its mirror
+//! chain (object, distance, P, N, material), every light's terms there (d, I, L, N.L, R.V,
+//! diffuse, specular, and the shadow ray with what blocks it), and the fold that gives the
+//! beauty. It is the renderer's own trace, observed (`trace::observe`), so the numbers are the
+//! numbers the image is made of.
+
+use glam::DVec3;
+
+use crate::accel::Accelerator;
+use crate::error::{Error, Result};
+use crate::frame::{Frame, FrameSpec};
+use crate::geometry::{self, Ray};
+use crate::sample::Sample;
+use crate::scene::Scene;
+use crate::trace::observe::{LightRecord, Observer, VertexRecord};
+use crate::trace::{trace_observed, BACKGROUND};
+
+/// A light's terms at a vertex, with the light's name and what shadows it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LightTerms {
+    pub name: String,
+    pub record: LightRecord,
+    /// The nearest object on the shadow ray before the light: (object index, distance).
+    pub occluder: Option<(usize, f64)>,
+}
+
+/// A vertex and its lights.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Vertex {
+    pub record: VertexRecord,
+    pub lights: Vec<LightTerms>,
+}
+
+/// The whole tree of one pixel.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Explanation {
+    pub pixel: (u32, u32),
+    pub camera_ray: Ray,
+    pub vertices: Vec<Vertex>,
+    /// Where the chain left the scene, if it did: (depth, ray).
+    pub miss: Option<(u32, Ray)>,
+    /// Every layer's value for this sample (the pixel, at one sample per pixel).
+    pub sample: Sample,
+    /// The beauty as `render` stores it in the EXR (f32).
+    pub stored: [f32; 3],
+}
+
+/// Collects what the trace reports.
+struct Recorder<'a> {
+    scene: &'a Scene,
+    pending: Vec<LightTerms>,
+    vertices: Vec<Vertex>,
+    miss: Option<(u32, Ray)>,
+}
+
+impl Observer for Recorder<'_> {
+    fn light(&mut self, record: LightRecord) {
+        // The brute-force closest hit is the definition of what blocks the shadow ray.
+        let occluder = record.shadow_ray.and_then(|ray| {
+            let shapes = self.scene.objects.iter().map(|o| &o.shape).enumerate();
+            geometry::closest_hit(shapes, &ray)
+                .filter(|hit| hit.distance < record.distance)
+                .map(|hit| (hit.object, hit.distance))
+        });
+        self.pending.push(LightTerms {
+            name: self.scene.lights[record.light].name.clone(),
+            record,
+            occluder,
+        });
+    }
+
+    fn vertex(&mut self, record: VertexRecord) {
+        let lights = std::mem::take(&mut self.pending);
+        self.vertices.push(Vertex { record, lights });
+    }
+
+    fn miss(&mut self, depth: u32, ray: Ray) {
+        self.miss = Some((depth, ray));
+    }
+}
+
+/// Explains pixel (x, y) of `scene` rendered as `spec` says (one sample at the pixel centre).
+pub fn explain(scene: &Scene, spec: &FrameSpec, x: u32, y: u32) -> Result<Explanation> {
+    let frame = Frame::new(scene, spec)?;
+    if x >= frame.camera.width || y >= frame.camera.height {
+        return Err(Error::Usage(format!(
+            "the pixel {x},{y} is outside the {}x{} image",
+            frame.camera.width, frame.camera.height
+        )));
+    }
+    let accel = Accelerator::build(&scene.objects);
+    let camera_ray = frame.camera.pixel_centre_ray(x, y);
+    let mut sample = Sample::empty(scene.lights.len(), frame.trace.bounces);
+    let mut recorder = Recorder {
+        scene,
+        pending: Vec::new(),
+        vertices: Vec::new(),
+        miss: None,
+    };
+    trace_observed(
+        scene,
+        &accel,
+        camera_ray,
+        frame.trace,
+        &mut sample,
+        &mut recorder,
+    );
+    let stored = sample.beauty.to_array().map(|v| {
+        if v.is_finite() {
+            v.clamp(-f64::from(f32::MAX), f64::from(f32::MAX)) as f32
+        } else {
+            0.0
+        }
+    });
+    Ok(Explanation {
+        pixel: (x, y),
+        camera_ray,
+        vertices: recorder.vertices,
+        miss: recorder.miss,
+        sample,
+        stored,
+    })
+}
+
+impl Explanation {
+    /// The fold of rendering.md's Reflection, from the far end back to the camera:
+    /// `beauty_k = colour_k * (1 - r_k) + beauty_{k+1} * r_k` where the chain continues.
+    pub fn fold(&self) -> Vec<String> {
+        let mut lines = Vec::new();
+        let mut reflected = match self.miss {
+            Some((depth, _)) => {
+                lines.push(format!("depth {depth}: background {}", vector(BACKGROUND)));
+                BACKGROUND
+            }
+            None => DVec3::ZERO,
+        };
+        for vertex in self.vertices.iter().rev() {
+            let v = &vertex.record;
+            let r = v.material.reflectivity;
+            reflected = if v.continues {
+                let value = v.colour * (1.0 - r) + reflected * r;
+                lines.push(format!(
+                    "depth {}: {} * (1 - {r}) + {} * {r} = {}",
+                    v.depth,
+                    vector(v.colour),
+                    vector(reflected),
+                    vector(value)
+                ));
+                value
+            } else {
+                lines.push(format!(
+                    "depth {}: {} (the chain ends here)",
+                    v.depth,
+                    vector(v.colour)
+                ));
+                v.colour
+            };
+        }
+        lines
+    }
+}
+
+/// A vector as `(x, y, z)` with every digit.
+pub fn vector(v: DVec3) -> String {
+    format!("({}, {}, {})", v.x, v.y, v.z)
+}

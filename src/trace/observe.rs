@@ -1,0 +1,60 @@
+//! What `trace` can tell an observer while it works: every vertex of the mirror chain and
+//! every light's terms there, exactly the values the beauty is made of. The renderer observes
+//! nothing (`Silent`, compiled away); `explain` records a pixel's ray tree.
+
+use glam::DVec3;
+
+use crate::geometry::Ray;
+use crate::scene::Material;
+
+/// One surface point of a mirror chain.
+#[derive(Debug, Clone, PartialEq)]
+pub struct VertexRecord {
+    /// 0 for the camera's hit, k after k reflections.
+    pub depth: u32,
+    pub ray: Ray,
+    /// Index into the scene's objects.
+    pub object: usize,
+    pub distance: f64,
+    pub point: DVec3,
+    pub normal: DVec3,
+    pub material: Material,
+    /// `w_k`: the share of the pixel this vertex's shading makes up.
+    pub weight: f64,
+    /// Whether the chain goes on from here (a mirror with bounces left).
+    pub continues: bool,
+    /// The shaded colour (ambient plus every light that is not in shadow).
+    pub colour: DVec3,
+}
+
+/// One light's terms at a vertex.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LightRecord {
+    pub depth: u32,
+    /// Index into the scene's lights.
+    pub light: usize,
+    /// `d`, `I = c * k / (4 pi d^2)`, `L`, `max(0, N.L)`, `max(0, R.V)`.
+    pub distance: f64,
+    pub illumination: DVec3,
+    pub to_light: DVec3,
+    pub n_dot_l: f64,
+    pub r_dot_v: f64,
+    pub diffuse: DVec3,
+    pub specular: DVec3,
+    /// The shadow ray, if shadows are tested, and whether something blocks it.
+    pub shadow_ray: Option<Ray>,
+    pub in_shadow: bool,
+}
+
+/// Receives what `trace` computes; every method does nothing by default.
+pub trait Observer {
+    fn light(&mut self, _record: LightRecord) {}
+    fn vertex(&mut self, _record: VertexRecord) {}
+    /// The chain left the scene at this depth along `ray`.
+    fn miss(&mut self, _depth: u32, _ray: Ray) {}
+}
+
+/// The renderer's observer: nothing.
+pub struct Silent;
+
+impl Observer for Silent {}

@@ -1,0 +1,63 @@
+//! `whitted explain`: a pixel's ray tree whose beauty is what `render` stores, with the shadow
+//! tests spelled out.
+
+use crate::common::*;
+
+#[test]
+fn explained_beauty_is_what_render_stores() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let tick2 = scene("tick2.xml");
+    let exr = render_exr(d, &tick2, "t.exr", &["--width", "160", "--height", "120"]);
+    let exr = read_exr(&exr);
+    let mut in_shadow = 0;
+    for (x, y) in [(0, 0), (60, 75), (80, 60), (100, 50), (40, 90), (159, 119)] {
+        let pixel = format!("{x},{y}");
+        let run = whitted(
+            d,
+            &[
+                "explain",
+                "-i",
+                tick2.to_str().expect("utf-8"),
+                "--pixel",
+                &pixel,
+                "--width",
+                "160",
+                "--height",
+                "120",
+                "--json",
+            ],
+        );
+        assert!(run.status.success(), "{}", stderr(&run));
+        let json: serde_json::Value = serde_json::from_slice(&run.stdout).expect("json");
+        for (c, name) in ["R", "G", "B"].iter().enumerate() {
+            let stored = f64::from(exr.at(name, x as usize, y as usize));
+            assert_eq!(
+                json["beauty"][c].as_f64(),
+                Some(stored),
+                "({x}, {y}) {name}"
+            );
+        }
+        let vertices = json["vertices"].as_array().expect("vertices");
+        in_shadow += vertices
+            .iter()
+            .flat_map(|v| v["lights"].as_array().cloned().unwrap_or_default())
+            .filter(|l| l["in_shadow"] == true && l["occluder"]["object"].is_u64())
+            .count();
+        if let Some(first) = vertices.first() {
+            assert_eq!(
+                first["object"].as_f64(),
+                Some(f64::from(exr.at("objectid.X", x as usize, y as usize)))
+            );
+        }
+    }
+    assert!(in_shadow > 0, "no shadowed light among the pixels");
+    // The tree spells out the shadow tests.
+    let run = whitted(d, &["explain", "--pixel", "250,300"]);
+    let text = String::from_utf8_lossy(&run.stdout);
+    assert!(text.contains("blocked by object 2 (sphere)"), "{text}");
+    assert!(text.contains("max(0, N.L) ="), "{text}");
+    assert!(text.contains("fold (far end first)"), "{text}");
+    let run = whitted(d, &["explain", "--pixel", "640,0"]);
+    assert_eq!(run.status.code(), Some(2));
+}
