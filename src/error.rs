@@ -27,9 +27,12 @@ pub enum Error {
     /// An OpenEXR file that cannot be read or written.
     #[error("{}: {msg}", path.display())]
     Exr { path: PathBuf, msg: String },
-    /// A PNG file that cannot be encoded or decoded.
+    /// A PNG file that cannot be encoded.
     #[error("{}: {msg}", path.display())]
     Png { path: PathBuf, msg: String },
+    /// A PNG, JPEG, TIFF or Radiance HDR file that cannot be decoded.
+    #[error("{}: {msg}", path.display())]
+    Raster { path: PathBuf, msg: String },
     /// A command line that asks for something impossible: the user's mistake only.
     #[error("{0}")]
     Usage(String),

@@ -7,7 +7,7 @@ use crate::error::{Error, Result};
 use crate::input;
 use crate::output::atomic::AtomicFile;
 use crate::output::destination::{refuse_clashes, Destination};
-use crate::output::exr::write_rgba;
+use crate::output::exr::{write_rgba, Placement};
 use crate::output::png::encode;
 use crate::relight::{relight, RelightSpec};
 
@@ -35,7 +35,19 @@ pub fn run(args: &RelightArgs) -> Result<()> {
     })?;
     if to_exr {
         let mut file = AtomicFile::create(&args.output)?;
-        write_rgba(file.file(), &image, &pixels).map_err(|msg| Error::Exr {
+        let (data, display) = (image.data_window, image.display_window);
+        let placement = Placement {
+            size: (image.width, image.height),
+            origin: (data.min[0] as i32, data.min[1] as i32),
+            display: (
+                (display.min[0] as i32, display.min[1] as i32),
+                (
+                    (display.max[0] - display.min[0] + 1) as usize,
+                    (display.max[1] - display.min[1] + 1) as usize,
+                ),
+            ),
+        };
+        write_rgba(file.file(), placement, &pixels).map_err(|msg| Error::Exr {
             path: args.output.clone(),
             msg,
         })?;

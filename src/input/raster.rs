@@ -18,7 +18,7 @@ const MAX_BYTES_PER_PIXEL: u64 = 4 * 2 + 4 * 4;
 /// Decodes `bytes` as `format`, after checking that the size its header declares fits in the
 /// memory this process may use.
 pub fn decode(path: &Path, bytes: &[u8], format: Format) -> Result<Image> {
-    let fail = |e: image::ImageError| Error::Png {
+    let fail = |e: image::ImageError| Error::Raster {
         path: path.to_path_buf(),
         msg: e.to_string(),
     };

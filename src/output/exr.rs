@@ -9,7 +9,6 @@ use glam::DVec3;
 
 use crate::aov::{Kind, Z_MISS};
 use crate::film::Film;
-use crate::input::Image;
 use crate::openexr::FlatImage;
 use crate::output::exr_header;
 
@@ -184,9 +183,18 @@ fn channels(film: &Film, options: ExrOptions) -> x::SmallVec<[x::AnyChannel<x::F
     channels
 }
 
-/// Writes a plain linear RGBA image (alpha 1) with `like`'s windows and chromaticities: what
-/// `relight` makes.
-pub fn write_rgba(file: &mut File, like: &Image, pixels: &[DVec3]) -> Result<(), String> {
+/// Where a plain RGBA image's pixels sit: its size, the data window's top-left corner, and
+/// the display window (top-left corner and size).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Placement {
+    pub size: (usize, usize),
+    pub origin: (i32, i32),
+    pub display: ((i32, i32), (usize, usize)),
+}
+
+/// Writes a plain linear RGBA image (alpha 1) with Rec.709 chromaticities: what `relight`
+/// makes.
+pub fn write_rgba(file: &mut File, at: Placement, pixels: &[DVec3]) -> Result<(), String> {
     let channel = |name: &str, values: Vec<f32>| x::AnyChannel {
         name: text(name),
         sample_data: x::FlatSamples::F32(values),
@@ -199,9 +207,8 @@ pub fn write_rgba(file: &mut File, like: &Image, pixels: &[DVec3]) -> Result<(),
     channels.push(channel("B", plane(2)));
     channels.push(channel("G", plane(1)));
     channels.push(channel("R", plane(0)));
-    let window = |min: [i64; 2]| x::Vec2(min[0] as i32, min[1] as i32);
     let attributes = x::LayerAttributes {
-        layer_position: window(like.data_window.min),
+        layer_position: x::Vec2(at.origin.0, at.origin.1),
         software_name: Some(text(&format!("whitted {}", env!("CARGO_PKG_VERSION")))),
         ..x::LayerAttributes::default()
     };
@@ -211,19 +218,12 @@ pub fn write_rgba(file: &mut File, like: &Image, pixels: &[DVec3]) -> Result<(),
         line_order: x::LineOrder::Increasing,
     };
     let layer = x::Layer::new(
-        (like.width, like.height),
+        at.size,
         attributes,
         encoding,
         x::AnyChannels::sort(channels),
     );
-    let display = like.display_window;
-    let bounds = x::IntegerBounds::new(
-        window(display.min),
-        (
-            (display.max[0] - display.min[0] + 1) as usize,
-            (display.max[1] - display.min[1] + 1) as usize,
-        ),
-    );
+    let bounds = x::IntegerBounds::new(at.display.0, at.display.1);
     let mut image = x::Image::new(x::ImageAttributes::new(bounds), layer);
     image.attributes.chromaticities = Some(REC709_D65);
     write_image(file, &image)
