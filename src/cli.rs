@@ -59,6 +59,8 @@ pub enum Command {
     Merge(MergeArgs),
     /// Explain one pixel: its ray tree in the course's model, with every term of its colour.
     Explain(ExplainArgs),
+    /// A local web viewer for an EXR: layers, tone maps, pixel probe, relighting, A/B.
+    View(ViewArgs),
     /// Recombine an EXR's light layers with new gains (light groups), without re-rendering.
     Relight(RelightArgs),
     /// Print a balanced split of the frame into --region values, one per line (for a farm).
@@ -113,6 +115,25 @@ impl ExplainArgs {
             ..FrameSpec::default()
         }
     }
+}
+
+#[derive(Debug, Clone, Args)]
+pub struct ViewArgs {
+    /// The EXR to look at
+    #[arg(value_name = "FILE.exr")]
+    pub input: PathBuf,
+
+    /// A reference EXR of the same size, for A/B and a difference map
+    #[arg(long, value_name = "REF.exr")]
+    pub reference: Option<PathBuf>,
+
+    /// Port on 127.0.0.1 (0: any free port)
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub port: u16,
+
+    /// Only print the URL; do not try to open a browser
+    #[arg(long)]
+    pub no_browser: bool,
 }
 
 #[derive(Debug, Clone, Args)]

@@ -11,3 +11,4 @@ pub mod relight;
 pub mod render;
 pub mod sheet;
 pub mod tonemap;
+pub mod view;

@@ -57,5 +57,6 @@ pub mod stats;
 pub mod suggest;
 pub mod tonemap;
 pub mod trace;
+pub mod view;
 
 pub use error::{Error, Result};

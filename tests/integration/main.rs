@@ -20,3 +20,4 @@ mod relight;
 mod scale;
 mod scenes;
 mod tonemap;
+mod view;

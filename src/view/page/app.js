@@ -1,0 +1,321 @@
+// whitted view: layers, tone maps (the CLI's operators, same numbers), a pixel probe,
+// relighting from light layers (the same sum as `whitted relight`), A/B with a reference.
+"use strict";
+
+const token = new URLSearchParams(location.search).get("token");
+const api = (path) => `${path}${path.includes("?") ? "&" : "?"}token=${token}`;
+
+const state = {
+  meta: null,
+  layers: {}, // name -> Float32Array (pixel-major, the layer's channels)
+  reference: null, // beauty of the reference, Float32Array RGBA
+  selected: "beauty",
+  gains: {}, // light -> [r, g, b]
+  shadows: {}, // light -> true when shown with shadows
+  ambient: 1,
+  background: 1,
+  display: null, // Uint8ClampedArray RGBA of the canvas
+};
+
+// ---- tone maps: docs/tonemap.md, as src/tonemap.rs evaluates them ----
+const MAX_INPUT = 1e9;
+const srgb = (t) => (t <= 0.0031308 ? 12.92 * t : 1.055 * Math.pow(t, 1 / 2.4) - 0.055);
+const clamp01 = (x) => Math.min(Math.max(x, 0), 1);
+const mul = (m, v) => [0, 1, 2].map((r) => m[r][0] * v[0] + m[r][1] * v[1] + m[r][2] * v[2]);
+const AGX = {
+  to2020: [[0.6274, 0.3293, 0.0433], [0.0691, 0.9195, 0.0113], [0.0164, 0.088, 0.8956]],
+  inset: [[0.856627153315983, 0.0951212405381588, 0.0482516061458583],
+    [0.137318972929847, 0.761241990602591, 0.101439036467562],
+    [0.11189821299995, 0.0767994186031903, 0.811302368396859]],
+  outset: [[1.1271005818144368, -0.1106066430966032, -0.0164939387178346],
+    [-0.1413297634984383, 1.157823702216272, -0.0164939387178343],
+    [-0.1413297634984383, -0.1106066430966029, 1.2519364065950405]],
+  to709: [[1.6605, -0.5876, -0.0728], [-0.1246, 1.1329, -0.0083], [-0.0182, -0.1006, 1.1187]],
+};
+function agx(v) {
+  const c = mul(AGX.inset, mul(AGX.to2020, v));
+  const curve = c.map((x) => {
+    const t = clamp01((Math.log2(Math.max(x, 1e-10)) + 12.47393) / (4.026069 + 12.47393));
+    const x2 = t * t, x4 = x2 * x2;
+    return 15.5 * x4 * x2 - 40.14 * x4 * t + 31.96 * x4 - 6.868 * x2 * t + 0.4298 * x2 + 0.1191 * t - 0.00232;
+  });
+  const lin = mul(AGX.outset, curve).map((x) => Math.pow(Math.max(x, 0), 2.2));
+  return mul(AGX.to709, lin).map(clamp01);
+}
+function neutral(v) {
+  const x = Math.min(v[0], v[1], v[2]);
+  const offset = x < 0.08 ? x - 6.25 * x * x : 0.04;
+  let c = v.map((e) => e - offset);
+  const peak = Math.max(c[0], c[1], c[2]);
+  if (peak < 0.76) return c;
+  const d = 0.24;
+  const newPeak = 1 - (d * d) / (peak + d - 0.76);
+  c = c.map((e) => e * (newPeak / peak));
+  const g = 1 - 1 / (0.15 * (peak - newPeak) + 1);
+  return c.map((e) => e * (1 - g) + newPeak * g);
+}
+const OPERATORS = {
+  tick: (v) => v.map(clamp01),
+  clamp: (v) => v.map(clamp01),
+  reinhard: (v) => v.map((x) => x / (1 + x)),
+  aces: (v) => v.map((x) => clamp01((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14))),
+  agx,
+  neutral,
+};
+/** Linear RGB -> three bytes, exactly as the PNG writer quantises. */
+function toBytes(rgb, op, ev) {
+  const scale = Math.pow(2, ev);
+  const v = rgb.map((x) => (Number.isNaN(x) ? 0 : Math.min(Math.max(x * scale, 0), MAX_INPUT)));
+  const t = OPERATORS[op](v);
+  if (op === "tick") return t.map((x) => Math.floor(255 * x));
+  return t.map((x) => Math.min(255, Math.max(0, Math.floor(255 * srgb(x) + 0.5))));
+}
+
+// ---- data ----
+async function layer(name, which = "main") {
+  const response = await fetch(api(`/api/layer?name=${encodeURIComponent(name)}&which=${which}`));
+  if (!response.ok) throw new Error(`layer ${name}: ${response.status}`);
+  return new Float32Array(await response.arrayBuffer());
+}
+const info = (name) => state.meta.layers.find((l) => l.name === name);
+
+/** Linear RGB of a colour layer at pixel p. */
+function rgbAt(name, p) {
+  const l = info(name), data = state.layers[name], n = l.channels.length;
+  const at = (c) => data[p * n + l.channels.indexOf(c)];
+  return [at("R"), at("G"), at("B")];
+}
+
+/** ambient * a + sum_i g_i * (light_i or unshadowed_i) + background * b, in that order. */
+function relit(p) {
+  const terms = [["ambient", [state.ambient, state.ambient, state.ambient]]];
+  for (const light of state.meta.lights) {
+    const name = state.shadows[light] === false ? `unshadowed_${light}` : `light_${light}`;
+    terms.push([name, state.gains[light] || [1, 1, 1]]);
+  }
+  terms.push(["background", [state.background, state.background, state.background]]);
+  const out = [0, 0, 0];
+  for (const [name, gain] of terms) {
+    const v = rgbAt(name, p);
+    for (let c = 0; c < 3; c++) out[c] += v[c] * gain[c];
+  }
+  return out;
+}
+const relighting = () =>
+  state.ambient !== 1 || state.background !== 1 ||
+  state.meta.lights.some((l) => (state.gains[l] || [1, 1, 1]).some((g) => g !== 1) || state.shadows[l] === false);
+
+/** The value shown at pixel p as display bytes, for the current choices. */
+function displayBytes(name, p, op, ev) {
+  const l = info(name);
+  const data = state.layers[name];
+  if (l.role === "colour") {
+    const v = name === "beauty" && relighting() ? relit(p) : rgbAt(name, p);
+    return toBytes(v, op, ev);
+  }
+  const n = l.channels.length;
+  if (l.role === "normal") return [0, 1, 2].map((c) => Math.round(255 * clamp01((data[p * n + c] + 1) / 2)));
+  if (l.role === "mask") return [0, 0, 0].map(() => Math.round(255 * clamp01(data[p * n])));
+  if (l.role === "id") {
+    const id = data[p * n];
+    if (!(id > 0)) return [0, 0, 0];
+    const hue = (id * 0.618033988749895) % 1;
+    return [0, 1 / 3, 2 / 3].map((o) => Math.round(255 * (0.35 + 0.55 * (0.5 + 0.5 * Math.cos(2 * Math.PI * (hue + o))))));
+  }
+  const range = state.ranges[name];
+  return [0, 1, 2].map((c) => {
+    const x = data[p * n + Math.min(c, n - 1)];
+    if (!(x !== 0 && Number.isFinite(x) && x < 1e10)) return 0;
+    return Math.round(255 * (0.2 + (0.8 * (x - range[0])) / Math.max(range[1] - range[0], 1e-30)));
+  });
+}
+
+// ---- drawing ----
+function draw() {
+  const { width, height } = state.meta;
+  const canvas = document.getElementById("canvas");
+  canvas.width = width;
+  canvas.height = height;
+  const ctx = canvas.getContext("2d");
+  const img = ctx.createImageData(width, height);
+  const op = document.getElementById("tonemap").value;
+  const ev = Number(document.getElementById("exposure").value);
+  const mode = document.getElementById("ab").value;
+  for (let p = 0; p < width * height; p++) {
+    let bytes;
+    if (mode === "a" || !state.reference) {
+      bytes = displayBytes(state.selected, p, op, ev);
+    } else {
+      const b = [0, 1, 2].map((c) => state.reference[p * 4 + c]);
+      if (mode === "b") bytes = toBytes(b, op, ev);
+      else {
+        const a = rgbAt("beauty", p);
+        const e = Math.max(...[0, 1, 2].map((c) => Math.abs(a[c] - b[c])));
+        const t = e === 0 ? 0 : clamp01((Math.log10(e) + 6) / 6);
+        bytes = e === 0 ? [0, 0, 0] : [Math.round(255 * t), Math.round(255 * t * t), Math.round(90 * (1 - t))];
+      }
+    }
+    img.data.set([bytes[0], bytes[1], bytes[2], 255], p * 4);
+  }
+  ctx.putImageData(img, 0, 0);
+  state.display = img.data;
+  document.getElementById("status").textContent =
+    `${state.selected}${state.selected === "beauty" && relighting() ? " (relit)" : ""}, ${op}, EV ${ev.toFixed(1)}`;
+}
+
+function thumbnails() {
+  const nav = document.getElementById("layers");
+  nav.textContent = "";
+  const groups = { beauty: [], effects: [], lights: [], bounces: [], masks: [], data: [] };
+  for (const l of state.meta.layers) {
+    const g = l.name === "beauty" ? "beauty"
+      : l.name.startsWith("light_") || l.name.startsWith("unshadowed_") ? "lights"
+      : l.name.startsWith("reflected") ? "bounces"
+      : l.role === "mask" ? "masks" : l.role === "colour" ? "effects" : "data";
+    groups[g].push(l.name);
+  }
+  const { width, height } = state.meta;
+  const step = Math.max(1, Math.ceil(width / 180));
+  for (const [group, names] of Object.entries(groups)) {
+    if (!names.length) continue;
+    const h = document.createElement("h3");
+    h.textContent = group;
+    nav.append(h);
+    for (const name of names) {
+      const fig = document.createElement("figure");
+      fig.dataset.layer = name;
+      if (name === state.selected) fig.className = "selected";
+      const c = document.createElement("canvas");
+      c.width = Math.floor(width / step);
+      c.height = Math.floor(height / step);
+      const ctx = c.getContext("2d");
+      const img = ctx.createImageData(c.width, c.height);
+      for (let y = 0; y < c.height; y++)
+        for (let x = 0; x < c.width; x++) {
+          const b = displayBytes(name, y * step * width + x * step, "clamp", 0);
+          img.data.set([b[0], b[1], b[2], 255], (y * c.width + x) * 4);
+        }
+      ctx.putImageData(img, 0, 0);
+      const cap = document.createElement("figcaption");
+      cap.textContent = name;
+      fig.append(c, cap);
+      fig.onclick = () => select(name);
+      nav.append(fig);
+    }
+  }
+}
+
+function select(name) {
+  state.selected = name;
+  for (const f of document.querySelectorAll("nav figure")) f.className = f.dataset.layer === name ? "selected" : "";
+  draw();
+}
+
+// ---- probe ----
+function probe(x, y) {
+  const { width } = state.meta;
+  const p = y * width + x;
+  const values = {};
+  for (const l of state.meta.layers) {
+    const n = l.channels.length;
+    values[l.name] = Array.from(state.layers[l.name].slice(p * n, p * n + n));
+  }
+  const sum = relit(p);
+  const text = [`pixel (${x}, ${y})`, `RGB = ambient + sum light + background = ${sum.map((v) => v.toPrecision(6)).join(", ")}`];
+  for (const [name, v] of Object.entries(values)) text.push(`${name}: ${v.map((e) => e.toPrecision(6)).join(", ")}`);
+  document.getElementById("probe").textContent = text.join("\n");
+  return { pixel: [x, y], values, breakdown: sum };
+}
+
+// ---- relight panel ----
+function hexToGain(hex, scale) {
+  return [1, 3, 5].map((i) => (parseInt(hex.slice(i, i + 2), 16) / 255) * scale);
+}
+function relightPanel() {
+  const panel = document.getElementById("relight");
+  panel.textContent = "";
+  const row = (label, value, onInput, colour) => {
+    const div = document.createElement("div");
+    div.className = "light";
+    const slider = Object.assign(document.createElement("input"), { type: "range", min: 0, max: 4, step: 0.01, value });
+    const out = document.createElement("output");
+    out.textContent = Number(value).toFixed(2);
+    div.append(`${label} `, slider, out);
+    let picker = null;
+    if (colour) {
+      picker = Object.assign(document.createElement("input"), { type: "color", value: "#ffffff" });
+      div.append(picker);
+    }
+    const update = () => { out.textContent = Number(slider.value).toFixed(2); onInput(Number(slider.value), picker && picker.value); };
+    slider.oninput = update;
+    if (picker) picker.oninput = update;
+    panel.append(div);
+    return div;
+  };
+  for (const light of state.meta.lights) {
+    const div = row(`light ${light}`, 1, (g, colour) => { state.gains[light] = hexToGain(colour, g); draw(); }, true);
+    const box = Object.assign(document.createElement("input"), { type: "checkbox", checked: true });
+    box.onchange = () => { state.shadows[light] = box.checked; draw(); };
+    div.append(" shadows ", box);
+  }
+  if (info("ambient")) row("ambient", 1, (g) => { state.ambient = g; draw(); });
+  if (info("background")) row("background", 1, (g) => { state.background = g; draw(); });
+}
+
+// ---- start ----
+async function start() {
+  state.meta = await (await fetch(api("/api/image"))).json();
+  for (const l of state.meta.layers) state.layers[l.name] = await layer(l.name);
+  if (state.meta.reference) {
+    const ref = await layer("beauty", "reference");
+    const n = info("beauty").channels.length;
+    state.reference = new Float32Array(state.meta.width * state.meta.height * 4);
+    for (let p = 0; p < state.meta.width * state.meta.height; p++)
+      for (let c = 0; c < 3; c++) state.reference[p * 4 + c] = ref[p * n + c];
+    document.getElementById("ab-label").hidden = false;
+  }
+  state.ranges = {};
+  for (const l of state.meta.layers) {
+    const data = state.layers[l.name];
+    let lo = Infinity, hi = -Infinity;
+    for (const x of data) if (x !== 0 && Number.isFinite(x) && x < 1e10) { lo = Math.min(lo, x); hi = Math.max(hi, x); }
+    state.ranges[l.name] = [lo, hi];
+  }
+  if (!info("beauty")) state.selected = state.meta.layers[0].name;
+  relightPanel();
+  thumbnails();
+  draw();
+  for (const id of ["tonemap", "ab"]) document.getElementById(id).onchange = draw;
+  document.getElementById("exposure").oninput = (e) => {
+    document.getElementById("exposure-value").textContent = Number(e.target.value).toFixed(1);
+    draw();
+  };
+  document.getElementById("canvas").onclick = (e) => {
+    const c = e.target, r = c.getBoundingClientRect();
+    probe(Math.floor(((e.clientX - r.left) * c.width) / r.width), Math.floor(((e.clientY - r.top) * c.height) / r.height));
+  };
+  document.getElementById("reset").onclick = () => {
+    Object.assign(state, { gains: {}, shadows: {}, ambient: 1, background: 1 });
+    relightPanel();
+    draw();
+  };
+  document.getElementById("save").onclick = () => {
+    document.getElementById("canvas").toBlob((blob) => {
+      const a = Object.assign(document.createElement("a"), { href: URL.createObjectURL(blob), download: `${state.selected}.png` });
+      a.click();
+    });
+  };
+  window.whitted.ready = true;
+}
+
+// What the browser tests (and a curious user's console) drive: the same functions the
+// controls call.
+window.whitted = {
+  ready: false,
+  probe,
+  setGain(light, r, g, b) { state.gains[light] = [r, g, b]; draw(); },
+  setShadows(light, on) { state.shadows[light] = on; draw(); },
+  setToneMap(op, ev) { document.getElementById("tonemap").value = op; document.getElementById("exposure").value = ev; draw(); },
+  pixels() { return Array.from(state.display); },
+};
+start().catch((e) => { document.getElementById("status").textContent = `error: ${e.message}`; });

@@ -1,0 +1,368 @@
+//! `whitted view`: the HTTP rules (loopback Host, token, nothing but the images), and the page
+//! in a real headless Chromium driven over WebDriver (Debian's `chromium` and
+//! `chromium-driver`, which `tools/test` installs): the probe reads the EXR's values, and
+//! relighting in the page gives `whitted relight`'s PNG to within 1 LSB.
+
+use std::io::{BufRead, BufReader, Read, Write};
+use std::net::TcpStream;
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+use serde_json::{json, Value};
+
+use crate::common::*;
+
+/// A running `whitted view`, stopped (SIGTERM) when dropped.
+struct Viewer {
+    child: Child,
+    url: String,
+    port: u16,
+}
+
+impl Viewer {
+    fn start(dir: &Path, exr: &Path) -> Viewer {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_whitted"))
+            .args(["view", exr.to_str().expect("utf-8"), "--no-browser"])
+            .current_dir(dir)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("whitted view starts");
+        let mut line = String::new();
+        BufReader::new(child.stdout.take().expect("stdout"))
+            .read_line(&mut line)
+            .expect("the URL line");
+        let url = line.trim().to_string();
+        assert!(url.starts_with("http://127.0.0.1:"), "{url}");
+        let port = url["http://127.0.0.1:".len()..]
+            .split('/')
+            .next()
+            .and_then(|p| p.parse().ok())
+            .expect("a port");
+        Viewer { child, url, port }
+    }
+
+    /// Sends SIGINT (Ctrl-C) and returns the exit status.
+    fn interrupt(&mut self) -> Option<i32> {
+        Command::new("kill")
+            .args(["-INT", &self.child.id().to_string()])
+            .status()
+            .expect("kill");
+        self.child.wait().expect("wait").code()
+    }
+
+    fn token(&self) -> &str {
+        self.url.rsplit_once("token=").expect("a token").1
+    }
+}
+
+impl Drop for Viewer {
+    fn drop(&mut self) {
+        let _ = Command::new("kill")
+            .arg(self.child.id().to_string())
+            .status();
+        let _ = self.child.wait();
+    }
+}
+
+/// One HTTP/1.1 exchange: (status, body).
+fn http(port: u16, method: &str, path: &str, host: &str, body: Option<&Value>) -> (u16, Vec<u8>) {
+    let mut stream = TcpStream::connect(("127.0.0.1", port)).expect("connect");
+    stream
+        .set_read_timeout(Some(Duration::from_secs(60)))
+        .expect("timeout");
+    let payload = body.map(Value::to_string).unwrap_or_default();
+    let request = format!(
+        "{method} {path} HTTP/1.1\r\nHost: {host}\r\nContent-Type: application/json\r\n\
+         Content-Length: {}\r\nConnection: close\r\n\r\n{payload}",
+        payload.len()
+    );
+    stream.write_all(request.as_bytes()).expect("send");
+    // Read the headers, then exactly the body they announce: a server may keep the
+    // connection open whatever the request asked.
+    let mut reader = BufReader::new(stream);
+    let mut head = String::new();
+    loop {
+        let mut line = String::new();
+        if reader.read_line(&mut line).expect("receive") == 0 || line == "\r\n" {
+            break;
+        }
+        head.push_str(&line);
+    }
+    let status = head
+        .split(' ')
+        .nth(1)
+        .and_then(|s| s.parse().ok())
+        .expect("status");
+    let lower = head.to_ascii_lowercase();
+    let length = lower
+        .lines()
+        .find_map(|l| l.strip_prefix("content-length:"))
+        .and_then(|n| n.trim().parse::<usize>().ok());
+    let mut body = Vec::new();
+    match length {
+        Some(n) => {
+            body.resize(n, 0);
+            reader.read_exact(&mut body).expect("body");
+        }
+        None if lower.contains("transfer-encoding: chunked") => loop {
+            let mut size = String::new();
+            reader.read_line(&mut size).expect("chunk size");
+            let n = usize::from_str_radix(size.trim(), 16).expect("hex size");
+            let mut chunk = vec![0; n + 2];
+            reader.read_exact(&mut chunk).expect("chunk");
+            if n == 0 {
+                break;
+            }
+            body.extend_from_slice(&chunk[..n]);
+        },
+        None => {
+            reader.read_to_end(&mut body).expect("body");
+        }
+    }
+    (status, body)
+}
+
+fn small_render(dir: &Path) -> PathBuf {
+    render_exr(
+        dir,
+        &scene("tick2.xml"),
+        "view.exr",
+        &["--width", "160", "--height", "120"],
+    )
+}
+
+#[test]
+fn the_viewer_serves_only_its_images_to_loopback_with_the_token() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let exr = small_render(dir.path());
+    let viewer = Viewer::start(dir.path(), &exr);
+    let host = format!("127.0.0.1:{}", viewer.port);
+    let token = viewer.token().to_string();
+    let get = |path: &str, host: &str| http(viewer.port, "GET", path, host, None);
+    assert_eq!(get(&format!("/?token={token}"), &host).0, 200);
+    assert_eq!(get("/", &host).0, 403, "no token");
+    assert_eq!(get("/?token=0123", &host).0, 403, "wrong token");
+    assert_eq!(
+        get(&format!("/?token={token}"), "evil.example:80").0,
+        403,
+        "rebinding"
+    );
+    assert_eq!(
+        get(
+            &format!("/?token={token}"),
+            &format!("localhost:{}", viewer.port)
+        )
+        .0,
+        200
+    );
+    for path in [
+        "/../../etc/passwd",
+        "/view.exr",
+        "/api/layer?name=../../etc/passwd",
+    ] {
+        let sep = if path.contains('?') { '&' } else { '?' };
+        assert_eq!(
+            get(&format!("{path}{sep}token={token}"), &host).0,
+            404,
+            "{path}"
+        );
+    }
+    let (status, body) = get(&format!("/api/image?token={token}"), &host);
+    assert_eq!(status, 200);
+    let meta: Value = serde_json::from_slice(&body).expect("json");
+    assert_eq!(
+        (meta["width"].as_u64(), meta["height"].as_u64()),
+        (Some(160), Some(120))
+    );
+    assert_eq!(meta["lights"], json!(["0", "1"]));
+    let (status, bytes) = get(&format!("/api/layer?name=direct&token={token}"), &host);
+    assert_eq!((status, bytes.len()), (200, 160 * 120 * 3 * 4));
+    let read = read_exr(&exr);
+    let first = f32::from_le_bytes([bytes[0], bytes[1], bytes[2], bytes[3]]);
+    assert_eq!(first, read.at("direct.R", 0, 0));
+    // Ctrl-C stops it.
+    let mut viewer = viewer;
+    assert_eq!(viewer.interrupt(), Some(130));
+}
+
+/// A WebDriver session on a headless Chromium, ended (and its driver stopped) when dropped.
+struct Browser {
+    driver: Child,
+    port: u16,
+    session: String,
+}
+
+impl Browser {
+    fn start() -> Browser {
+        let port = std::net::TcpListener::bind("127.0.0.1:0")
+            .and_then(|l| l.local_addr())
+            .map(|a| a.port())
+            .expect("a free port");
+        let driver = Command::new(tool("chromedriver"))
+            .arg(format!("--port={port}"))
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("chromedriver starts (tools/test installs chromium-driver)");
+        let started = Instant::now();
+        while TcpStream::connect(("127.0.0.1", port)).is_err() {
+            assert!(
+                started.elapsed() < Duration::from_secs(20),
+                "chromedriver did not listen"
+            );
+            std::thread::sleep(Duration::from_millis(100));
+        }
+        let capabilities = json!({"capabilities": {"alwaysMatch": {
+            "browserName": "chrome",
+            "goog:chromeOptions": {
+                "binary": tool("chromium").to_str().expect("utf-8"),
+                "args": ["--headless=new", "--no-sandbox", "--disable-gpu",
+                         "--disable-dev-shm-usage", "--window-size=1400,800"]
+            }
+        }}});
+        let mut browser = Browser {
+            driver,
+            port,
+            session: String::new(),
+        };
+        let reply = browser.call("POST", "/session", Some(capabilities));
+        browser.session = reply["sessionId"]
+            .as_str()
+            .unwrap_or_else(|| panic!("no session: {reply}"))
+            .to_string();
+        browser
+    }
+
+    fn call(&self, method: &str, path: &str, body: Option<Value>) -> Value {
+        let host = format!("127.0.0.1:{}", self.port);
+        let (status, bytes) = http(self.port, method, path, &host, body.as_ref());
+        let reply: Value = serde_json::from_slice(&bytes).expect("WebDriver JSON");
+        assert_eq!(status, 200, "{method} {path}: {reply}");
+        reply["value"].clone()
+    }
+
+    fn session(&self, method: &str, path: &str, body: Option<Value>) -> Value {
+        self.call(method, &format!("/session/{}{path}", self.session), body)
+    }
+
+    fn script(&self, script: &str, args: Value) -> Value {
+        self.session(
+            "POST",
+            "/execute/sync",
+            Some(json!({"script": script, "args": args})),
+        )
+    }
+}
+
+impl Drop for Browser {
+    fn drop(&mut self) {
+        if !self.session.is_empty() {
+            let host = format!("127.0.0.1:{}", self.port);
+            let _ = http(
+                self.port,
+                "DELETE",
+                &format!("/session/{}", self.session),
+                &host,
+                None,
+            );
+        }
+        let _ = self.driver.kill();
+        let _ = self.driver.wait();
+    }
+}
+
+fn base64_decode(text: &str) -> Vec<u8> {
+    let value = |c: u8| match c {
+        b'A'..=b'Z' => c - b'A',
+        b'a'..=b'z' => c - b'a' + 26,
+        b'0'..=b'9' => c - b'0' + 52,
+        b'+' => 62,
+        _ => 63,
+    };
+    let digits: Vec<u8> = text
+        .bytes()
+        .filter(|&c| c != b'=' && !c.is_ascii_whitespace())
+        .map(value)
+        .collect();
+    digits
+        .chunks(4)
+        .flat_map(|q| {
+            let n = q.iter().fold(0u32, |n, &d| n << 6 | u32::from(d)) << (6 * (4 - q.len()));
+            let bytes = n.to_be_bytes();
+            bytes[1..q.len()].to_vec()
+        })
+        .collect()
+}
+
+#[test]
+fn the_page_probes_and_relights_like_the_command_line() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let exr = small_render(d);
+    let viewer = Viewer::start(d, &exr);
+    let browser = Browser::start();
+    browser.session("POST", "/url", Some(json!({"url": viewer.url})));
+    let started = Instant::now();
+    while browser.script(
+        "return !!(window.whitted && window.whitted.ready)",
+        json!([]),
+    ) != json!(true)
+    {
+        assert!(
+            started.elapsed() < Duration::from_secs(60),
+            "the page never became ready"
+        );
+        std::thread::sleep(Duration::from_millis(200));
+    }
+
+    // The probe shows the EXR's own values.
+    let read = read_exr(&exr);
+    let probe = browser.script("return window.whitted.probe(40, 70)", json!([]));
+    for (layer, channel, name) in [("beauty", 0, "R"), ("direct", 1, "direct.G"), ("Z", 0, "Z")] {
+        let shown = probe["values"][layer][channel].as_f64().expect("a number");
+        assert_eq!(shown, f64::from(read.at(name, 40, 70)), "{layer}");
+    }
+
+    // Light 0 at 0 in the page equals `whitted relight --light 0=0`, to 1 LSB.
+    let pixels = browser.script(
+        "window.whitted.setToneMap('tick', 0); window.whitted.setGain('0', 0, 0, 0); \
+         return window.whitted.pixels()",
+        json!([]),
+    );
+    let pixels: Vec<u8> = pixels
+        .as_array()
+        .expect("bytes")
+        .iter()
+        .map(|v| v.as_u64().unwrap_or(0) as u8)
+        .collect();
+    let run = whitted(
+        d,
+        &[
+            "relight",
+            exr.to_str().expect("utf-8"),
+            "-o",
+            "relit.png",
+            "--light",
+            "0=0",
+        ],
+    );
+    assert!(run.status.success(), "{}", stderr(&run));
+    let png = read_png(&d.join("relit.png"));
+    let mut worst = 0;
+    for (i, rgb) in png.data.chunks(3).enumerate() {
+        for c in 0..3 {
+            worst = worst.max(rgb[c].abs_diff(pixels[i * 4 + c]));
+        }
+    }
+    assert!(worst <= 1, "the page differs from relight by {worst} LSB");
+    assert!(pixels.iter().any(|&b| b > 0), "a blank canvas");
+
+    // A screenshot of the page (the README's picture is made this way).
+    let shot = browser.session("GET", "/screenshot", None);
+    let bytes = base64_decode(shot.as_str().expect("base64"));
+    assert!(bytes.starts_with(b"\x89PNG"), "a PNG screenshot");
+    let out = root().join("target/viewer-screenshot.png");
+    std::fs::write(&out, &bytes).unwrap_or_else(|e| panic!("{}: {e}", out.display()));
+}
