@@ -22,8 +22,14 @@ struct Viewer {
 
 impl Viewer {
     fn start(dir: &Path, exr: &Path) -> Viewer {
+        Viewer::start_with(dir, &[exr.to_str().expect("utf-8")])
+    }
+
+    fn start_with(dir: &Path, args: &[&str]) -> Viewer {
         let mut child = Command::new(env!("CARGO_BIN_EXE_whitted"))
-            .args(["view", exr.to_str().expect("utf-8"), "--no-browser"])
+            .arg("view")
+            .args(args)
+            .arg("--no-browser")
             .current_dir(dir)
             .stdout(Stdio::piped())
             .stderr(Stdio::null())
@@ -185,6 +191,38 @@ fn the_viewer_serves_only_its_images_to_loopback_with_the_token() {
     // Ctrl-C stops it.
     let mut viewer = viewer;
     assert_eq!(viewer.interrupt(), Some(130));
+
+    // With a reference, its beauty is served too, for A/B.
+    let other = render_exr(
+        dir.path(),
+        &scene("tick2.xml"),
+        "other.exr",
+        &["--width", "160", "--height", "120", "--bounces", "0"],
+    );
+    let viewer = Viewer::start_with(
+        dir.path(),
+        &[
+            exr.to_str().expect("utf-8"),
+            "--reference",
+            other.to_str().expect("utf-8"),
+        ],
+    );
+    let host = format!("127.0.0.1:{}", viewer.port);
+    let token = viewer.token().to_string();
+    let (_, body) = http(
+        viewer.port,
+        "GET",
+        &format!("/api/image?token={token}"),
+        &host,
+        None,
+    );
+    let meta: Value = serde_json::from_slice(&body).expect("json");
+    assert_eq!(meta["reference"], true);
+    let path = format!("/api/layer?name=beauty&which=reference&token={token}");
+    let (status, bytes) = http(viewer.port, "GET", &path, &host, None);
+    assert_eq!((status, bytes.len()), (200, 160 * 120 * 4 * 4));
+    let first = f32::from_le_bytes([bytes[0], bytes[1], bytes[2], bytes[3]]);
+    assert_eq!(first, read_exr(&other).at("R", 0, 0));
 }
 
 /// A WebDriver session on a headless Chromium, ended (and its driver stopped) when dropped.
