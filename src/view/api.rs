@@ -83,16 +83,46 @@ fn route(served: &Served, request: &Request) -> Reply {
                 Some("reference") => served.reference.as_ref(),
                 _ => Some(&served.main),
             };
+            let step = param("step").and_then(|s| s.parse().ok()).unwrap_or(1usize);
             match (image, param("name")) {
-                (Some(image), Some(name)) => match layer_bytes(image, &name) {
+                (Some(image), Some(name)) => match layer_bytes(image, &name, step.max(1)) {
                     Some(bytes) => (200, "application/octet-stream", bytes),
                     None => text(404, "no such layer"),
                 },
                 _ => text(404, "no such image or layer"),
             }
         }
+        "/api/pixel" => {
+            let coordinate = |key: &str| param(key).and_then(|v| v.parse::<usize>().ok());
+            match (coordinate("x"), coordinate("y")) {
+                (Some(x), Some(y)) if x < served.main.width && y < served.main.height => (
+                    200,
+                    "application/json",
+                    pixel(&served.main, x, y).to_string().into_bytes(),
+                ),
+                _ => text(404, "no such pixel"),
+            }
+        }
         _ => text(404, "not found"),
     }
+}
+
+/// Every layer's values at pixel (x, y), for the probe.
+fn pixel(image: &Image, x: usize, y: usize) -> serde_json::Value {
+    let p = y * image.width + x;
+    let layers: serde_json::Map<String, serde_json::Value> = image
+        .layers()
+        .iter()
+        .map(|layer| {
+            let values: Vec<f64> = layer
+                .channels
+                .iter()
+                .map(|&i| f64::from(image.channels[i].values[p]))
+                .collect();
+            (layer.name.clone(), json!(values))
+        })
+        .collect();
+    serde_json::Value::Object(layers)
 }
 
 /// The image's size and layers (name, channels, role), its lights, and whether a reference
@@ -138,19 +168,24 @@ fn describe(served: &Served) -> serde_json::Value {
     })
 }
 
-/// A layer's values, pixel-major, its channels in display order, little-endian f32.
-fn layer_bytes(image: &Image, name: &str) -> Option<Vec<u8>> {
+/// A layer's values, pixel-major, its channels in display order, little-endian f32; with
+/// `step` > 1 every step-th pixel of every step-th row (`width / step` by `height / step`, for
+/// thumbnails), so a 4K image's page never needs every layer whole.
+fn layer_bytes(image: &Image, name: &str, step: usize) -> Option<Vec<u8>> {
     let layer = image.layers().into_iter().find(|l| l.name == name)?;
     let channels: Vec<&[f32]> = layer
         .channels
         .iter()
         .map(|&i| image.channels[i].values.as_slice())
         .collect();
-    let pixels = image.width * image.height;
-    let mut bytes = Vec::with_capacity(pixels * channels.len() * 4);
-    for p in 0..pixels {
-        for c in &channels {
-            bytes.extend_from_slice(&c[p].to_le_bytes());
+    let (width, height) = (image.width / step, image.height / step);
+    let mut bytes = Vec::with_capacity(width * height * channels.len() * 4);
+    for y in 0..height {
+        for x in 0..width {
+            let p = y * step * image.width + x * step;
+            for c in &channels {
+                bytes.extend_from_slice(&c[p].to_le_bytes());
+            }
         }
     }
     Some(bytes)

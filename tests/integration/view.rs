@@ -365,8 +365,9 @@ fn the_page_probes_and_relights_like_the_command_line() {
 
     // Light 0 at 0 in the page equals `whitted relight --light 0=0`, to 1 LSB.
     let pixels = browser.script(
-        "window.whitted.setToneMap('tick', 0); window.whitted.setGain('0', 0, 0, 0); \
-         return window.whitted.pixels()",
+        "return window.whitted.setToneMap('tick', 0) \
+           .then(() => window.whitted.setGain('0', 0, 0, 0)) \
+           .then(() => window.whitted.pixels())",
         json!([]),
     );
     let pixels: Vec<u8> = pixels

@@ -71,13 +71,50 @@ function toBytes(rgb, op, ev) {
   return t.map((x) => Math.min(255, Math.max(0, Math.floor(255 * srgb(x) + 0.5))));
 }
 
+/** The per-channel operators as one scalar function, for the fast path of a whole image. */
+const SCALAR = {
+  tick: clamp01,
+  clamp: clamp01,
+  reinhard: (x) => x / (1 + x),
+  aces: (x) => clamp01((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14)),
+};
+
+/** Writes the display bytes of linear (r, g, b) into `out` at `o`, quantised exactly as the PNG
+ * writer does (a lookup table would not be exact). */
+function quantise(r, g, b, op, ev, scale, out, o) {
+  const f = SCALAR[op];
+  if (!f) {
+    const bytes = toBytes([r, g, b], op, ev);
+    out[o] = bytes[0]; out[o + 1] = bytes[1]; out[o + 2] = bytes[2];
+    return;
+  }
+  const v = [r, g, b];
+  for (let c = 0; c < 3; c++) {
+    const x = v[c];
+    const t = f(Number.isNaN(x) ? 0 : Math.min(Math.max(x * scale, 0), MAX_INPUT));
+    out[o + c] = op === "tick" ? Math.floor(255 * t) : Math.min(255, Math.max(0, Math.floor(255 * srgb(t) + 0.5)));
+  }
+}
+
 // ---- data ----
-async function layer(name, which = "main") {
-  const response = await fetch(api(`/api/layer?name=${encodeURIComponent(name)}&which=${which}`));
+async function layer(name, which = "main", step = 1) {
+  const response = await fetch(api(`/api/layer?name=${encodeURIComponent(name)}&which=${which}&step=${step}`));
   if (!response.ok) throw new Error(`layer ${name}: ${response.status}`);
   return new Float32Array(await response.arrayBuffer());
 }
 const info = (name) => state.meta.layers.find((l) => l.name === name);
+
+/** Fetches the layers not yet here (whole), with the range data layers are shown over. */
+async function need(names) {
+  for (const name of names) {
+    if (state.layers[name] || !info(name)) continue;
+    const data = await layer(name);
+    let lo = Infinity, hi = -Infinity;
+    for (const x of data) if (x !== 0 && Number.isFinite(x) && x < 1e10) { lo = Math.min(lo, x); hi = Math.max(hi, x); }
+    state.ranges[name] = [lo, hi];
+    state.layers[name] = data;
+  }
+}
 
 /** Linear RGB of a colour layer at pixel p. */
 function rgbAt(name, p) {
@@ -86,34 +123,29 @@ function rgbAt(name, p) {
   return [at("R"), at("G"), at("B")];
 }
 
-/** ambient * a + sum_i g_i * (light_i or unshadowed_i) + background * b, in that order. */
-function relit(p) {
+/** The layers and gains of the relit image, in the order of the sum. */
+function relightTerms() {
   const terms = [["ambient", [state.ambient, state.ambient, state.ambient]]];
   for (const light of state.meta.lights) {
     const name = state.shadows[light] === false ? `unshadowed_${light}` : `light_${light}`;
     terms.push([name, state.gains[light] || [1, 1, 1]]);
   }
   terms.push(["background", [state.background, state.background, state.background]]);
-  const out = [0, 0, 0];
-  for (const [name, gain] of terms) {
-    const v = rgbAt(name, p);
-    for (let c = 0; c < 3; c++) out[c] += v[c] * gain[c];
-  }
-  return out;
+  return terms;
 }
+
 const relighting = () =>
   state.ambient !== 1 || state.background !== 1 ||
   state.meta.lights.some((l) => (state.gains[l] || [1, 1, 1]).some((g) => g !== 1) || state.shadows[l] === false);
 
-/** The value shown at pixel p as display bytes, for the current choices. */
-function displayBytes(name, p, op, ev) {
-  const l = info(name);
-  const data = state.layers[name];
-  if (l.role === "colour") {
-    const v = name === "beauty" && relighting() ? relit(p) : rgbAt(name, p);
-    return toBytes(v, op, ev);
-  }
+/** Display bytes of value q of `data`, a layer described by `l` (whole or subsampled). */
+function layerBytes(l, data, q, op, ev, range) {
   const n = l.channels.length;
+  if (l.role === "colour") {
+    const at = (c) => data[q * n + l.channels.indexOf(c)];
+    return toBytes([at("R"), at("G"), at("B")], op, ev);
+  }
+  const p = q;
   if (l.role === "normal") return [0, 1, 2].map((c) => Math.round(255 * clamp01((data[p * n + c] + 1) / 2)));
   if (l.role === "mask") return [0, 0, 0].map(() => Math.round(255 * clamp01(data[p * n])));
   if (l.role === "id") {
@@ -122,7 +154,6 @@ function displayBytes(name, p, op, ev) {
     const hue = (id * 0.618033988749895) % 1;
     return [0, 1 / 3, 2 / 3].map((o) => Math.round(255 * (0.35 + 0.55 * (0.5 + 0.5 * Math.cos(2 * Math.PI * (hue + o))))));
   }
-  const range = state.ranges[name];
   return [0, 1, 2].map((c) => {
     const x = data[p * n + Math.min(c, n - 1)];
     if (!(x !== 0 && Number.isFinite(x) && x < 1e10)) return 0;
@@ -131,7 +162,11 @@ function displayBytes(name, p, op, ev) {
 }
 
 // ---- drawing ----
-function draw() {
+async function draw() {
+  const mode = document.getElementById("ab").value;
+  const wanted = mode === "a" || !state.reference ? [state.selected] : ["beauty"];
+  if (state.selected === "beauty" && relighting()) wanted.push(...relightTerms().map(([n]) => n));
+  await need(wanted);
   const { width, height } = state.meta;
   const canvas = document.getElementById("canvas");
   canvas.width = width;
@@ -140,11 +175,32 @@ function draw() {
   const img = ctx.createImageData(width, height);
   const op = document.getElementById("tonemap").value;
   const ev = Number(document.getElementById("exposure").value);
-  const mode = document.getElementById("ab").value;
+  const l = info(state.selected);
+  if ((mode === "a" || !state.reference) && l.role === "colour") {
+    // The fast path for colour layers and the relit beauty: no allocation per pixel.
+    const scale = Math.pow(2, ev);
+    const terms = state.selected === "beauty" && relighting() ? relightTerms() : [[state.selected, [1, 1, 1]]];
+    const planes = terms.map(([name, gain]) => {
+      const li = info(name), n = li.channels.length;
+      return [state.layers[name], n, li.channels.indexOf("R"), li.channels.indexOf("G"), li.channels.indexOf("B"), gain];
+    });
+    for (let p = 0; p < width * height; p++) {
+      let r = 0, g = 0, b = 0;
+      for (const [data, n, ri, gi, bi, gain] of planes) {
+        r += data[p * n + ri] * gain[0];
+        g += data[p * n + gi] * gain[1];
+        b += data[p * n + bi] * gain[2];
+      }
+      quantise(r, g, b, op, ev, scale, img.data, p * 4);
+      img.data[p * 4 + 3] = 255;
+    }
+    finishDraw(ctx, img, op, ev);
+    return;
+  }
   for (let p = 0; p < width * height; p++) {
     let bytes;
     if (mode === "a" || !state.reference) {
-      bytes = displayBytes(state.selected, p, op, ev);
+      bytes = layerBytes(l, state.layers[state.selected], p, op, ev, state.ranges[state.selected]);
     } else {
       const b = [0, 1, 2].map((c) => state.reference[p * 4 + c]);
       if (mode === "b") bytes = toBytes(b, op, ev);
@@ -157,13 +213,17 @@ function draw() {
     }
     img.data.set([bytes[0], bytes[1], bytes[2], 255], p * 4);
   }
+  finishDraw(ctx, img, op, ev);
+}
+
+function finishDraw(ctx, img, op, ev) {
   ctx.putImageData(img, 0, 0);
   state.display = img.data;
   document.getElementById("status").textContent =
     `${state.selected}${state.selected === "beauty" && relighting() ? " (relit)" : ""}, ${op}, EV ${ev.toFixed(1)}`;
 }
 
-function thumbnails() {
+async function thumbnails() {
   const nav = document.getElementById("layers");
   nav.textContent = "";
   const groups = { beauty: [], effects: [], lights: [], bounces: [], masks: [], data: [] };
@@ -190,11 +250,13 @@ function thumbnails() {
       c.height = Math.floor(height / step);
       const ctx = c.getContext("2d");
       const img = ctx.createImageData(c.width, c.height);
-      for (let y = 0; y < c.height; y++)
-        for (let x = 0; x < c.width; x++) {
-          const b = displayBytes(name, y * step * width + x * step, "clamp", 0);
-          img.data.set([b[0], b[1], b[2], 255], (y * c.width + x) * 4);
-        }
+      const small = await layer(name, "main", step);
+      let lo = Infinity, hi = -Infinity;
+      for (const x of small) if (x !== 0 && Number.isFinite(x) && x < 1e10) { lo = Math.min(lo, x); hi = Math.max(hi, x); }
+      for (let q = 0; q < c.width * c.height; q++) {
+        const b = layerBytes(info(name), small, q, "clamp", 0, [lo, hi]);
+        img.data.set([b[0], b[1], b[2], 255], q * 4);
+      }
       ctx.putImageData(img, 0, 0);
       const cap = document.createElement("figcaption");
       cap.textContent = name;
@@ -212,15 +274,13 @@ function select(name) {
 }
 
 // ---- probe ----
-function probe(x, y) {
-  const { width } = state.meta;
-  const p = y * width + x;
-  const values = {};
-  for (const l of state.meta.layers) {
-    const n = l.channels.length;
-    values[l.name] = Array.from(state.layers[l.name].slice(p * n, p * n + n));
+async function probe(x, y) {
+  const values = await (await fetch(api(`/api/pixel?x=${x}&y=${y}`))).json();
+  const sum = [0, 0, 0];
+  for (const [name, gain] of relightTerms()) {
+    const v = values[name] || [0, 0, 0];
+    for (let c = 0; c < 3; c++) sum[c] += v[c] * gain[c];
   }
-  const sum = relit(p);
   const text = [`pixel (${x}, ${y})`, `RGB = ambient + sum light + background = ${sum.map((v) => v.toPrecision(6)).join(", ")}`];
   for (const [name, v] of Object.entries(values)) text.push(`${name}: ${v.map((e) => e.toPrecision(6)).join(", ")}`);
   document.getElementById("probe").textContent = text.join("\n");
@@ -265,7 +325,7 @@ function relightPanel() {
 // ---- start ----
 async function start() {
   state.meta = await (await fetch(api("/api/image"))).json();
-  for (const l of state.meta.layers) state.layers[l.name] = await layer(l.name);
+  state.ranges = {};
   if (state.meta.reference) {
     const ref = await layer("beauty", "reference");
     const n = info("beauty").channels.length;
@@ -274,17 +334,10 @@ async function start() {
       for (let c = 0; c < 3; c++) state.reference[p * 4 + c] = ref[p * n + c];
     document.getElementById("ab-label").hidden = false;
   }
-  state.ranges = {};
-  for (const l of state.meta.layers) {
-    const data = state.layers[l.name];
-    let lo = Infinity, hi = -Infinity;
-    for (const x of data) if (x !== 0 && Number.isFinite(x) && x < 1e10) { lo = Math.min(lo, x); hi = Math.max(hi, x); }
-    state.ranges[l.name] = [lo, hi];
-  }
   if (!info("beauty")) state.selected = state.meta.layers[0].name;
   relightPanel();
-  thumbnails();
-  draw();
+  await draw();
+  await thumbnails();
   for (const id of ["tonemap", "ab"]) document.getElementById(id).onchange = draw;
   document.getElementById("exposure").oninput = (e) => {
     document.getElementById("exposure-value").textContent = Number(e.target.value).toFixed(1);
@@ -313,9 +366,9 @@ async function start() {
 window.whitted = {
   ready: false,
   probe,
-  setGain(light, r, g, b) { state.gains[light] = [r, g, b]; draw(); },
-  setShadows(light, on) { state.shadows[light] = on; draw(); },
-  setToneMap(op, ev) { document.getElementById("tonemap").value = op; document.getElementById("exposure").value = ev; draw(); },
+  setGain(light, r, g, b) { state.gains[light] = [r, g, b]; return draw(); },
+  setShadows(light, on) { state.shadows[light] = on; return draw(); },
+  setToneMap(op, ev) { document.getElementById("tonemap").value = op; document.getElementById("exposure").value = ev; return draw(); },
   pixels() { return Array.from(state.display); },
 };
 start().catch((e) => { document.getElementById("status").textContent = `error: ${e.message}`; });
