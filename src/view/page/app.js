@@ -162,12 +162,20 @@ function layerBytes(l, data, q, op, ev, range) {
 }
 
 // ---- drawing ----
-async function draw() {
+/** Draws the current view. While interacting it computes one pixel per screen pixel (every
+ * step-th pixel of a large image, so a 4K render stays responsive); `full` computes every
+ * pixel (for saving, and for `pixels()`). */
+async function draw(full = false) {
   const mode = document.getElementById("ab").value;
   const wanted = mode === "a" || !state.reference ? [state.selected] : ["beauty"];
   if (state.selected === "beauty" && relighting()) wanted.push(...relightTerms().map(([n]) => n));
   await need(wanted);
-  const { width, height } = state.meta;
+  const { width: fullWidth, height: fullHeight } = state.meta;
+  const shown = document.getElementById("view").clientWidth || fullWidth;
+  const step = full ? 1 : Math.max(1, Math.floor(fullWidth / Math.max(shown, 1)));
+  const width = Math.floor(fullWidth / step), height = Math.floor(fullHeight / step);
+  state.step = step;
+  const source = (q) => Math.floor(q / width) * step * fullWidth + (q % width) * step;
   const canvas = document.getElementById("canvas");
   canvas.width = width;
   canvas.height = height;
@@ -184,20 +192,22 @@ async function draw() {
       const li = info(name), n = li.channels.length;
       return [state.layers[name], n, li.channels.indexOf("R"), li.channels.indexOf("G"), li.channels.indexOf("B"), gain];
     });
-    for (let p = 0; p < width * height; p++) {
+    for (let q = 0; q < width * height; q++) {
+      const p = source(q);
       let r = 0, g = 0, b = 0;
       for (const [data, n, ri, gi, bi, gain] of planes) {
         r += data[p * n + ri] * gain[0];
         g += data[p * n + gi] * gain[1];
         b += data[p * n + bi] * gain[2];
       }
-      quantise(r, g, b, op, ev, scale, img.data, p * 4);
-      img.data[p * 4 + 3] = 255;
+      quantise(r, g, b, op, ev, scale, img.data, q * 4);
+      img.data[q * 4 + 3] = 255;
     }
     finishDraw(ctx, img, op, ev);
     return;
   }
-  for (let p = 0; p < width * height; p++) {
+  for (let q = 0; q < width * height; q++) {
+    const p = source(q);
     let bytes;
     if (mode === "a" || !state.reference) {
       bytes = layerBytes(l, state.layers[state.selected], p, op, ev, state.ranges[state.selected]);
@@ -211,7 +221,7 @@ async function draw() {
         bytes = e === 0 ? [0, 0, 0] : [Math.round(255 * t), Math.round(255 * t * t), Math.round(90 * (1 - t))];
       }
     }
-    img.data.set([bytes[0], bytes[1], bytes[2], 255], p * 4);
+    img.data.set([bytes[0], bytes[1], bytes[2], 255], q * 4);
   }
   finishDraw(ctx, img, op, ev);
 }
@@ -345,14 +355,16 @@ async function start() {
   };
   document.getElementById("canvas").onclick = (e) => {
     const c = e.target, r = c.getBoundingClientRect();
-    probe(Math.floor(((e.clientX - r.left) * c.width) / r.width), Math.floor(((e.clientY - r.top) * c.height) / r.height));
+    const step = state.step || 1;
+    probe(step * Math.floor(((e.clientX - r.left) * c.width) / r.width), step * Math.floor(((e.clientY - r.top) * c.height) / r.height));
   };
   document.getElementById("reset").onclick = () => {
     Object.assign(state, { gains: {}, shadows: {}, ambient: 1, background: 1 });
     relightPanel();
     draw();
   };
-  document.getElementById("save").onclick = () => {
+  document.getElementById("save").onclick = async () => {
+    await draw(true);
     document.getElementById("canvas").toBlob((blob) => {
       const a = Object.assign(document.createElement("a"), { href: URL.createObjectURL(blob), download: `${state.selected}.png` });
       a.click();
@@ -369,6 +381,6 @@ window.whitted = {
   setGain(light, r, g, b) { state.gains[light] = [r, g, b]; return draw(); },
   setShadows(light, on) { state.shadows[light] = on; return draw(); },
   setToneMap(op, ev) { document.getElementById("tonemap").value = op; document.getElementById("exposure").value = ev; return draw(); },
-  pixels() { return Array.from(state.display); },
+  async pixels() { await draw(true); return Array.from(state.display); },
 };
 start().catch((e) => { document.getElementById("status").textContent = `error: ${e.message}`; });
