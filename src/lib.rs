@@ -21,7 +21,8 @@
 //! parallel; [`camera`] rays, [`accel`] over [`geometry`], [`trace`] -> [`sample::Sample`]) ->
 //! [`film::Film`] (the layers [`aov`] declares) -> [`output`] (EXR, and PNG via [`tonemap`]).
 //! Reading back: [`input`], [`openexr`]; inspection: [`compare`], [`stats`], [`sheet`],
-//! [`merge`], [`numbers`], [`canvas`]. The command line: [`cli`] and [`commands`];
+//! [`merge`], [`numbers`], [`canvas`]; looking closer: [`relight`], [`explain`] and the
+//! [`view`]er. The command line: [`cli`] and [`commands`];
 //! [`progress`], [`interrupt`] and [`memory`] keep long renders watchable, stoppable and
 //! within the machine. The rules are in `docs/`.
 
