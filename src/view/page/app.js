@@ -42,6 +42,31 @@ function agx(v) {
   const lin = mul(AGX.outset, curve).map((x) => Math.pow(Math.max(x, 0), 2.2));
   return mul(AGX.to709, lin).map(clamp01);
 }
+const AGX_OUT = new Float64Array(3);
+/** agx() on scalars, into `out`, evaluated in the same order. */
+function agxInto(r, g, b, out) {
+  const m = AGX.to2020, i = AGX.inset, o = AGX.outset, t = AGX.to709;
+  const r1 = m[0][0] * r + m[0][1] * g + m[0][2] * b;
+  const g1 = m[1][0] * r + m[1][1] * g + m[1][2] * b;
+  const b1 = m[2][0] * r + m[2][1] * g + m[2][2] * b;
+  const r2 = i[0][0] * r1 + i[0][1] * g1 + i[0][2] * b1;
+  const g2 = i[1][0] * r1 + i[1][1] * g1 + i[1][2] * b1;
+  const b2 = i[2][0] * r1 + i[2][1] * g1 + i[2][2] * b1;
+  const curve = (x) => {
+    const u = clamp01((Math.log2(Math.max(x, 1e-10)) + 12.47393) / (4.026069 + 12.47393));
+    const u2 = u * u, u4 = u2 * u2;
+    return 15.5 * u4 * u2 - 40.14 * u4 * u + 31.96 * u4 - 6.868 * u2 * u + 0.4298 * u2 + 0.1191 * u - 0.00232;
+  };
+  const r3 = curve(r2), g3 = curve(g2), b3 = curve(b2);
+  const lin = (x) => Math.pow(Math.max(x, 0), 2.2);
+  const r4 = lin(o[0][0] * r3 + o[0][1] * g3 + o[0][2] * b3);
+  const g4 = lin(o[1][0] * r3 + o[1][1] * g3 + o[1][2] * b3);
+  const b4 = lin(o[2][0] * r3 + o[2][1] * g3 + o[2][2] * b3);
+  out[0] = clamp01(t[0][0] * r4 + t[0][1] * g4 + t[0][2] * b4);
+  out[1] = clamp01(t[1][0] * r4 + t[1][1] * g4 + t[1][2] * b4);
+  out[2] = clamp01(t[2][0] * r4 + t[2][1] * g4 + t[2][2] * b4);
+}
+
 function neutral(v) {
   const x = Math.min(v[0], v[1], v[2]);
   const offset = x < 0.08 ? x - 6.25 * x * x : 0.04;
@@ -83,6 +108,13 @@ const SCALAR = {
  * writer does (a lookup table would not be exact). */
 function quantise(r, g, b, op, ev, scale, out, o) {
   const f = SCALAR[op];
+  if (op === "agx") {
+    // The same arithmetic as agx(), on scalars: no allocation per pixel.
+    const bound = (x) => (Number.isNaN(x) ? 0 : Math.min(Math.max(x * scale, 0), MAX_INPUT));
+    agxInto(bound(r), bound(g), bound(b), AGX_OUT);
+    for (let c = 0; c < 3; c++) out[o + c] = Math.min(255, Math.max(0, Math.floor(255 * srgb(AGX_OUT[c]) + 0.5)));
+    return;
+  }
   if (!f) {
     const bytes = toBytes([r, g, b], op, ev);
     out[o] = bytes[0]; out[o + 1] = bytes[1]; out[o + 2] = bytes[2];
