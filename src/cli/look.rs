@@ -1,0 +1,105 @@
+//! Arguments of the commands that look closer at a render: `explain`, `relight`, `view`.
+
+use std::path::PathBuf;
+
+use clap::Args;
+
+use super::parse::*;
+use super::ToneArgs;
+use crate::frame::FrameSpec;
+
+#[derive(Debug, Clone, Args)]
+pub struct ExplainArgs {
+    /// Scene XML file [default: the embedded course tick2.xml]
+    #[arg(short, long, value_name = "SCENE")]
+    pub input: Option<PathBuf>,
+
+    /// The pixel, X,Y from the top left
+    #[arg(long, value_name = "X,Y", value_parser = parse_pixel)]
+    pub pixel: (u32, u32),
+
+    /// Mirror reflection bounces after the primary hit
+    #[arg(short, long, value_name = "N", default_value_t = 2,
+          value_parser = parse_bounces, allow_negative_numbers = true)]
+    pub bounces: u32,
+
+    /// Image width in pixels
+    #[arg(long, value_name = "W", default_value_t = 640, value_parser = parse_side)]
+    pub width: u32,
+
+    /// Image height in pixels
+    #[arg(long, value_name = "H", default_value_t = 480, value_parser = parse_side)]
+    pub height: u32,
+
+    /// Ignore occlusion
+    #[arg(long)]
+    pub no_shadows: bool,
+
+    /// Print JSON instead of the tree
+    #[arg(long)]
+    pub json: bool,
+}
+
+impl ExplainArgs {
+    /// The frame the pixel belongs to.
+    pub fn frame(&self) -> FrameSpec {
+        FrameSpec {
+            width: self.width,
+            height: self.height,
+            bounces: self.bounces,
+            shadows: !self.no_shadows,
+            aovs: "beauty".into(),
+            ..FrameSpec::default()
+        }
+    }
+}
+
+#[derive(Debug, Clone, Args)]
+pub struct ViewArgs {
+    /// The EXR to look at
+    #[arg(value_name = "FILE.exr")]
+    pub input: PathBuf,
+
+    /// A reference EXR of the same size, for A/B and a difference map
+    #[arg(long, value_name = "REF.exr")]
+    pub reference: Option<PathBuf>,
+
+    /// Port on 127.0.0.1 (0: any free port)
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub port: u16,
+
+    /// Only print the URL; do not try to open a browser
+    #[arg(long)]
+    pub no_browser: bool,
+}
+
+#[derive(Debug, Clone, Args)]
+pub struct RelightArgs {
+    /// A whitted EXR with light layers (`--aovs all`)
+    #[arg(value_name = "IN.exr")]
+    pub input: PathBuf,
+
+    /// The relit image: an EXR (R, G, B, A) or a PNG (tone-mapped); `-` writes a PNG to
+    /// standard output
+    #[arg(short, long, value_name = "OUT.exr|OUT.png")]
+    pub output: PathBuf,
+
+    /// A light's gain: NAME=G or NAME=R,G,B (NAME as in its layer: `0` for `light_0`)
+    #[arg(long = "light", value_name = "NAME=GAIN", value_parser = parse_light_gain)]
+    pub lights: Vec<(String, [f64; 3])>,
+
+    /// Show this light without its shadows (its `unshadowed_` layer)
+    #[arg(long = "no-shadow", value_name = "NAME")]
+    pub no_shadow: Vec<String>,
+
+    /// Gain of the ambient term
+    #[arg(long, value_name = "GAIN", default_value_t = 1.0, value_parser = parse_gain)]
+    pub ambient: f64,
+
+    /// Gain of the background
+    #[arg(long, value_name = "GAIN", default_value_t = 1.0, value_parser = parse_gain)]
+    pub background: f64,
+
+    #[command(flatten)]
+    pub tone: ToneArgs,
+}
