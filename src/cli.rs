@@ -14,8 +14,8 @@ use crate::frame::{FrameSpec, Region};
 use crate::output::exr::ExrOptions;
 use crate::plan::{RenderRequest, ToneRequest};
 use crate::sheet::SheetOptions;
-use parse::*;
 pub use look::{ExplainArgs, RelightArgs, ViewArgs};
+use parse::*;
 pub use values::{CompressionArg, ToneMapArg};
 
 /// Most reflection bounces accepted: each bounce is a layer in the EXR, and past this depth a
