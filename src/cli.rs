@@ -214,6 +214,40 @@ pub struct TonemapArgs {
     pub tone: ToneArgs,
 }
 
+/// The image and the tick model's options, shared by `render` and `explain`.
+#[derive(Debug, Clone, Args)]
+pub struct FrameArgs {
+    /// Mirror reflection bounces after the primary hit
+    #[arg(short, long, value_name = "N", default_value_t = 2,
+          value_parser = parse_bounces, allow_negative_numbers = true)]
+    pub bounces: u32,
+
+    /// Image width in pixels (the field of view stays 45 degrees horizontal)
+    #[arg(long, value_name = "W", default_value_t = 640, value_parser = parse_side)]
+    pub width: u32,
+
+    /// Image height in pixels
+    #[arg(long, value_name = "H", default_value_t = 480, value_parser = parse_side)]
+    pub height: u32,
+
+    /// Ignore occlusion: every light reaches every point
+    #[arg(long)]
+    pub no_shadows: bool,
+}
+
+impl FrameArgs {
+    /// The frame these options ask for, with every layer.
+    pub fn spec(&self) -> FrameSpec {
+        FrameSpec {
+            width: self.width,
+            height: self.height,
+            bounces: self.bounces,
+            shadows: !self.no_shadows,
+            ..FrameSpec::default()
+        }
+    }
+}
+
 /// How linear HDR values become PNG bytes (docs/tonemap.md).
 #[derive(Debug, Clone, Args)]
 pub struct ToneArgs {
@@ -260,18 +294,8 @@ pub struct RenderArgs {
     #[arg(long)]
     pub no_png: bool,
 
-    /// Mirror reflection bounces after the primary hit
-    #[arg(short, long, value_name = "N", default_value_t = 2,
-          value_parser = parse_bounces, allow_negative_numbers = true)]
-    pub bounces: u32,
-
-    /// Image width in pixels (the field of view stays 45 degrees horizontal)
-    #[arg(long, value_name = "W", default_value_t = 640, value_parser = parse_side)]
-    pub width: u32,
-
-    /// Image height in pixels
-    #[arg(long, value_name = "H", default_value_t = 480, value_parser = parse_side)]
-    pub height: u32,
+    #[command(flatten)]
+    pub frame: FrameArgs,
 
     /// Samples per pixel on a fixed k*k stratified grid (1 = the pixel centre, the exact tick
     /// image)
@@ -282,10 +306,6 @@ pub struct RenderArgs {
     /// that crop, so parts from several machines merge into the full frame (`whitted merge`)
     #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = parse_region)]
     pub region: Option<Region>,
-
-    /// Ignore occlusion: every light reaches every point
-    #[arg(long)]
-    pub no_shadows: bool,
 
     /// Also write the multi-layer linear HDR OpenEXR (beauty and AOVs)
     #[arg(long, value_name = "FILE.exr")]
@@ -328,14 +348,10 @@ impl RenderArgs {
             png: (!self.no_png).then(|| self.output.clone()),
             exr: self.exr.clone(),
             frame: FrameSpec {
-                width: self.width,
-                height: self.height,
                 region: self.region,
                 spp: self.spp,
-                bounces: self.bounces,
-                shadows: !self.no_shadows,
                 aovs: self.aovs.clone(),
-                ..FrameSpec::default()
+                ..self.frame.spec()
             },
             exr_options: ExrOptions {
                 compression: self.compression.into(),

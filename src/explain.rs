@@ -12,7 +12,7 @@ use crate::frame::{Frame, FrameSpec};
 use crate::geometry::{self, Ray};
 use crate::sample::Sample;
 use crate::scene::Scene;
-use crate::trace::observe::{LightRecord, Observer, VertexRecord};
+use crate::trace::observe::{FoldStep, LightRecord, Observer, VertexRecord};
 use crate::trace::{trace_observed, BACKGROUND};
 
 /// A light's terms at a vertex, with the light's name and what shadows it.
@@ -39,6 +39,8 @@ pub struct Explanation {
     pub vertices: Vec<Vertex>,
     /// Where the chain left the scene, if it did: (depth, ray).
     pub miss: Option<(u32, Ray)>,
+    /// The beauty's fold, far end first.
+    pub fold: Vec<FoldStep>,
     /// Every layer's value for this sample (the pixel, at one sample per pixel).
     pub sample: Sample,
     /// The beauty as `render` stores it in the EXR (f32).
@@ -51,6 +53,7 @@ struct Recorder<'a> {
     pending: Vec<LightTerms>,
     vertices: Vec<Vertex>,
     miss: Option<(u32, Ray)>,
+    fold: Vec<FoldStep>,
 }
 
 impl Observer for Recorder<'_> {
@@ -77,6 +80,10 @@ impl Observer for Recorder<'_> {
     fn miss(&mut self, depth: u32, ray: Ray) {
         self.miss = Some((depth, ray));
     }
+
+    fn fold(&mut self, step: FoldStep) {
+        self.fold.push(step);
+    }
 }
 
 /// Explains pixel (x, y) of `scene` rendered as `spec` says (one sample at the pixel centre).
@@ -96,6 +103,7 @@ pub fn explain(scene: &Scene, spec: &FrameSpec, x: u32, y: u32) -> Result<Explan
         pending: Vec::new(),
         vertices: Vec::new(),
         miss: None,
+        fold: Vec::new(),
     };
     trace_observed(
         scene,
@@ -117,46 +125,33 @@ pub fn explain(scene: &Scene, spec: &FrameSpec, x: u32, y: u32) -> Result<Explan
         camera_ray,
         vertices: recorder.vertices,
         miss: recorder.miss,
+        fold: recorder.fold,
         sample,
         stored,
     })
 }
 
 impl Explanation {
-    /// The fold of rendering.md's Reflection, from the far end back to the camera:
-    /// `beauty_k = colour_k * (1 - r_k) + beauty_{k+1} * r_k` where the chain continues.
+    /// The fold of docs/rendering.md's Reflection as the trace evaluated it, far end first.
     pub fn fold(&self) -> Vec<String> {
-        let mut lines = Vec::new();
-        let mut reflected = match self.miss {
-            Some((depth, _)) => {
-                lines.push(format!("depth {depth}: background {}", vector(BACKGROUND)));
-                BACKGROUND
-            }
-            None => DVec3::ZERO,
-        };
-        for vertex in self.vertices.iter().rev() {
-            let v = &vertex.record;
-            let r = v.material.reflectivity;
-            reflected = if v.continues {
-                let value = v.colour * (1.0 - r) + reflected * r;
-                lines.push(format!(
-                    "depth {}: {} * (1 - {r}) + {} * {r} = {}",
-                    v.depth,
-                    vector(v.colour),
-                    vector(reflected),
-                    vector(value)
-                ));
-                value
-            } else {
-                lines.push(format!(
-                    "depth {}: {} (the chain ends here)",
-                    v.depth,
-                    vector(v.colour)
-                ));
-                v.colour
-            };
-        }
-        lines
+        let background = self
+            .miss
+            .map(|(depth, _)| format!("depth {depth}: background {}", vector(BACKGROUND)));
+        let steps = self.fold.iter().map(|step| match step.reflectivity {
+            Some(r) => format!(
+                "depth {}: {} * (1 - {r}) + {} * {r} = {}",
+                step.depth,
+                vector(step.colour),
+                vector(step.reflected),
+                vector(step.result)
+            ),
+            None => format!(
+                "depth {}: {} (the chain ends here)",
+                step.depth,
+                vector(step.colour)
+            ),
+        });
+        background.into_iter().chain(steps).collect()
     }
 }
 

@@ -90,15 +90,13 @@ impl RenderPlan {
     /// so a misspelt name is never silently ignored; without an EXR only the beauty is kept.
     pub fn new(request: &RenderRequest, scene: &Scene) -> Result<Self> {
         let encoding = request.tone.encoding()?;
-        let mut spec = request.frame.clone();
-        let selected = Frame::new(scene, &spec)?;
-        let frame = if request.exr.is_some() {
-            check_channel_names(&selected)?;
-            selected
+        let mut frame = Frame::new(scene, &request.frame)?;
+        if request.exr.is_some() {
+            check_channel_names(&frame)?;
         } else {
-            spec.aovs = "beauty".into();
-            Frame::new(scene, &spec)?
-        };
+            // The PNG needs the beauty alone, which is always the first layer.
+            frame.layers.truncate(1);
+        }
         if let Some(n) = request.threads {
             if n == 0 || n > MAX_THREADS {
                 return Err(Error::Usage(format!(

@@ -7,6 +7,28 @@ pub use xml::{load, parse_bytes, parse_str, read_file};
 /// The course's Tick 2 scene, compiled in so that `whitted` with no arguments has a scene.
 pub const EMBEDDED_TICK2: &str = include_str!("../scenes/tick2.xml");
 
+/// The name messages and EXR headers use for the embedded scene.
+pub const EMBEDDED_NAME: &str = "tick2.xml (embedded)";
+
+/// A scene read for a command: the scene, the file's bytes (which an EXR's render identity
+/// fingerprints) and its name as given.
+pub struct Input {
+    pub scene: Scene,
+    pub bytes: Vec<u8>,
+    pub name: String,
+}
+
+/// The scene file at `path`, or the embedded tick2 scene when there is none.
+pub fn load_input(path: Option<&std::path::Path>) -> crate::Result<Input> {
+    let bytes = match path {
+        Some(path) => read_file(path)?,
+        None => EMBEDDED_TICK2.as_bytes().to_vec(),
+    };
+    let name = path.map_or(EMBEDDED_NAME.to_string(), |p| p.display().to_string());
+    let scene = parse_bytes(&name, &bytes)?;
+    Ok(Input { scene, bytes, name })
+}
+
 use glam::DVec3;
 
 /// Everything the renderer needs to know about the world. Objects and lights keep file order,

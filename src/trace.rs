@@ -6,7 +6,7 @@ pub mod observe;
 use glam::DVec3;
 use smallvec::SmallVec;
 
-use observe::{LightRecord, Observer, Silent, VertexRecord};
+use observe::{FoldStep, LightRecord, Observer, Silent, VertexRecord};
 
 use crate::accel::Accelerator;
 use crate::geometry::{normalise, Ray};
@@ -121,13 +121,25 @@ pub fn trace_observed(
         throughput *= material.reflectivity;
         ray = Ray::offset_from(point, mirror_direction(ray.direction, normal));
     }
-    sample.beauty = chain
-        .iter()
-        .rev()
-        .fold(far_end, |reflected, &(colour, r)| match r {
-            Some(r) => colour * (1.0 - r) + reflected * r,
-            None => colour,
-        });
+    sample.beauty =
+        chain
+            .iter()
+            .enumerate()
+            .rev()
+            .fold(far_end, |reflected, (depth, &(colour, r))| {
+                let result = match r {
+                    Some(r) => colour * (1.0 - r) + reflected * r,
+                    None => colour,
+                };
+                observer.fold(FoldStep {
+                    depth: depth as u32,
+                    colour,
+                    reflectivity: r,
+                    reflected,
+                    result,
+                });
+                result
+            });
 }
 
 /// Where vertex k's radiance is filed: the direct layer for the primary hit, else the

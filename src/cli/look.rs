@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use clap::Args;
 
 use super::parse::*;
-use super::ToneArgs;
+use super::{FrameArgs, ToneArgs};
 use crate::frame::FrameSpec;
 
 #[derive(Debug, Clone, Args)]
@@ -18,22 +18,8 @@ pub struct ExplainArgs {
     #[arg(long, value_name = "X,Y", value_parser = parse_pixel)]
     pub pixel: (u32, u32),
 
-    /// Mirror reflection bounces after the primary hit
-    #[arg(short, long, value_name = "N", default_value_t = 2,
-          value_parser = parse_bounces, allow_negative_numbers = true)]
-    pub bounces: u32,
-
-    /// Image width in pixels
-    #[arg(long, value_name = "W", default_value_t = 640, value_parser = parse_side)]
-    pub width: u32,
-
-    /// Image height in pixels
-    #[arg(long, value_name = "H", default_value_t = 480, value_parser = parse_side)]
-    pub height: u32,
-
-    /// Ignore occlusion
-    #[arg(long)]
-    pub no_shadows: bool,
+    #[command(flatten)]
+    pub frame: FrameArgs,
 
     /// Print JSON instead of the tree
     #[arg(long)]
@@ -44,12 +30,8 @@ impl ExplainArgs {
     /// The frame the pixel belongs to.
     pub fn frame(&self) -> FrameSpec {
         FrameSpec {
-            width: self.width,
-            height: self.height,
-            bounces: self.bounces,
-            shadows: !self.no_shadows,
             aovs: "beauty".into(),
-            ..FrameSpec::default()
+            ..self.frame.spec()
         }
     }
 }

@@ -11,13 +11,7 @@ use crate::output::stdout;
 use crate::scene::{self, Scene};
 
 pub fn run(args: &ExplainArgs) -> Result<()> {
-    let (scene, name) = match &args.input {
-        Some(path) => (scene::load(path)?, path.display().to_string()),
-        None => (
-            scene::parse_str("tick2.xml (embedded)", scene::EMBEDDED_TICK2)?,
-            "tick2.xml (embedded)".to_string(),
-        ),
-    };
+    let scene::Input { scene, name, .. } = scene::load_input(args.input.as_deref())?;
     let (x, y) = args.pixel;
     let e = explain(&scene, &args.frame(), x, y)?;
     let text = if args.json {

@@ -1,7 +1,6 @@
 //! `whitted render` (and the bare `whitted ...` tick command line): scene -> plan -> film ->
 //! files. Every check is the plan's; this file runs it and reports.
 
-use std::path::Path;
 use std::time::{Duration, Instant};
 
 use crate::cli::RenderArgs;
@@ -14,14 +13,12 @@ use crate::plan::RenderPlan;
 use crate::progress::Progress;
 use crate::render::{render, RenderStats};
 use crate::render_record;
-use crate::scene::{self, Scene};
-
-/// The name errors and the EXR header use for the scene compiled into the binary.
-const EMBEDDED_NAME: &str = "tick2.xml (embedded)";
+use crate::scene;
 
 pub fn run(args: &RenderArgs) -> Result<()> {
-    let (scene, scene_bytes) = load_scene(args.input.as_deref())?;
-    let plan = RenderPlan::new(&args.request(), &scene)?;
+    let input = scene::load_input(args.input.as_deref())?;
+    let scene = &input.scene;
+    let plan = RenderPlan::new(&args.request(), scene)?;
     // Open outputs before rendering, so that an unwritable path fails in milliseconds.
     let mut png = plan.png.as_deref().map(Destination::open).transpose()?;
     let mut exr_file = plan.exr.as_deref().map(AtomicFile::create).transpose()?;
@@ -29,7 +26,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let progress = Progress::new(u64::from(plan.frame.region.height()), args.quiet);
     let started = Instant::now();
     let (film, stats) = with_threads(plan.threads, || {
-        render(&scene, &plan.frame, &|rows| progress.advance(rows))
+        render(scene, &plan.frame, &|rows| progress.advance(rows))
     })??;
     progress.finish();
     let render_time = started.elapsed();
@@ -44,7 +41,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let started = Instant::now();
     if let Some(file) = exr_file.as_mut() {
         let light_names = scene.lights.iter().map(|l| l.name.clone()).collect();
-        let metadata = render_record::metadata(&plan, &scene_name(args), &scene_bytes, light_names);
+        let metadata = render_record::metadata(&plan, &input.name, &input.bytes, light_names);
         let path = file.target().to_path_buf();
         write_exr(file.file(), &film, plan.exr_options, &metadata)
             .map_err(|msg| Error::Exr { path, msg })?;
@@ -72,23 +69,6 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         eprintln!("{}", summary(&plan, &stats, layers, render_time, exr_time));
     }
     Ok(())
-}
-
-/// The scene file (and its bytes, which the EXR's render identity fingerprints), or the
-/// course's tick2 scene compiled into the binary.
-fn load_scene(input: Option<&Path>) -> Result<(Scene, Vec<u8>)> {
-    let bytes = match input {
-        Some(path) => scene::read_file(path)?,
-        None => scene::EMBEDDED_TICK2.as_bytes().to_vec(),
-    };
-    let name = input.map_or(EMBEDDED_NAME.to_string(), |p| p.display().to_string());
-    Ok((scene::parse_bytes(&name, &bytes)?, bytes))
-}
-
-fn scene_name(args: &RenderArgs) -> String {
-    args.input
-        .as_ref()
-        .map_or(EMBEDDED_NAME.to_string(), |p| p.display().to_string())
 }
 
 /// Runs `work` on a pool of `threads` workers, or on rayon's global pool (all cores).

@@ -46,8 +46,21 @@ pub struct LightRecord {
     pub in_shadow: bool,
 }
 
+/// One step of the beauty's fold, far end first: `result = colour * (1 - r) + reflected * r`
+/// where the chain continues (`reflectivity` is `Some(r)`), else `result = colour`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FoldStep {
+    pub depth: u32,
+    pub colour: DVec3,
+    pub reflectivity: Option<f64>,
+    /// What arrives from further along the chain.
+    pub reflected: DVec3,
+    pub result: DVec3,
+}
+
 /// Receives what `trace` computes; every method does nothing by default.
 pub trait Observer {
+    fn fold(&mut self, _step: FoldStep) {}
     fn light(&mut self, _record: LightRecord) {}
     fn vertex(&mut self, _record: VertexRecord) {}
     /// The chain left the scene at this depth along `ray`.
