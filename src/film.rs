@@ -57,6 +57,17 @@ impl Film {
         })
     }
 
+    /// Shortens this film to its first `rows` rows (a strip at the image's bottom edge),
+    /// keeping its buffers' capacity. No-op for as many rows as it has or more.
+    pub fn keep_rows(&mut self, rows: u32) {
+        if rows < self.height {
+            self.height = rows;
+            let pixels = self.width as usize * rows as usize;
+            self.beauty.truncate(pixels);
+            self.data.truncate(pixels * self.channel_count());
+        }
+    }
+
     pub fn channel_count(&self) -> usize {
         self.channel_names.len()
     }

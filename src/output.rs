@@ -3,6 +3,8 @@
 pub mod atomic;
 pub mod destination;
 pub mod exr;
+pub mod exr_block;
 pub mod exr_header;
+pub mod exr_stream;
 pub mod png;
 pub mod stdout;

@@ -1,6 +1,5 @@
-//! Camera rays -> `trace` -> film. Work is split into bands of 16x16 tiles rendered in
-//! parallel; every pixel depends only on its own rays and is written by exactly one task, so
-//! the image is the same for any number of threads and no lock is taken while tracing.
+//! Camera rays -> `trace` -> film, a strip of rows at a time: the strip renders a row per
+//! task on every core while the previous strip is written out.
 
 use std::time::{Duration, Instant};
 
@@ -8,16 +7,15 @@ use rayon::prelude::*;
 
 use crate::accel::Accelerator;
 use crate::error::Result;
+use glam::DVec3;
+
+use crate::aov::Layer;
 use crate::film::{Film, PixelAccumulator};
 use crate::frame::{Acceleration, Frame};
 use crate::interrupt;
 use crate::sample::Sample;
 use crate::scene::Scene;
 use crate::trace::trace_into;
-
-/// Side of a tile in pixels: small enough to balance two or many cores, large enough that
-/// neighbouring rays reuse the same hierarchy nodes from cache.
-const TILE: usize = 16;
 
 /// How a render went: what the summary line and the warnings report. Not part of the image.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -45,80 +43,172 @@ fn sample_grid(spp: u32) -> (Vec<(f64, f64)>, usize) {
     (grid, centre)
 }
 
-/// Renders `scene` as `frame` says: the frame's region of its camera's image, into a film
-/// holding the frame's layers. `rows_done` is told how many rows have finished (from any thread), for
-/// progress. Stops early with `Error::Interrupted` when the user presses Ctrl-C.
+/// Renders `scene` as `frame` says into one film holding the whole region: for tests and
+/// library users. `whitted render` streams strips instead (`render_strips`).
 pub fn render(
     scene: &Scene,
     frame: &Frame,
     rows_done: &(dyn Fn(u64) + Sync),
 ) -> Result<(Film, RenderStats)> {
-    let (camera, region, trace) = (&frame.camera, frame.region, frame.trace);
+    let region = frame.region;
+    let mut film = Film::new(region.width(), region.height(), frame.layers.clone())?;
+    film.origin = (region.x0, region.y0);
+    film.display = (frame.camera.width, frame.camera.height);
+    let channels = film.channel_count();
+    let width = region.width() as usize;
+    let stats = render_strips(scene, frame, STRIP_ROWS, rows_done, &mut |strip: &Film| {
+        let first = (strip.origin.1 - region.y0) as usize * width;
+        let pixels = strip.beauty.len();
+        film.beauty[first..first + pixels].copy_from_slice(&strip.beauty);
+        film.data[first * channels..(first + pixels) * channels].copy_from_slice(&strip.data);
+        Ok(())
+    })?;
+    Ok((film, stats))
+}
+
+/// Rows in a strip unless an output asks for more (a multiple of every EXR block height
+/// but PIZ's 32): few enough that two strips of a 16384-pixel-wide, 53-channel render take
+/// about 250 MB, enough that a strip is many tasks.
+pub const STRIP_ROWS: u32 = 64;
+
+/// Renders `scene` as `frame` says, strip by strip of `strip_rows` whole rows top to bottom,
+/// handing each finished strip to `sink` in order. Memory is two strips, whatever the image
+/// size: `sink` writes strip k while strip k + 1 renders on the other cores.
+///
+/// Every pixel depends only on its own rays and is written by exactly one task, so the image
+/// is the same for any number of threads and no lock is taken while tracing. `rows_done` is
+/// told how many rows have finished (from any thread), for progress. Stops early with
+/// `Error::Interrupted` when the user presses Ctrl-C, and with `sink`'s first error.
+pub fn render_strips(
+    scene: &Scene,
+    frame: &Frame,
+    strip_rows: u32,
+    rows_done: &(dyn Fn(u64) + Sync),
+    sink: &mut (dyn FnMut(&Film) -> Result<()> + Send),
+) -> Result<RenderStats> {
     let started = Instant::now();
     let accel = match frame.acceleration {
         Acceleration::Bvh => Accelerator::build(&scene.objects),
         Acceleration::BruteForce => Accelerator::brute_force(&scene.objects),
     };
     let hierarchy_time = started.elapsed();
-    let mut film = Film::new(region.width(), region.height(), frame.layers.clone())?;
-    film.origin = (region.x0, region.y0);
-    film.display = (camera.width, camera.height);
-    let (grid, centre) = sample_grid(frame.spp);
-    let width = region.width() as usize;
-    let channels = film.channel_count();
-    let layers = &film.layers;
-    let (rays, non_finite) = film
-        .beauty
-        .par_chunks_mut(width * TILE)
-        .zip(film.data.par_chunks_mut(width * TILE * channels))
-        .enumerate()
-        .map(|(band, (beauty, data))| {
-            if interrupt::requested() {
-                return (0, 0);
-            }
-            let rows = beauty.len() / width;
-            let mut accumulator = PixelAccumulator::new(layers, channels);
-            let mut sample = Sample::empty(scene.lights.len(), trace.bounces);
-            let (mut rays, mut non_finite) = (0, 0);
-            for tile_x in (0..width).step_by(TILE) {
-                for row in 0..rows {
-                    let y = region.y0 + (band * TILE + row) as u32;
-                    for column in tile_x..(tile_x + TILE).min(width) {
-                        // At every pixel: a stop is seen within one pixel's samples.
-                        if interrupt::requested() {
-                            return (rays, non_finite);
-                        }
-                        let x = region.x0 + column as u32;
-                        for (i, &(u, v)) in grid.iter().enumerate() {
-                            // The exact tick ray wherever the grid has a cell at the centre.
-                            let ray = if (u, v) == (0.5, 0.5) {
-                                camera.pixel_centre_ray(x, y)
-                            } else {
-                                camera.sub_pixel_ray(x, y, u, v)
-                            };
-                            trace_into(scene, &accel, ray, trace, &mut sample);
-                            rays += sample.rays;
-                            accumulator.add(&sample, i == centre);
-                        }
-                        let pixel = row * width + column;
-                        non_finite += accumulator.finish(
-                            &mut beauty[pixel],
-                            &mut data[pixel * channels..(pixel + 1) * channels],
-                        );
-                    }
-                }
-            }
-            rows_done(rows as u64);
-            (rays, non_finite)
-        })
-        .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
-    interrupt::check()?;
-    let stats = RenderStats {
-        rays,
-        non_finite,
-        hierarchy_time,
+    let region = frame.region;
+    let strip_rows = strip_rows.clamp(1, region.height());
+    let new_strip = || -> Result<Film> {
+        let mut strip = Film::new(region.width(), strip_rows, frame.layers.clone())?;
+        strip.display = (frame.camera.width, frame.camera.height);
+        Ok(strip)
     };
-    Ok((film, stats))
+    let (mut rendering, mut finished) = (new_strip()?, new_strip()?);
+    let mut have_finished = false;
+    let pixels = PixelRenderer::new(scene, &accel, frame);
+    let mut stats = RenderStats {
+        hierarchy_time,
+        ..RenderStats::default()
+    };
+    for top in (region.y0..region.y1).step_by(strip_rows as usize) {
+        rendering.origin = (region.x0, top);
+        rendering.keep_rows(strip_rows.min(region.y1 - top));
+        let (counts, written) = rayon::join(
+            || pixels.render_strip(&mut rendering, rows_done),
+            || {
+                if have_finished {
+                    sink(&finished)
+                } else {
+                    Ok(())
+                }
+            },
+        );
+        written?;
+        interrupt::check()?;
+        stats.rays += counts.0;
+        stats.non_finite += counts.1;
+        std::mem::swap(&mut rendering, &mut finished);
+        have_finished = true;
+    }
+    sink(&finished)?;
+    Ok(stats)
+}
+
+/// What every pixel of a frame needs: the scene, its hierarchy, the camera and the sample
+/// grid.
+struct PixelRenderer<'a> {
+    scene: &'a Scene,
+    accel: &'a Accelerator,
+    frame: &'a Frame,
+    grid: Vec<(f64, f64)>,
+    centre: usize,
+}
+
+impl<'a> PixelRenderer<'a> {
+    fn new(scene: &'a Scene, accel: &'a Accelerator, frame: &'a Frame) -> Self {
+        let (grid, centre) = sample_grid(frame.spp);
+        PixelRenderer {
+            scene,
+            accel,
+            frame,
+            grid,
+            centre,
+        }
+    }
+
+    /// Fills `strip` (placed by its origin), a row per task. Returns (rays, non-finite values).
+    fn render_strip(&self, strip: &mut Film, rows_done: &(dyn Fn(u64) + Sync)) -> (u64, u64) {
+        let width = strip.width as usize;
+        let channels = strip.channel_count();
+        let top = strip.origin.1;
+        let layers = &strip.layers;
+        strip
+            .beauty
+            .par_chunks_mut(width)
+            .zip(strip.data.par_chunks_mut(width * channels))
+            .enumerate()
+            .map(|(row, (beauty, data))| {
+                let counts = self.render_row(top + row as u32, layers, beauty, data);
+                rows_done(1);
+                counts
+            })
+            .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1))
+    }
+
+    /// One row of the region at image row `y`.
+    fn render_row(
+        &self,
+        y: u32,
+        layers: &[Layer],
+        beauty: &mut [DVec3],
+        data: &mut [f32],
+    ) -> (u64, u64) {
+        let (camera, trace) = (&self.frame.camera, self.frame.trace);
+        let channels = data.len() / beauty.len().max(1);
+        let mut accumulator = PixelAccumulator::new(layers, channels);
+        let mut sample = Sample::empty(self.scene.lights.len(), trace.bounces);
+        let (mut rays, mut non_finite) = (0, 0);
+        for (column, (pixel, values)) in beauty
+            .iter_mut()
+            .zip(data.chunks_exact_mut(channels))
+            .enumerate()
+        {
+            // At every pixel: a stop is seen within one pixel's samples.
+            if interrupt::requested() {
+                break;
+            }
+            let x = self.frame.region.x0 + column as u32;
+            for (i, &(u, v)) in self.grid.iter().enumerate() {
+                // The exact tick ray wherever the grid has a cell at the centre.
+                let ray = if (u, v) == (0.5, 0.5) {
+                    camera.pixel_centre_ray(x, y)
+                } else {
+                    camera.sub_pixel_ray(x, y, u, v)
+                };
+                trace_into(self.scene, self.accel, ray, trace, &mut sample);
+                rays += sample.rays;
+                accumulator.add(&sample, i == self.centre);
+            }
+            non_finite += accumulator.finish(pixel, values);
+        }
+        (rays, non_finite)
+    }
 }
 
 #[cfg(test)]

@@ -1,11 +1,12 @@
 //! Where an output goes: a file (written atomically) or standard output (`-`).
 
-use std::io::{BufWriter, IsTerminal, Write};
+use std::fs::File;
+use std::io::{BufWriter, IsTerminal, Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Result};
 use crate::output::atomic::AtomicFile;
-use crate::output::png::{write_png, PngImage};
+use crate::output::png::{write_png, PngEncoding, PngImage, PngStream};
 use crate::output::stdout;
 
 /// What `-o -` means.
@@ -65,7 +66,8 @@ pub fn refuse_clashes(inputs: &[&Path], outputs: &[&Path]) -> Result<()> {
 /// temporary file, and bytes for standard output are held back, so a run that fails half-way
 /// shows nothing of its work.
 pub enum Destination {
-    Stdout(Vec<u8>),
+    /// An anonymous temporary file, copied to standard output on commit.
+    Stdout(File),
     File(AtomicFile),
 }
 
@@ -80,13 +82,16 @@ impl Destination {
                         .into(),
                 ));
             }
-            Ok(Destination::Stdout(Vec::new()))
+            let file = tempfile::tempfile().map_err(|e| {
+                Error::io("-", "cannot create a temporary file for standard output", e)
+            })?;
+            Ok(Destination::Stdout(file))
         } else {
             Ok(Destination::File(AtomicFile::create(path)?))
         }
     }
 
-    fn path(&self) -> PathBuf {
+    pub fn path(&self) -> PathBuf {
         match self {
             Destination::Stdout(_) => PathBuf::from(STDOUT),
             Destination::File(f) => f.target().to_path_buf(),
@@ -100,24 +105,47 @@ impl Destination {
             path: path.clone(),
             msg,
         };
+        let mut out = BufWriter::new(self.file());
+        write_png(&mut out, image).map_err(|e| fail(e.to_string()))?;
+        out.flush().map_err(|e| fail(e.to_string()))
+    }
+
+    /// A PNG written into this destination as its rows arrive.
+    pub fn stream_png(
+        &mut self,
+        width: u32,
+        height: u32,
+        encoding: PngEncoding,
+    ) -> Result<PngStream> {
+        let path = self.path();
+        let file = self
+            .file()
+            .try_clone()
+            .map_err(|e| Error::io(&path, "cannot write", e))?;
+        PngStream::new(file, width, height, encoding).map_err(|e| Error::Png {
+            path,
+            msg: e.to_string(),
+        })
+    }
+
+    fn file(&mut self) -> &mut File {
         match self {
-            Destination::Stdout(bytes) => {
-                write_png(&mut *bytes, image).map_err(|e| fail(e.to_string()))
-            }
-            Destination::File(file) => {
-                let mut out = BufWriter::new(file.file());
-                write_png(&mut out, image).map_err(|e| fail(e.to_string()))?;
-                out.flush().map_err(|e| fail(e.to_string()))
-            }
+            Destination::Stdout(file) => file,
+            Destination::File(file) => file.file(),
         }
     }
 
-    /// Makes the output visible: renames the file into place, or writes the bytes to stdout.
     pub fn commit(self) -> Result<()> {
         match self {
             Destination::File(file) => file.commit(),
-            Destination::Stdout(bytes) => {
+            Destination::Stdout(mut file) => {
                 crate::interrupt::check()?;
+                let mut bytes = Vec::new();
+                file.seek(SeekFrom::Start(0))
+                    .and_then(|_| file.read_to_end(&mut bytes))
+                    .map_err(|e| {
+                        Error::io("-", "cannot read back the output for standard output", e)
+                    })?;
                 stdout::write_all(&bytes)
             }
         }

@@ -1,16 +1,19 @@
 //! Film -> one-part, scanline, multi-layer OpenEXR (docs/aovs.md, File structure and Header).
 
 use std::fs::File;
-use std::io::Write as _;
 
-use exr::prelude::{self as x, f16, AttributeValue, Text, WritableImage as _};
+use exr::image::write::layers::WritableLayers as _;
+use exr::prelude::{self as x, AttributeValue, Text};
 
+use exr::meta::header::Header;
+use exr::meta::Requirements;
 use glam::DVec3;
 
-use crate::aov::{Kind, Z_MISS};
-use crate::film::Film;
+use crate::aov::{Kind, Layer, Z_MISS};
 use crate::openexr::FlatImage;
-use crate::output::exr_header;
+use crate::output::exr_block;
+use crate::output::exr_block::StoredChannel;
+use crate::output::exr_stream::ExrStream;
 
 /// Lossless codecs offered on the command line. Lossy ones would corrupt the data layers.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -34,6 +37,15 @@ impl ExrCompression {
             ExrCompression::Zips => "zips",
             ExrCompression::Zip => "zip",
             ExrCompression::Piz => "piz",
+        }
+    }
+
+    /// Scanlines per block, as OpenEXR defines it for each codec.
+    pub fn lines_per_block(self) -> u32 {
+        match self {
+            ExrCompression::None | ExrCompression::Rle | ExrCompression::Zips => 1,
+            ExrCompression::Zip => 16,
+            ExrCompression::Piz => 32,
         }
     }
 
@@ -81,22 +93,19 @@ pub struct ExrMetadata {
 pub const INVARIANTS: &str = "RGB = direct + reflected; reflected = sum_k reflected_k; \
 RGB = ambient + sum_i light_i + background; RGB = ambient + diffuse + specular + background";
 
-/// Largest finite half float.
-const HALF_MAX: f32 = 65504.0;
-
-/// Writes `film` as an EXR into `file` (positioned at its start).
-pub fn write_exr(
-    file: &mut File,
-    film: &Film,
+/// The header of a render's EXR placed at `at` holding `layers`, and how each of its
+/// channels is stored, in the file's (name) order: colour layers as half when asked, every
+/// channel explicitly linear (the crate would flag every non-RGB name `pLinear`, which claims
+/// perceptual encoding for linear data; docs/aovs.md).
+pub fn header(
+    at: Placement,
+    layers: &[Layer],
     options: ExrOptions,
     metadata: &ExrMetadata,
-) -> Result<(), String> {
-    let size = (film.width as usize, film.height as usize);
-    let channels = channels(film, options);
-
+) -> (Header, Vec<StoredChannel>) {
     let mut attributes = x::LayerAttributes {
         // The data window: where this film (a whole image, or a farm node's region) sits.
-        layer_position: x::Vec2(film.origin.0 as i32, film.origin.1 as i32),
+        layer_position: x::Vec2(at.origin.0, at.origin.1),
         software_name: Some(text(&metadata.software)),
         comments: Some(text(&metadata.comments)),
         world_to_camera: Some(matrix(&IDENTITY)),
@@ -133,54 +142,58 @@ pub fn write_exr(
         attributes.other.insert(text(name), value);
     }
 
-    let encoding = x::Encoding {
-        compression: options.compression.codec(),
-        blocks: x::Blocks::ScanLines,
-        line_order: x::LineOrder::Increasing,
-    };
-    let layer = x::Layer::new(size, attributes, encoding, x::AnyChannels::sort(channels));
-    let display = x::IntegerBounds::new((0, 0), (film.display.0 as usize, film.display.1 as usize));
-    let mut image = x::Image::new(x::ImageAttributes::new(display), layer);
-    image.attributes.chromaticities = Some(REC709_D65);
-    write_image(file, &image)
+    let mut channels: Vec<(String, StoredChannel)> = layers
+        .iter()
+        .flat_map(|layer| {
+            let half = options.half && layer.quantity.kind() == Kind::Colour;
+            layer
+                .channel_names()
+                .into_iter()
+                .map(move |name| (name, half))
+        })
+        .enumerate()
+        .map(|(film_index, (name, half))| (name, StoredChannel { film_index, half }))
+        .collect();
+    channels.sort_by(|a, b| a.0.cmp(&b.0));
+    let descriptions = channels
+        .iter()
+        .map(|(name, stored)| x::ChannelDescription {
+            name: text(name),
+            sample_type: if stored.half {
+                x::SampleType::F16
+            } else {
+                x::SampleType::F32
+            },
+            quantize_linearly: false,
+            sampling: x::Vec2(1, 1),
+        })
+        .collect();
+    let mut image = x::ImageAttributes::new(x::IntegerBounds::new(at.display.0, at.display.1));
+    image.chromaticities = Some(REC709_D65);
+    let header = Header::new(text(""), at.size, descriptions)
+        .with_encoding(
+            options.compression.codec(),
+            exr::meta::BlockDescription::ScanLines,
+            x::LineOrder::Increasing,
+        )
+        .with_attributes(attributes)
+        .with_shared_attributes(image);
+    let stored = channels.into_iter().map(|(_, stored)| stored).collect();
+    (header, stored)
 }
 
-/// The film's channels as the file stores them: one plane each, colour layers as half when
-/// asked, every channel explicitly linear (the crate would flag every non-RGB name `pLinear`,
-/// which claims perceptual encoding for linear data; docs/aovs.md).
-fn channels(film: &Film, options: ExrOptions) -> x::SmallVec<[x::AnyChannel<x::FlatSamples>; 4]> {
-    let mut channels = x::SmallVec::new();
-    let mut offset = 0;
-    for layer in &film.layers {
-        let half = options.half && layer.quantity.kind() == Kind::Colour;
-        for name in layer.channel_names() {
-            let plane: Vec<f32> = film
-                .data
-                .iter()
-                .skip(offset)
-                .step_by(film.channel_count())
-                .copied()
-                .collect();
-            let sample_data = if half {
-                x::FlatSamples::F16(
-                    plane
-                        .iter()
-                        .map(|&v| f16::from_f32(v.clamp(-HALF_MAX, HALF_MAX)))
-                        .collect(),
-                )
-            } else {
-                x::FlatSamples::F32(plane)
-            };
-            channels.push(x::AnyChannel {
-                name: text(&name),
-                sample_data,
-                quantize_linearly: false,
-                sampling: x::Vec2(1, 1),
-            });
-            offset += 1;
-        }
-    }
-    channels
+/// The magic number, version field and `header` of a single-part file.
+pub fn write_magic_and_header(
+    out: &mut impl std::io::Write,
+    requirements: Requirements,
+    header: &Header,
+) -> Result<(), String> {
+    let mut write = || -> exr::error::UnitResult {
+        exr::meta::magic_number::write(out)?;
+        requirements.write(out)?;
+        Header::write_all(std::slice::from_ref(header), out, false)
+    };
+    write().map_err(|e| e.to_string())
 }
 
 /// Where a plain RGBA image's pixels sit: its size, the data window's top-left corner, and
@@ -229,18 +242,26 @@ pub fn write_rgba(file: &mut File, at: Placement, pixels: &[DVec3]) -> Result<()
     write_image(file, &image)
 }
 
-/// Writes any flat image as an EXR into `file` (positioned at its start), its header
-/// attributes in name order so that equal images give equal bytes. Renders and merges both
-/// end here.
+/// Writes any flat single-part image as a scanline EXR into `file` (positioned at its
+/// start) through the same writer as renders, so that a merged render has the bytes of the
+/// full one.
 pub fn write_image(file: &mut File, image: &FlatImage) -> Result<(), String> {
-    let mut out = std::io::BufWriter::new(&mut *file);
-    image
-        .write()
-        .to_buffered(&mut out)
-        .map_err(|e| e.to_string())?;
-    out.flush().map_err(|e| e.to_string())?;
-    drop(out);
-    exr_header::sort_attributes(file).map_err(|e| e.to_string())
+    let header = image
+        .layer_data
+        .infer_headers(&image.attributes)
+        .into_iter()
+        .next()
+        .ok_or("an EXR image without a layer")?;
+    let compression = header.compression;
+    let header = header.with_encoding(
+        compression,
+        exr::meta::BlockDescription::ScanLines,
+        x::LineOrder::Increasing,
+    );
+    let mut stream = ExrStream::create(file, header)?;
+    let rows = image.layer_data.size.1 as u32;
+    stream.write_rows(rows, &|range| exr_block::pack_planes(image, range))?;
+    stream.finish()
 }
 
 /// Rec.709 primaries with a D65 white point: the linear sRGB the renderer works in.

@@ -1,5 +1,6 @@
 //! Linear pixels -> tone map -> encoding -> quantisation -> PNG bytes (docs/tonemap.md).
 
+use std::fs::File;
 use std::io::Write;
 
 use glam::DVec3;
@@ -51,12 +52,23 @@ pub enum PngPixels {
 
 /// Tone-maps and quantises row-major linear `pixels`.
 pub fn encode(pixels: &[DVec3], width: u32, height: u32, encoding: &PngEncoding) -> PngImage {
+    PngImage {
+        width,
+        height,
+        pixels: encode_rows(pixels, width, 0, encoding),
+        srgb: encoding.tonemap.srgb_encoded(),
+    }
+}
+
+/// Tone-maps and quantises whole rows of `width` pixels, the first of them image row
+/// `first_row` (which the dither depends on).
+fn encode_rows(pixels: &[DVec3], width: u32, first_row: u32, encoding: &PngEncoding) -> PngPixels {
     let display: Vec<[f64; 3]> = pixels
         .par_iter()
         .map(|&v| to_display(v, encoding.tonemap, encoding.exposure))
         .collect();
     let tick = !encoding.tonemap.srgb_encoded();
-    let pixels = if encoding.depth == 16 {
+    if encoding.depth == 16 {
         PngPixels::Sixteen(
             display
                 .iter()
@@ -71,7 +83,7 @@ pub fn encode(pixels: &[DVec3], width: u32, height: u32, encoding: &PngEncoding)
                 .iter()
                 .enumerate()
                 .flat_map(|(i, e)| {
-                    let (x, y) = ((i % row) as u32, (i / row) as u32);
+                    let (x, y) = ((i % row) as u32, first_row + (i / row) as u32);
                     (0..3u32).map(move |c| {
                         let noise = if encoding.dither && !tick {
                             triangular_noise(x, y, c, DITHER_SEED)
@@ -83,12 +95,6 @@ pub fn encode(pixels: &[DVec3], width: u32, height: u32, encoding: &PngEncoding)
                 })
                 .collect(),
         )
-    };
-    PngImage {
-        width,
-        height,
-        pixels,
-        srgb: encoding.tonemap.srgb_encoded(),
     }
 }
 
@@ -130,12 +136,85 @@ fn splitmix64(key: u64) -> u64 {
 
 /// Encodes `image` as a PNG into `out`.
 pub fn write_png(out: impl Write, image: &PngImage) -> Result<(), png::EncodingError> {
-    let mut encoder = png::Encoder::new(out, image.width, image.height);
+    let sixteen = matches!(image.pixels, PngPixels::Sixteen(_));
+    let mut writer = encoder(out, image.width, image.height, image.srgb, sixteen).write_header()?;
+    writer.write_image_data(&image.pixels.to_bytes())?;
+    writer.finish()
+}
+
+impl PngPixels {
+    /// The bytes of the PNG's rows (16-bit samples big-endian), before filtering.
+    fn to_bytes(&self) -> std::borrow::Cow<'_, [u8]> {
+        match self {
+            PngPixels::Eight(bytes) => bytes.into(),
+            PngPixels::Sixteen(values) => values
+                .iter()
+                .flat_map(|v| v.to_be_bytes())
+                .collect::<Vec<u8>>()
+                .into(),
+        }
+    }
+}
+
+/// A PNG written as its rows arrive, strip by strip, so that the whole image is never held.
+pub struct PngStream {
+    writer: png::StreamWriter<'static, File>,
+    encoding: PngEncoding,
+    width: u32,
+    rows: u32,
+}
+
+impl PngStream {
+    /// Writes the header of a `width` x `height` PNG into `file`.
+    pub fn new(
+        file: File,
+        width: u32,
+        height: u32,
+        encoding: PngEncoding,
+    ) -> Result<Self, png::EncodingError> {
+        let srgb = encoding.tonemap.srgb_encoded();
+        let encoder = encoder(file, width, height, srgb, encoding.depth == 16);
+        Ok(PngStream {
+            writer: encoder.write_header()?.into_stream_writer()?,
+            encoding,
+            width,
+            rows: 0,
+        })
+    }
+
+    /// Encodes and writes the next whole rows of the image.
+    pub fn write_rows(&mut self, pixels: &[DVec3]) -> Result<(), png::EncodingError> {
+        let encoded = encode_rows(pixels, self.width, self.rows, &self.encoding);
+        self.writer.write_all(&encoded.to_bytes())?;
+        self.rows += (pixels.len() / self.width.max(1) as usize) as u32;
+        Ok(())
+    }
+
+    /// Ends the image; an error if rows are missing.
+    pub fn finish(self) -> Result<(), png::EncodingError> {
+        self.writer.finish()
+    }
+}
+
+/// An encoder for an RGB image, set up as every PNG whitted writes is.
+fn encoder<W: Write>(
+    out: W,
+    width: u32,
+    height: u32,
+    srgb: bool,
+    sixteen: bool,
+) -> png::Encoder<'static, W> {
+    let mut encoder = png::Encoder::new(out, width, height);
     encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(if sixteen {
+        png::BitDepth::Sixteen
+    } else {
+        png::BitDepth::Eight
+    });
     // fdeflate's PNG-tuned mode: the whole tick2 run takes a quarter less time than with
     // `Balanced`, for a file a third larger (132 KB); PNGs are judged by their pixels.
     encoder.set_compression(png::Compression::Fast);
-    if image.srgb {
+    if srgb {
         encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
         // The gAMA and cHRM values the PNG spec (11.3.2.5) asks for beside sRGB, for readers
         // that do not know the sRGB chunk; the encoder writes them only when set to these.
@@ -153,21 +232,7 @@ pub fn write_png(out: impl Write, image: &PngImage) -> Result<(), png::EncodingE
             blue: xy(15000, 6000),
         });
     }
-    match &image.pixels {
-        PngPixels::Eight(bytes) => {
-            encoder.set_depth(png::BitDepth::Eight);
-            let mut writer = encoder.write_header()?;
-            writer.write_image_data(bytes)?;
-            writer.finish()
-        }
-        PngPixels::Sixteen(values) => {
-            encoder.set_depth(png::BitDepth::Sixteen);
-            let mut writer = encoder.write_header()?;
-            let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_be_bytes()).collect();
-            writer.write_image_data(&bytes)?;
-            writer.finish()
-        }
-    }
+    encoder
 }
 
 #[cfg(test)]
