@@ -33,8 +33,10 @@ pub struct Film {
 impl Film {
     /// An empty film for `layers`; an error only when memory cannot be had.
     ///
+    /// With no layers it holds the f64 beauty alone, which is all a PNG needs.
+    ///
     /// # Panics
-    /// With no layers, or two layers declaring a channel of the same name (one would silently
+    /// With two layers declaring a channel of the same name (one would silently
     /// vanish from the file): the layer catalogue never does either, so that is a bug.
     pub fn new(width: u32, height: u32, layers: Vec<Layer>) -> Result<Self> {
         let channel_names: Vec<String> = layers.iter().flat_map(Layer::channel_names).collect();
@@ -43,7 +45,6 @@ impl Film {
         if let Some(pair) = sorted.windows(2).find(|pair| pair[0] == pair[1]) {
             panic!("two layers declare the channel `{}`", pair[0]);
         }
-        assert!(!layers.is_empty(), "a film needs at least one layer");
         let pixels = width as usize * height as usize;
         Ok(Film {
             width,

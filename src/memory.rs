@@ -9,14 +9,18 @@ use rayon::prelude::*;
 
 use crate::error::{Error, Result};
 
-/// Bytes a render of this size needs at its peak: the f64 beauty, the f32 film, and during
-/// writing the EXR's per-channel planes plus the encoder's buffers (about as much again), and
-/// the PNG's display values and bytes.
-pub fn render_bytes(width: u32, height: u32, channels: usize, exr: bool) -> u64 {
-    let pixels = u64::from(width) * u64::from(height);
-    let film = 24 + 4 * channels as u64;
-    let writing = if exr { 2 * 4 * channels as u64 } else { 0 } + 24 + 3;
-    pixels.saturating_mul(film + writing)
+/// Bytes a render of this size needs at its peak, streamed in strips of `strip_rows` rows:
+/// two strips of f64 beauty and f32 channels (one rendering, one being written), the EXR
+/// blocks of a strip (packed, split, predicted, compressed: about four copies of its f32
+/// values) and its offset table, and the PNG's display values and bytes for a strip. The
+/// image's height only adds the offset table.
+pub fn render_bytes(width: u32, height: u32, channels: usize, exr: bool, strip_rows: u32) -> u64 {
+    let channels = channels as u64;
+    let strip = u64::from(width).saturating_mul(u64::from(strip_rows.min(height)));
+    let film = 2 * (24 + 4 * channels);
+    let writing = if exr { 4 * 4 * channels } else { 0 } + 24 + 3;
+    let table = if exr { 8 * u64::from(height) } else { 0 };
+    strip.saturating_mul(film + writing).saturating_add(table)
 }
 
 /// An error if `needed` bytes are more than `available`.
@@ -54,10 +58,16 @@ mod tests {
 
     #[test]
     fn estimates_grow_with_size_and_layers() {
-        let small = render_bytes(640, 480, 4, false);
-        assert!(small > 640 * 480 * 24);
-        assert!(render_bytes(640, 480, 53, true) > 10 * small);
-        assert_eq!(render_bytes(u32::MAX, u32::MAX, 1000, true), u64::MAX);
+        let small = render_bytes(640, 480, 4, false, 16);
+        assert!(small > 640 * 16 * 2 * 24);
+        assert!(render_bytes(640, 480, 53, true, 16) > 10 * small);
+        // A strip, not the image: a taller image costs only its offset table.
+        let tall = render_bytes(640, 480_000, 53, true, 16);
+        assert_eq!(
+            tall - render_bytes(640, 480, 53, true, 16),
+            8 * (480_000 - 480)
+        );
+        assert!(render_bytes(u32::MAX, u32::MAX, 1000, true, 16) > 1 << 50);
     }
 
     #[test]

@@ -11,6 +11,7 @@ use crate::openexr::MAX_CHANNEL_NAME;
 use crate::output::destination::{same_file, STDOUT};
 use crate::output::exr::ExrOptions;
 use crate::output::png::PngEncoding;
+use crate::render::strip_rows;
 use crate::scene::Scene;
 use crate::tonemap::ToneMap;
 
@@ -83,19 +84,22 @@ pub struct RenderPlan {
     pub exr_options: ExrOptions,
     pub threads: Option<usize>,
     pub stamp_date: bool,
+    /// Rows rendered and written at a time: whole EXR blocks, and what memory was checked for.
+    pub strip_rows: u32,
 }
 
 impl RenderPlan {
     /// Checks `request` against `scene`. The layer selection is checked even without an EXR,
-    /// so a misspelt name is never silently ignored; without an EXR only the beauty is kept.
+    /// so a misspelt name is never silently ignored; without an EXR no layer is kept (the
+    /// film's f64 beauty is what the PNG is made from).
     pub fn new(request: &RenderRequest, scene: &Scene) -> Result<Self> {
         let encoding = request.tone.encoding()?;
         let mut frame = Frame::new(scene, &request.frame)?;
         if request.exr.is_some() {
             check_channel_names(&frame)?;
         } else {
-            // The PNG needs the beauty alone, which is always the first layer.
-            frame.layers.truncate(1);
+            // The PNG is made from the film's f64 beauty, which every film has.
+            frame.layers.clear();
         }
         if let Some(n) = request.threads {
             if n == 0 || n > MAX_THREADS {
@@ -106,8 +110,9 @@ impl RenderPlan {
         }
         let (width, height) = (frame.region.width(), frame.region.height());
         let channels = frame.channel_count();
+        let strip_rows = strip_rows(width, channels, exr_block_lines(request));
         memory::check(
-            memory::render_bytes(width, height, channels, request.exr.is_some()),
+            memory::render_bytes(width, height, channels, request.exr.is_some(), strip_rows),
             memory::available_bytes(),
             &format!(
                 "a {width}x{height} render with {channels} channels (try a smaller size or \
@@ -125,8 +130,17 @@ impl RenderPlan {
             exr_options: request.exr_options,
             threads: request.threads,
             stamp_date: request.stamp_date,
+            strip_rows,
         })
     }
+}
+
+/// Lines per block of the EXR asked for, if any.
+fn exr_block_lines(request: &RenderRequest) -> Option<u32> {
+    request
+        .exr
+        .as_ref()
+        .map(|_| request.exr_options.compression.lines_per_block())
 }
 
 /// Every channel name fits OpenEXR's limit. Scene light names are short enough that this
@@ -207,7 +221,7 @@ mod tests {
     #[test]
     fn without_an_exr_only_the_beauty_is_kept_but_the_selection_is_checked() {
         let plan = RenderPlan::new(&request(), &scene()).expect("plan");
-        assert_eq!(plan.frame.layers.len(), 1);
+        assert!(plan.frame.layers.is_empty());
         let mut bad = request();
         bad.frame.aovs = "direct,nope".into();
         assert!(RenderPlan::new(&bad, &scene()).is_err());

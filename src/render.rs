@@ -15,7 +15,7 @@ use crate::frame::{Acceleration, Frame};
 use crate::interrupt;
 use crate::sample::Sample;
 use crate::scene::Scene;
-use crate::trace::trace_into;
+use crate::trace::{trace_beauty, trace_into};
 
 /// How a render went: what the summary line and the warnings report. Not part of the image.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -56,7 +56,8 @@ pub fn render(
     film.display = (frame.camera.width, frame.camera.height);
     let channels = film.channel_count();
     let width = region.width() as usize;
-    let stats = render_strips(scene, frame, STRIP_ROWS, rows_done, &mut |strip: &Film| {
+    let rows = strip_rows(region.width(), channels, None);
+    let stats = render_strips(scene, frame, rows, rows_done, &mut |strip: &Film| {
         let first = (strip.origin.1 - region.y0) as usize * width;
         let pixels = strip.beauty.len();
         film.beauty[first..first + pixels].copy_from_slice(&strip.beauty);
@@ -66,10 +67,28 @@ pub fn render(
     Ok((film, stats))
 }
 
-/// Rows in a strip unless an output asks for more (a multiple of every EXR block height
-/// but PIZ's 32): few enough that two strips of a 16384-pixel-wide, 53-channel render take
-/// about 250 MB, enough that a strip is many tasks.
-pub const STRIP_ROWS: u32 = 64;
+/// Rows in a strip of a render without an EXR: the PNG encoder is cheap, and short strips
+/// keep the last one, which nothing overlaps, short.
+const PNG_STRIP_ROWS: u32 = 16;
+
+/// Most rows in a strip of a render with an EXR: four ZIP blocks, so that a strip's blocks
+/// compress on several cores while the next strip renders.
+const EXR_STRIP_ROWS: u32 = 64;
+
+/// Bytes of f32 channel values a strip with an EXR may hold: a 4K, 53-channel strip has its
+/// 64 rows, a 16384-pixel-wide one 16.
+const EXR_STRIP_BYTES: u64 = 64 << 20;
+
+/// Rows per strip for `width`-pixel rows of `channels` channels, and an EXR of `block_lines`
+/// lines per block if any: whole blocks, at least one.
+pub fn strip_rows(width: u32, channels: usize, block_lines: Option<u32>) -> u32 {
+    let Some(block) = block_lines.map(|b| b.max(1)) else {
+        return PNG_STRIP_ROWS;
+    };
+    let row_bytes = (u64::from(width) * 4 * channels as u64).max(1);
+    let fitting = (EXR_STRIP_BYTES / row_bytes).min(u64::from(EXR_STRIP_ROWS)) as u32;
+    (fitting / block).max(1) * block
+}
 
 /// Renders `scene` as `frame` says, strip by strip of `strip_rows` whole rows top to bottom,
 /// handing each finished strip to `sink` in order. Memory is two strips, whatever the image
@@ -158,10 +177,16 @@ impl<'a> PixelRenderer<'a> {
         let channels = strip.channel_count();
         let top = strip.origin.1;
         let layers = &strip.layers;
+        // A film without layers has no channel values: every row gets an empty slice.
+        let data_rows: Vec<&mut [f32]> = if channels == 0 {
+            (0..strip.height).map(|_| <&mut [f32]>::default()).collect()
+        } else {
+            strip.data.chunks_mut(width * channels).collect()
+        };
         strip
             .beauty
             .par_chunks_mut(width)
-            .zip(strip.data.par_chunks_mut(width * channels))
+            .zip(data_rows)
             .enumerate()
             .map(|(row, (beauty, data))| {
                 let counts = self.render_row(top + row as u32, layers, beauty, data);
@@ -184,11 +209,8 @@ impl<'a> PixelRenderer<'a> {
         let mut accumulator = PixelAccumulator::new(layers, channels);
         let mut sample = Sample::empty(self.scene.lights.len(), trace.bounces);
         let (mut rays, mut non_finite) = (0, 0);
-        for (column, (pixel, values)) in beauty
-            .iter_mut()
-            .zip(data.chunks_exact_mut(channels))
-            .enumerate()
-        {
+        for (column, pixel) in beauty.iter_mut().enumerate() {
+            let values = &mut data[column * channels..(column + 1) * channels];
             // At every pixel: a stop is seen within one pixel's samples.
             if interrupt::requested() {
                 break;
@@ -201,7 +223,11 @@ impl<'a> PixelRenderer<'a> {
                 } else {
                     camera.sub_pixel_ray(x, y, u, v)
                 };
-                trace_into(self.scene, self.accel, ray, trace, &mut sample);
+                if layers.is_empty() {
+                    trace_beauty(self.scene, self.accel, ray, trace, &mut sample);
+                } else {
+                    trace_into(self.scene, self.accel, ray, trace, &mut sample);
+                }
                 rays += sample.rays;
                 accumulator.add(&sample, i == self.centre);
             }

@@ -46,7 +46,19 @@ pub fn trace_into(
     options: TraceOptions,
     sample: &mut Sample,
 ) {
-    trace_observed(scene, accel, primary, options, sample, &mut Silent);
+    trace_with::<true>(scene, accel, primary, options, sample, &mut Silent);
+}
+
+/// `trace_into` for the beauty alone: the same `sample.beauty` and ray count, bit for bit, and
+/// none of the per-effect sums (a PNG-only render needs nothing else).
+pub fn trace_beauty(
+    scene: &Scene,
+    accel: &Accelerator,
+    primary: Ray,
+    options: TraceOptions,
+    sample: &mut Sample,
+) {
+    trace_with::<false>(scene, accel, primary, options, sample, &mut Silent);
 }
 
 /// `trace_into`, telling `observer` every vertex and light term on the way (`explain`).
@@ -58,7 +70,23 @@ pub fn trace_observed(
     sample: &mut Sample,
     observer: &mut impl Observer,
 ) {
-    sample.reset();
+    trace_with::<true>(scene, accel, primary, options, sample, observer);
+}
+
+/// The trace itself; with `LAYERS` false, the per-effect sums are left out at compile time.
+fn trace_with<const LAYERS: bool>(
+    scene: &Scene,
+    accel: &Accelerator,
+    primary: Ray,
+    options: TraceOptions,
+    sample: &mut Sample,
+    observer: &mut impl Observer,
+) {
+    if LAYERS {
+        sample.reset();
+    } else {
+        sample.rays = 0;
+    }
     // (shaded colour, reflectivity if the chain continues there), vertex by vertex; on the
     // stack for the usual few bounces.
     let mut chain: SmallVec<[(DVec3, Option<f64>); 4]> = SmallVec::new();
@@ -69,9 +97,11 @@ pub fn trace_observed(
         sample.rays += 1;
         let Some(hit) = accel.closest_hit(&ray) else {
             observer.miss(k, ray);
-            let background = BACKGROUND * throughput;
-            sample.background += background;
-            *bucket(sample, k) += background;
+            if LAYERS {
+                let background = BACKGROUND * throughput;
+                sample.background += background;
+                *bucket(sample, k) += background;
+            }
             far_end = BACKGROUND;
             break;
         };
@@ -92,7 +122,7 @@ pub fn trace_observed(
             weight,
             depth: k,
         };
-        let colour = shade(scene, accel, &vertex, options.shadows, sample, observer);
+        let colour = shade::<LAYERS>(scene, accel, &vertex, options.shadows, sample, observer);
         observer.vertex(VertexRecord {
             depth: k,
             ray,
@@ -105,8 +135,10 @@ pub fn trace_observed(
             continues,
             colour,
         });
-        *bucket(sample, k) += colour * weight;
-        if k == 0 {
+        if LAYERS {
+            *bucket(sample, k) += colour * weight;
+        }
+        if LAYERS && k == 0 {
             sample.primary = Some(PrimaryHit {
                 position: point,
                 normal,
@@ -183,7 +215,7 @@ struct Vertex<'a> {
 
 /// Phong shading at a vertex, in the course's order (docs/rendering.md, Shading). Returns the
 /// unweighted colour and adds the weighted per-effect terms to `sample`.
-fn shade(
+fn shade<const LAYERS: bool>(
     scene: &Scene,
     accel: &Accelerator,
     vertex: &Vertex,
@@ -199,7 +231,9 @@ fn shade(
         ..
     } = *vertex;
     let ambient = scene.ambient * m.colour;
-    sample.ambient += ambient * weight;
+    if LAYERS {
+        sample.ambient += ambient * weight;
+    }
     let mut colour = ambient;
     // Towards the camera at the origin, even for reflected rays: the reference does this.
     let v = normalise(-p);
@@ -237,15 +271,19 @@ fn shade(
             shadow_ray: shadows.then_some(shadow_ray),
             in_shadow,
         });
-        out.unshadowed += (diffuse + specular) * weight;
-        if vertex.depth == 0 {
-            out.occluded_at_primary = in_shadow;
+        if LAYERS {
+            out.unshadowed += (diffuse + specular) * weight;
+            if vertex.depth == 0 {
+                out.occluded_at_primary = in_shadow;
+            }
         }
         if !in_shadow {
             colour = (colour + diffuse) + specular;
-            out.shadowed += (diffuse + specular) * weight;
-            sample.diffuse += diffuse * weight;
-            sample.specular += specular * weight;
+            if LAYERS {
+                out.shadowed += (diffuse + specular) * weight;
+                sample.diffuse += diffuse * weight;
+                sample.specular += specular * weight;
+            }
         }
     }
     colour

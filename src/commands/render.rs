@@ -15,7 +15,7 @@ use crate::output::exr_stream::ExrStream;
 use crate::output::png::PngStream;
 use crate::plan::RenderPlan;
 use crate::progress::Progress;
-use crate::render::{render_strips, RenderStats, STRIP_ROWS};
+use crate::render::{render_strips, RenderStats};
 use crate::render_record;
 use crate::scene::{self, Input};
 
@@ -33,11 +33,10 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     // that there are all outputs or none.
     let (stats, exr_time) = with_threads(plan.threads, || -> Result<(RenderStats, Duration)> {
         let mut writers = Writers::open(&plan, &input, png.as_mut(), exr_file.as_mut())?;
-        let rows = writers.strip_rows();
         let stats = render_strips(
             scene,
             &plan.frame,
-            rows,
+            plan.strip_rows,
             &|n| progress.advance(n),
             &mut |strip| writers.write(strip),
         )?;
@@ -124,12 +123,6 @@ impl<'a> Writers<'a> {
             exr,
             exr_time: Duration::ZERO,
         })
-    }
-
-    /// Rows per strip: whole EXR blocks.
-    fn strip_rows(&self) -> u32 {
-        let block = self.exr.as_ref().map_or(1, |e| e.stream.lines_per_block());
-        STRIP_ROWS.div_ceil(block) * block
     }
 
     fn write(&mut self, strip: &Film) -> Result<()> {

@@ -139,24 +139,32 @@ fn zip(packed: Vec<u8>) -> Vec<u8> {
 
 /// OpenEXR's ZIP predictor (ImfZip.cpp): bytes at even positions, then those at odd ones,
 /// each then replaced by its difference from the one before plus 128, modulo 256. Written out
-/// here because it is the file format itself and the `exr` crate keeps its copy private.
+/// here because it is the file format itself and the `exr` crate keeps its copy private; done
+/// in one pass over pairs of bytes, as the split sequence's neighbours are `raw[i - 2]`.
 fn predict(raw: &[u8]) -> Vec<u8> {
-    if raw.is_empty() {
-        return Vec::new();
+    let n = raw.len();
+    let mut out = vec![0u8; n];
+    if n == 0 {
+        return out;
     }
-    let mut split = vec![0u8; raw.len()];
-    let (even, odd) = split.split_at_mut(raw.len().div_ceil(2));
-    for ((e, o), pair) in even.iter_mut().zip(odd.iter_mut()).zip(raw.chunks_exact(2)) {
-        *e = pair[0];
-        *o = pair[1];
+    let half = n.div_ceil(2);
+    let (even, odd) = out.split_at_mut(half);
+    even[0] = raw[0];
+    let pairs = raw.chunks_exact(2);
+    let next_pairs = raw[2.min(n)..].chunks_exact(2);
+    for ((e, o), (previous, current)) in even[1..]
+        .iter_mut()
+        .zip(odd.iter_mut().skip(1))
+        .zip(pairs.zip(next_pairs))
+    {
+        *e = current[0].wrapping_sub(previous[0]).wrapping_add(128);
+        *o = current[1].wrapping_sub(previous[1]).wrapping_add(128);
     }
-    if let (Some(last_even), 1) = (even.last_mut(), raw.len() % 2) {
-        *last_even = raw[raw.len() - 1];
+    if n % 2 == 1 && n >= 3 {
+        even[half - 1] = raw[n - 1].wrapping_sub(raw[n - 3]).wrapping_add(128);
     }
-    let mut out = split.clone();
-    // From the split copy, so that the loop has no dependency from one byte to the next.
-    for ((o, &current), &previous) in out.iter_mut().skip(1).zip(&split[1..]).zip(&split) {
-        *o = current.wrapping_sub(previous).wrapping_add(128);
+    if let Some(first_odd) = odd.first_mut() {
+        *first_odd = raw[1].wrapping_sub(raw[2 * (half - 1)]).wrapping_add(128);
     }
     out
 }
@@ -165,10 +173,25 @@ fn predict(raw: &[u8]) -> Vec<u8> {
 mod tests {
     use super::*;
 
+    /// The predictor as ImfZip.cpp spells it: split, then difference.
+    fn reference(raw: &[u8]) -> Vec<u8> {
+        let mut t: Vec<u8> = raw.iter().step_by(2).copied().collect();
+        t.extend(raw.iter().skip(1).step_by(2));
+        let mut out = t.clone();
+        for i in 1..t.len() {
+            out[i] = t[i].wrapping_sub(t[i - 1]).wrapping_add(128);
+        }
+        out
+    }
+
     #[test]
     fn the_predictor_splits_then_differences() {
         assert_eq!(predict(&[10, 20, 11, 22, 12]), [10, 129, 129, 136, 130]);
         assert_eq!(predict(&[]), Vec::<u8>::new());
+        let bytes: Vec<u8> = (0u32..41).map(|i| (i * i * 37 % 251) as u8).collect();
+        for n in 0..bytes.len() {
+            assert_eq!(predict(&bytes[..n]), reference(&bytes[..n]), "{n} bytes");
+        }
     }
 
     #[test]
