@@ -20,7 +20,9 @@ use crate::render_record;
 use crate::scene::{self, Input};
 
 pub fn run(args: &RenderArgs) -> Result<()> {
+    let started = Instant::now();
     let input = scene::load_input(args.input.as_deref())?;
+    let load_time = started.elapsed();
     let scene = &input.scene;
     let plan = RenderPlan::new(&args.request(), scene)?;
     // Open outputs before rendering, so that an unwritable path fails in milliseconds.
@@ -62,7 +64,12 @@ pub fn run(args: &RenderArgs) -> Result<()> {
 
     if !args.quiet {
         let layers = plan.frame.layers.len();
-        eprintln!("{}", summary(&plan, &stats, layers, render_time, exr_time));
+        let times = Times {
+            load: load_time,
+            render: render_time,
+            exr: exr_time,
+        };
+        eprintln!("{}", summary(&plan, &stats, layers, times));
     }
     Ok(())
 }
@@ -190,21 +197,24 @@ fn with_threads<T: Send>(threads: Option<usize>, work: impl FnOnce() -> T + Send
     }
 }
 
-fn summary(
-    plan: &RenderPlan,
-    stats: &RenderStats,
-    layers: usize,
-    render_time: Duration,
-    exr_time: Duration,
-) -> String {
-    let seconds = render_time.as_secs_f64();
+/// How long the phases of a render took, for the summary line.
+struct Times {
+    load: Duration,
+    /// Hierarchy build, tracing and writing, which overlap.
+    render: Duration,
+    /// Packing, compressing and writing EXR blocks (on other cores while strips render).
+    exr: Duration,
+}
+
+fn summary(plan: &RenderPlan, stats: &RenderStats, layers: usize, times: Times) -> String {
+    let seconds = times.render.as_secs_f64();
     let rate = stats.rays as f64 / seconds.max(1e-9) / 1e6;
     let mut outputs = Vec::new();
     if let Some(exr) = &plan.exr {
         outputs.push(format!(
             "{} ({layers} layers, written in {:.2} s)",
             exr.display(),
-            exr_time.as_secs_f64()
+            times.exr.as_secs_f64()
         ));
     }
     if let Some(png) = &plan.png {
@@ -223,12 +233,13 @@ fn summary(
     let bounces = frame.trace.bounces;
     format!(
         "whitted: {}x{}, {} spp, {bounces} bounce{}, {} rays in {seconds:.2} s ({rate:.1} Mrays/s, \
-         hierarchy built in {:.2} s){target}",
+         scene loaded in {:.2} s, hierarchy built in {:.2} s){target}",
         frame.region.width(),
         frame.region.height(),
         frame.spp,
         if bounces == 1 { "" } else { "s" },
         stats.rays,
+        times.load.as_secs_f64(),
         stats.hierarchy_time.as_secs_f64(),
     )
 }

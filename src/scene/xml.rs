@@ -15,11 +15,12 @@ use std::path::Path;
 
 use quick_xml::events::{BytesStart, Event};
 use quick_xml::Reader;
+use rayon::prelude::*;
 
 use crate::error::{Error, Result};
-use crate::scene::Scene;
+use crate::scene::{Object, Scene};
 use attributes::read_attributes;
-use elements::{Element, SceneBuilder};
+use elements::{object, Element, SceneBuilder};
 use source::{shown, Source};
 
 pub use elements::MAX_LIGHT_NAME;
@@ -78,16 +79,28 @@ pub fn parse_str(file: &str, text: &str) -> Result<Scene> {
     if text.trim().is_empty() {
         return Err(source.error_at(0, "the file is empty (expected a <scene> element)".into()));
     }
-    Parser {
+    let mut parser = Parser {
         source,
         builder: SceneBuilder::default(),
-    }
-    .run()
+        pending: Vec::new(),
+    };
+    // An error in an element read before a later structural error is the one reported: the
+    // first in the file, as if everything were read in order.
+    let scanned = parser.scan();
+    parser.read_pending()?;
+    scanned?;
+    Ok(parser.builder.finish())
 }
+
+/// Objects read at once, on every core; what the parser holds back at most.
+const BATCH: usize = 16_384;
 
 struct Parser<'a> {
     source: Source<'a>,
     builder: SceneBuilder,
+    /// Object elements (`<sphere>`, `<plane>`) whose attributes are still to be read, in file
+    /// order: the bulk of a large scene, read a batch at a time in parallel.
+    pending: Vec<(BytesStart<'a>, usize)>,
 }
 
 /// An element still waiting for its end tag.
@@ -97,7 +110,9 @@ struct Open {
 }
 
 impl<'a> Parser<'a> {
-    fn run(mut self) -> Result<Scene> {
+    /// Walks the XML events, checking the structure and reading every element (objects into
+    /// `pending`).
+    fn scan(&mut self) -> Result<()> {
         let mut reader = Reader::from_str(self.source.text);
         let mut open: Vec<Open> = Vec::new();
         let mut seen_root = false;
@@ -109,14 +124,12 @@ impl<'a> Parser<'a> {
             })?;
             match event {
                 Event::Start(e) => {
-                    let offset = self.element(&e, &open, &mut seen_root)?;
-                    open.push(Open {
-                        name: e.name().0.to_string(),
-                        offset,
-                    });
+                    let name = e.name().0.to_string();
+                    let offset = self.element(e, &open, &mut seen_root)?;
+                    open.push(Open { name, offset });
                 }
                 Event::Empty(e) => {
-                    self.element(&e, &open, &mut seen_root)?;
+                    self.element(e, &open, &mut seen_root)?;
                 }
                 Event::End(_) => {
                     open.pop();
@@ -156,7 +169,7 @@ impl<'a> Parser<'a> {
                 "no <scene> element (expected <scene> ... </scene>)".into(),
             ));
         }
-        Ok(self.builder.finish())
+        Ok(())
     }
 
     fn unexpected_text(&self, offset: usize, text: &str, open: &[Open]) -> Error {
@@ -174,8 +187,8 @@ impl<'a> Parser<'a> {
     }
 
     /// Handles a start or empty-element tag; returns the offset of its `<`.
-    fn element(&mut self, e: &BytesStart, open: &[Open], seen_root: &mut bool) -> Result<usize> {
-        let tag: &str = e;
+    fn element(&mut self, e: BytesStart<'a>, open: &[Open], seen_root: &mut bool) -> Result<usize> {
+        let tag: &str = &e;
         let offset = self.source.offset_of(tag).saturating_sub(1);
         let name = e.name().0;
         match open {
@@ -196,9 +209,9 @@ impl<'a> Parser<'a> {
                     ));
                 }
                 *seen_root = true;
-                read_attributes(self.source, e, "scene", &[])?;
+                read_attributes(self.source, &e, "scene", &[])?;
             }
-            [_] => self.child(e, name, offset)?,
+            [_] => self.child(e, offset)?,
             [.., parent] => {
                 return Err(self.source.error_at(
                     offset,
@@ -213,8 +226,9 @@ impl<'a> Parser<'a> {
         Ok(offset)
     }
 
-    fn child(&mut self, e: &BytesStart, name: &str, offset: usize) -> Result<()> {
-        if self.builder.objects.len() + self.builder.lights.len() >= MAX_ELEMENTS {
+    fn child(&mut self, e: BytesStart<'a>, offset: usize) -> Result<()> {
+        let count = self.builder.objects.len() + self.builder.lights.len() + self.pending.len();
+        if count >= MAX_ELEMENTS {
             return Err(self.source.error_at(
                 offset,
                 format!(
@@ -222,11 +236,44 @@ impl<'a> Parser<'a> {
                 ),
             ));
         }
+        if matches!(e.name().0, "sphere" | "plane") {
+            self.pending.push((e, offset));
+            if self.pending.len() == BATCH {
+                self.read_pending()?;
+            }
+            return Ok(());
+        }
+        // Lights and the rest depend on what came before them: read in order.
+        self.read_pending()?;
         self.builder.add(&Element {
-            tag: e,
-            name,
+            tag: &e,
+            name: e.name().0,
             offset,
             source: self.source,
         })
+    }
+
+    /// Reads the pending objects on every core and adds them in file order; the first
+    /// error in the file if any.
+    fn read_pending(&mut self) -> Result<()> {
+        let source = self.source;
+        let objects: Vec<Result<Object>> = self
+            .pending
+            .par_iter()
+            .map(|(tag, offset)| {
+                let element = Element {
+                    tag,
+                    name: tag.name().0,
+                    offset: *offset,
+                    source,
+                };
+                object(&element).unwrap_or_else(|| unreachable!("only objects are pending"))
+            })
+            .collect();
+        self.pending.clear();
+        for object in objects {
+            self.builder.objects.push(object?);
+        }
+        Ok(())
     }
 }

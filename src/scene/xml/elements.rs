@@ -50,8 +50,11 @@ impl SceneBuilder {
     /// Adds the element `e` to the scene, or says why it cannot be.
     pub(super) fn add(&mut self, e: &Element) -> Result<()> {
         match e.name {
-            "sphere" => self.sphere(e),
-            "plane" => self.plane(e),
+            "sphere" | "plane" => {
+                let object = object(e).unwrap_or_else(|| unreachable!("an object element"))?;
+                self.objects.push(object);
+                Ok(())
+            }
             "point-light" => self.point_light(e),
             "ambient-light" => self.ambient_light(e),
             other => {
@@ -70,69 +73,79 @@ impl SceneBuilder {
             }
         }
     }
+}
 
-    fn sphere(&mut self, e: &Element) -> Result<()> {
-        let allowed = [&SPHERE_ATTRIBUTES[..], &MATERIAL_ATTRIBUTES];
-        let a = read_attributes(e.source, e.tag, e.name, &allowed)?;
-        let colour = a.required_colour(e.offset)?;
-        let radius = a.length("radius", 1.0)?;
-        if radius <= 0.0 {
-            return Err(a.error(
-                "radius",
-                format!("`radius` must be > 0, got {}", exact(radius)),
-            ));
-        }
-        let shape = Shape::Sphere {
-            centre: a.position()?,
-            radius,
-        };
-        let material = a.material(Material::sphere(colour))?;
-        self.objects.push(Object { shape, material });
-        Ok(())
+/// The object an element describes, if it is one (`<sphere>`, `<plane>`): these need nothing
+/// from the rest of the scene, so many can be read at once.
+pub(super) fn object(e: &Element) -> Option<Result<Object>> {
+    match e.name {
+        "sphere" => Some(sphere(e)),
+        "plane" => Some(plane(e)),
+        _ => None,
     }
+}
 
-    fn plane(&mut self, e: &Element) -> Result<()> {
-        let allowed = [&PLANE_ATTRIBUTES[..], &MATERIAL_ATTRIBUTES];
-        let a = read_attributes(e.source, e.tag, e.name, &allowed)?;
-        let colour = a.required_colour(e.offset)?;
-        let n = DVec3::new(
-            a.number("nx", 0.0)?,
-            a.number("ny", 0.0)?,
-            a.number("nz", 0.0)?,
-        );
-        if n.length().is_infinite() {
-            return Err(e.source.error_at(
-                e.offset,
-                format!(
-                    "<plane> normal (nx, ny, nz) = ({}, {}, {}) is too long to normalise (its \
+fn sphere(e: &Element) -> Result<Object> {
+    let allowed = [&SPHERE_ATTRIBUTES[..], &MATERIAL_ATTRIBUTES];
+    let a = read_attributes(e.source, e.tag, e.name, &allowed)?;
+    let colour = a.required_colour(e.offset)?;
+    let radius = a.length("radius", 1.0)?;
+    if radius <= 0.0 {
+        return Err(a.error(
+            "radius",
+            format!("`radius` must be > 0, got {}", exact(radius)),
+        ));
+    }
+    let shape = Shape::Sphere {
+        centre: a.position()?,
+        radius,
+    };
+    let material = a.material(Material::sphere(colour))?;
+    Ok(Object { shape, material })
+}
+
+fn plane(e: &Element) -> Result<Object> {
+    let allowed = [&PLANE_ATTRIBUTES[..], &MATERIAL_ATTRIBUTES];
+    let a = read_attributes(e.source, e.tag, e.name, &allowed)?;
+    let colour = a.required_colour(e.offset)?;
+    let n = DVec3::new(
+        a.number("nx", 0.0)?,
+        a.number("ny", 0.0)?,
+        a.number("nz", 0.0)?,
+    );
+    if n.length().is_infinite() {
+        return Err(e.source.error_at(
+            e.offset,
+            format!(
+                "<plane> normal (nx, ny, nz) = ({}, {}, {}) is too long to normalise (its \
                      length overflows; scale it down, only its direction matters)",
-                    exact(n.x),
-                    exact(n.y),
-                    exact(n.z)
-                ),
-            ));
-        }
-        if n.length().is_nan() || n.length() <= MIN_NORMAL_LENGTH {
-            return Err(e.source.error_at(
-                e.offset,
-                format!(
-                    "<plane> normal (nx, ny, nz) = ({}, {}, {}) has (near) zero length \
-                     (give nx, ny, nz for a non-zero normal)",
-                    exact(n.x),
-                    exact(n.y),
-                    exact(n.z)
-                ),
-            ));
-        }
-        let shape = Shape::Plane {
-            point: a.position()?,
-            normal: normalise(n),
-        };
-        let material = a.material(Material::plane(colour))?;
-        self.objects.push(Object { shape, material });
-        Ok(())
+                exact(n.x),
+                exact(n.y),
+                exact(n.z)
+            ),
+        ));
     }
+    if n.length().is_nan() || n.length() <= MIN_NORMAL_LENGTH {
+        return Err(e.source.error_at(
+            e.offset,
+            format!(
+                "<plane> normal (nx, ny, nz) = ({}, {}, {}) has (near) zero length \
+                     (give nx, ny, nz for a non-zero normal)",
+                exact(n.x),
+                exact(n.y),
+                exact(n.z)
+            ),
+        ));
+    }
+    let shape = Shape::Plane {
+        point: a.position()?,
+        normal: normalise(n),
+    };
+    let material = a.material(Material::plane(colour))?;
+    Ok(Object { shape, material })
+}
 
+impl SceneBuilder {
     fn point_light(&mut self, e: &Element) -> Result<()> {
         let a = read_attributes(e.source, e.tag, e.name, &[&LIGHT_ATTRIBUTES])?;
         let colour = a.required_colour(e.offset)?;

@@ -146,3 +146,38 @@ fn colours_parse_either_case() {
     assert_eq!(parse_colour("#FF008"), None);
     assert_eq!(parse_colour("#+F0080"), None);
 }
+
+#[test]
+fn objects_read_in_batches_keep_file_order_and_the_first_error() {
+    // More objects than one batch, so that some are read in parallel with others.
+    let spheres: String = (0..BATCH + 100)
+        .map(|i| format!("<sphere x=\"{i}\" colour=\"#FFFFFF\"/>\n"))
+        .collect();
+    let scene = parse(&format!("<scene>\n{spheres}</scene>")).expect("valid");
+    assert_eq!(scene.objects.len(), BATCH + 100);
+    for (i, object) in scene.objects.iter().enumerate() {
+        let Shape::Sphere { centre, .. } = object.shape else {
+            panic!("a sphere")
+        };
+        assert_eq!(centre.x, i as f64);
+    }
+    // A bad object is reported before a later light error and a later malformed tag, and
+    // the first of two bad objects is the one reported.
+    let bad = |late: &str| {
+        error(&format!(
+            "<scene>\n{spheres}<sphere radius=\"-1\" colour=\"#FFFFFF\"/>\n\
+             <sphere radius=\"oops\" colour=\"#FFFFFF\"/>\n{late}\n</scene>"
+        ))
+    };
+    let line = BATCH + 102;
+    for late in [
+        "<point-light colour=\"#FFFFFF\" name=\"1bad\"/>",
+        "<sphere colour=\"#FFFFFF\" <",
+    ] {
+        let err = bad(late);
+        assert!(
+            err.starts_with(&format!("test.xml:{line}:")) && err.contains("radius"),
+            "{err}"
+        );
+    }
+}
