@@ -67,6 +67,9 @@ pub fn render(
     Ok((film, stats))
 }
 
+/// Pixels per task: a few hundred microseconds of tracing at one sample per pixel.
+const TASK_PIXELS: usize = 256;
+
 /// Rows in a strip of a render without an EXR: the PNG encoder is cheap, and short strips
 /// keep the last one, which nothing overlaps, short.
 const PNG_STRIP_ROWS: u32 = 16;
@@ -171,35 +174,38 @@ impl<'a> PixelRenderer<'a> {
         }
     }
 
-    /// Fills `strip` (placed by its origin), a row per task. Returns (rays, non-finite values).
+    /// Fills `strip` (placed by its origin), a run of `TASK_PIXELS` pixels per task: small
+    /// enough that the cores finish a strip together. Returns (rays, non-finite values).
     fn render_strip(&self, strip: &mut Film, rows_done: &(dyn Fn(u64) + Sync)) -> (u64, u64) {
-        let width = strip.width as usize;
         let channels = strip.channel_count();
-        let top = strip.origin.1;
         let layers = &strip.layers;
-        // A film without layers has no channel values: every row gets an empty slice.
-        let data_rows: Vec<&mut [f32]> = if channels == 0 {
-            (0..strip.height).map(|_| <&mut [f32]>::default()).collect()
+        let place = (strip.width as usize, strip.origin);
+        // A film without layers has no channel values: every task gets an empty slice.
+        let tasks = strip.beauty.len().div_ceil(TASK_PIXELS);
+        let data: Vec<&mut [f32]> = if channels == 0 {
+            (0..tasks).map(|_| <&mut [f32]>::default()).collect()
         } else {
-            strip.data.chunks_mut(width * channels).collect()
+            strip.data.chunks_mut(TASK_PIXELS * channels).collect()
         };
-        strip
+        let counts = strip
             .beauty
-            .par_chunks_mut(width)
-            .zip(data_rows)
+            .par_chunks_mut(TASK_PIXELS)
+            .zip(data)
             .enumerate()
-            .map(|(row, (beauty, data))| {
-                let counts = self.render_row(top + row as u32, layers, beauty, data);
-                rows_done(1);
-                counts
+            .map(|(task, (beauty, data))| {
+                self.render_pixels(place, task * TASK_PIXELS, layers, beauty, data)
             })
-            .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1))
+            .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
+        rows_done(u64::from(strip.height));
+        counts
     }
 
-    /// One row of the region at image row `y`.
-    fn render_row(
+    /// The pixels of a strip from index `first` on, the strip being `width` pixels wide with
+    /// its top-left pixel at `origin` in the image.
+    fn render_pixels(
         &self,
-        y: u32,
+        (width, origin): (usize, (u32, u32)),
+        first: usize,
         layers: &[Layer],
         beauty: &mut [DVec3],
         data: &mut [f32],
@@ -209,13 +215,15 @@ impl<'a> PixelRenderer<'a> {
         let mut accumulator = PixelAccumulator::new(layers, channels);
         let mut sample = Sample::empty(self.scene.lights.len(), trace.bounces);
         let (mut rays, mut non_finite) = (0, 0);
-        for (column, pixel) in beauty.iter_mut().enumerate() {
-            let values = &mut data[column * channels..(column + 1) * channels];
+        for (offset, pixel) in beauty.iter_mut().enumerate() {
+            let values = &mut data[offset * channels..(offset + 1) * channels];
             // At every pixel: a stop is seen within one pixel's samples.
             if interrupt::requested() {
                 break;
             }
-            let x = self.frame.region.x0 + column as u32;
+            let index = first + offset;
+            let x = origin.0 + (index % width) as u32;
+            let y = origin.1 + (index / width) as u32;
             for (i, &(u, v)) in self.grid.iter().enumerate() {
                 // The exact tick ray wherever the grid has a cell at the centre.
                 let ray = if (u, v) == (0.5, 0.5) {

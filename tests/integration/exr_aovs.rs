@@ -736,7 +736,7 @@ fn the_openexr_library_reads_every_codec_to_the_same_values() {
     for half in [false, true] {
         for c in ["none", "rle", "zips", "zip", "piz"] {
             let name = format!("{c}{}.exr", if half { "-half" } else { "" });
-            let mut args = vec![&base[..], &["--compression", c]].concat();
+            let mut args = [&base[..], &["--compression", c]].concat();
             if half {
                 args.push("--half");
             }
