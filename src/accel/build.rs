@@ -47,9 +47,14 @@ impl Extent {
     };
 
     fn add(self, b: &Aabb) -> Extent {
+        self.add_centred(b, centre(b))
+    }
+
+    /// `add` for a box whose centre `c` is already known.
+    fn add_centred(self, b: &Aabb, c: DVec3) -> Extent {
         Extent {
             bounds: self.bounds.grow(*b),
-            centroids: self.centroids.grow_point(centre(b)),
+            centroids: self.centroids.grow_point(c),
         }
     }
 
@@ -142,7 +147,11 @@ struct Split {
 
 impl Split {
     fn bin_of(&self, b: &Aabb) -> usize {
-        (((centre(b)[self.axis] - self.start) * self.scale) as usize).min(BINS - 1)
+        self.bin_of_centre(centre(b))
+    }
+
+    fn bin_of_centre(&self, c: DVec3) -> usize {
+        (((c[self.axis] - self.start) * self.scale) as usize).min(BINS - 1)
     }
 }
 
@@ -161,8 +170,9 @@ fn best_split(boxes: &[(u32, Aabb)], extent: Extent, axis: usize) -> Option<Spli
     let fill = |chunk: &[(u32, Aabb)]| {
         let mut bins = [(Extent::EMPTY, 0usize); BINS];
         for (_, b) in chunk {
-            let bin = &mut bins[split.bin_of(b)];
-            bin.0 = bin.0.add(b);
+            let c = centre(b);
+            let bin = &mut bins[split.bin_of_centre(c)];
+            bin.0 = bin.0.add_centred(b, c);
             bin.1 += 1;
         }
         bins
