@@ -181,3 +181,72 @@ fn objects_read_in_batches_keep_file_order_and_the_first_error() {
         );
     }
 }
+
+/// The scene read in order, without cutting it into chunks: the reference for large files.
+fn sequential(text: &str) -> Result<Scene> {
+    let mut parser = Parser::new(
+        Source {
+            file: "test.xml",
+            text,
+        },
+        text.len(),
+        false,
+    );
+    let scanned = parser.scan();
+    parser.read_pending()?;
+    scanned?;
+    Ok(parser.builder.finish())
+}
+
+#[test]
+fn large_scenes_read_in_chunks_match_the_sequential_reader() {
+    // Over 8 MiB, so that the text is cut into several chunks.
+    let n = 150_000;
+    let lines: Vec<String> = (0..n)
+        .map(|i| format!("  <sphere x=\"{i}\" y=\"0.{i}\" radius=\"0.25\" colour=\"#FF8000\"/>\n"))
+        .collect();
+    let (head, tail) = (lines[..n / 2].concat(), lines[n / 2..].concat());
+    assert!(head.len() + tail.len() > 8 << 20);
+    let scene = |middle: &str, end: &str| {
+        format!("<scene>\n<ambient-light colour=\"#101010\"/>\n{head}{middle}{tail}</scene>{end}")
+    };
+    let cases = [
+        scene("", "\n"),
+        scene(
+            "<!-- a comment <sphere colour=\"#FFFFFF\"/> -->\n",
+            "\n<!-- after -->\n",
+        ),
+        scene("<point-light colour=\"#FFFFFF\" name=\"late\"/>\n", ""),
+        scene("<sphere radius=\"-2\" colour=\"#FFFFFF\"/>\n", ""),
+        scene("<cube/>\n", ""),
+        scene("", "\n<scene/>"),
+        scene("", "trailing text"),
+    ];
+    for (i, text) in cases.iter().enumerate() {
+        let (chunked, ordered) = (parse(text), sequential(text));
+        match (&chunked, &ordered) {
+            (Ok(a), Ok(b)) => {
+                assert_eq!(a.objects, b.objects, "case {i}");
+                assert_eq!(a.lights.len(), b.lights.len(), "case {i}");
+                assert_eq!(a.ambient, b.ambient, "case {i}");
+            }
+            (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "case {i}"),
+            _ => panic!("case {i}: {:?} vs {:?}", chunked.is_ok(), ordered.is_ok()),
+        }
+    }
+    assert!(parse(&cases[0]).is_ok_and(|s| s.objects.len() == n));
+    // Clean files are read in chunks; a late light, error or unknown element is read in order.
+    let chunked = |text: &str| {
+        let source = Source {
+            file: "test.xml",
+            text,
+        };
+        chunks::parse_in_chunks(source).is_some()
+    };
+    let expected = [true, true, false, false, false, false, false];
+    for (i, (text, expected)) in cases.iter().zip(expected).enumerate() {
+        assert_eq!(chunked(text), expected, "case {i}");
+    }
+    assert!(parse(&cases[2]).is_ok_and(|s| s.lights[0].name == "late"));
+    assert!(parse(&cases[3]).is_err());
+}
