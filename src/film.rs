@@ -6,7 +6,7 @@
 
 use glam::DVec3;
 
-use crate::aov::{Layer, Reduction};
+use crate::aov::{Layer, Quantity, Reduction};
 use crate::error::Result;
 use crate::memory;
 use crate::sample::Sample;
@@ -91,21 +91,37 @@ impl Film {
 }
 
 /// Sums the samples of one pixel, then writes their reduction into the film's storage.
-pub struct PixelAccumulator<'a> {
-    layers: &'a [Layer],
+pub struct PixelAccumulator {
+    /// Each layer's quantity, where its channels start, how many there are, and whether they
+    /// are averaged (else the sample nearest the pixel centre is kept): looked up once, not
+    /// per sample.
+    slots: Vec<(Quantity, usize, usize, bool)>,
     beauty: DVec3,
     sums: Vec<f64>,
-    scratch: Vec<f64>,
     samples: u32,
 }
 
-impl<'a> PixelAccumulator<'a> {
-    pub fn new(layers: &'a [Layer], channel_count: usize) -> Self {
+impl PixelAccumulator {
+    pub fn new(layers: &[Layer], channel_count: usize) -> Self {
+        let mut start = 0;
+        let slots = layers
+            .iter()
+            .map(|layer| {
+                let q = layer.quantity;
+                let slot = (
+                    q,
+                    start,
+                    q.channels().len(),
+                    q.reduction() == Reduction::Mean,
+                );
+                start += slot.2;
+                slot
+            })
+            .collect();
         PixelAccumulator {
-            layers,
+            slots,
             beauty: DVec3::ZERO,
             sums: vec![0.0; channel_count],
-            scratch: vec![0.0; 4],
             samples: 0,
         }
     }
@@ -114,42 +130,37 @@ impl<'a> PixelAccumulator<'a> {
     /// pixel keeps.
     pub fn add(&mut self, sample: &Sample, nearest_centre: bool) {
         self.beauty += sample.beauty;
+        let first = self.samples == 0;
         self.samples += 1;
-        let mut offset = 0;
-        for layer in self.layers {
-            let n = layer.quantity.channels().len();
-            let values = &mut self.scratch[..n];
-            layer.quantity.values(sample, values);
-            let sums = &mut self.sums[offset..offset + n];
-            match layer.quantity.reduction() {
-                Reduction::Mean => sums
-                    .iter_mut()
-                    .zip(values.iter())
-                    .for_each(|(s, v)| *s += v),
-                Reduction::NearestCentre if nearest_centre => sums.copy_from_slice(values),
-                Reduction::NearestCentre => {}
+        let mut values = [0.0; 4];
+        for &(quantity, start, len, mean) in &self.slots {
+            if !mean && !nearest_centre {
+                continue;
             }
-            offset += n;
+            quantity.values(sample, &mut values[..len]);
+            let sums = &mut self.sums[start..start + len];
+            for (s, &v) in sums.iter_mut().zip(&values[..len]) {
+                // `0.0 + v` on the first sample, not `v`: the sum of one -0.0 is +0.0, as
+                // when the sums started at zero.
+                *s = match (mean, first) {
+                    (true, true) => 0.0 + v,
+                    (true, false) => *s + v,
+                    (false, _) => v,
+                };
+            }
         }
     }
 
-    /// Writes the pixel (means, and nearest-centre values) and resets for the next one.
+    /// Writes the pixel (means, and nearest-centre values) and starts the next one.
     /// Returns how many channel values were not finite and were stored as 0.
     pub fn finish(&mut self, beauty: &mut DVec3, out: &mut [f32]) -> u64 {
         let count = f64::from(self.samples.max(1));
         *beauty = self.beauty / count;
         let mut non_finite = 0;
-        let mut offset = 0;
-        for layer in self.layers {
-            let n = layer.quantity.channels().len();
-            let divisor = match layer.quantity.reduction() {
-                Reduction::Mean => count,
-                Reduction::NearestCentre => 1.0,
-            };
-            for (o, &s) in out[offset..offset + n]
-                .iter_mut()
-                .zip(&self.sums[offset..offset + n])
-            {
+        for &(_, start, len, mean) in &self.slots {
+            let divisor = if mean { count } else { 1.0 };
+            let sums = &self.sums[start..start + len];
+            for (o, &s) in out[start..start + len].iter_mut().zip(sums) {
                 let v = s / divisor;
                 if v.is_finite() {
                     // Finite f64 beyond the f32 range stays finite, at the largest f32.
@@ -159,10 +170,8 @@ impl<'a> PixelAccumulator<'a> {
                     non_finite += 1;
                 }
             }
-            offset += n;
         }
         self.beauty = DVec3::ZERO;
-        self.sums.iter_mut().for_each(|s| *s = 0.0);
         self.samples = 0;
         non_finite
     }
