@@ -6,7 +6,6 @@
 //! reads and types an element's attributes, and `elements` has one function per element.
 
 mod attributes;
-mod chunks;
 mod elements;
 mod source;
 #[cfg(test)]
@@ -80,10 +79,11 @@ pub fn parse_str(file: &str, text: &str) -> Result<Scene> {
     if text.trim().is_empty() {
         return Err(source.error_at(0, "the file is empty (expected a <scene> element)".into()));
     }
-    if let Some(scene) = chunks::parse_in_chunks(source) {
-        return Ok(scene);
-    }
-    let mut parser = Parser::new(source, text.len(), false);
+    let mut parser = Parser {
+        source,
+        builder: SceneBuilder::default(),
+        pending: Vec::new(),
+    };
     // An error in an element read before a later structural error is the one reported: the
     // first in the file, as if everything were read in order.
     let scanned = parser.scan();
@@ -97,10 +97,6 @@ const BATCH: usize = 16_384;
 
 struct Parser<'a> {
     source: Source<'a>,
-    /// Where reading stops: the end of the text, or of the first chunk (`chunks.rs`).
-    end: usize,
-    /// Reading only the first chunk: ending inside `<scene>` is then expected.
-    partial: bool,
     builder: SceneBuilder,
     /// Object elements (`<sphere>`, `<plane>`) whose attributes are still to be read, in file
     /// order: the bulk of a large scene, read a batch at a time in parallel.
@@ -114,20 +110,10 @@ struct Open {
 }
 
 impl<'a> Parser<'a> {
-    fn new(source: Source<'a>, end: usize, partial: bool) -> Self {
-        Parser {
-            source,
-            end,
-            partial,
-            builder: SceneBuilder::default(),
-            pending: Vec::new(),
-        }
-    }
-
     /// Walks the XML events, checking the structure and reading every element (objects into
     /// `pending`).
     fn scan(&mut self) -> Result<()> {
-        let mut reader = Reader::from_str(&self.source.text[..self.end]);
+        let mut reader = Reader::from_str(self.source.text);
         let mut open: Vec<Open> = Vec::new();
         let mut seen_root = false;
         loop {
@@ -167,16 +153,6 @@ impl<'a> Parser<'a> {
                 Event::Comment(_) | Event::Decl(_) | Event::PI(_) | Event::DocType(_) => {}
                 Event::Eof => break,
             }
-        }
-        if self.partial {
-            // Only the root may be open at the end of a first chunk; anything else makes the
-            // caller read the whole file in order.
-            return match open.as_slice() {
-                [_] => Ok(()),
-                _ => Err(self
-                    .source
-                    .error_at(self.end, "a chunk ends inside an element".into())),
-            };
         }
         if let Some(unclosed) = open.last() {
             return Err(self.source.error_at(
