@@ -22,7 +22,7 @@ use aabb::{bounds, Aabb};
 use build::{build, Extent, Subtree, SubtreeKind, MAX_LEAF, PARALLEL_BIN_CHUNK};
 use margin::{near_zone, RayMargin};
 
-use crate::geometry::{self, Hit, Ray, Shape};
+use crate::geometry::{self, sphere_hit, Hit, Ray, Shape, SphereTerms};
 use crate::scene::Object;
 
 /// A shape without bounds (a plane) and its file index.
@@ -43,9 +43,9 @@ pub struct Accelerator {
     nodes: Vec<Node>,
     /// Object indices, grouped by leaf.
     items: Vec<u32>,
-    /// The shapes of `items`, in the same order: a leaf's shapes sit side by side in memory
-    /// instead of scattered through the scene's objects.
-    shapes: Vec<Shape>,
+    /// The spheres of `items` as (centre, radius squared), in the same order: a leaf's
+    /// spheres sit side by side in memory instead of scattered through the scene's objects.
+    spheres: Vec<(DVec3, f64)>,
     /// Objects without bounds (planes) with their file index, in file order: tested for
     /// every ray by the brute-force search itself.
     unbounded: Vec<Unbounded>,
@@ -76,7 +76,7 @@ impl Accelerator {
         let mut accel = Accelerator {
             nodes: Vec::with_capacity(2 * boxes.len() / MAX_LEAF + 1),
             items: Vec::with_capacity(boxes.len()),
-            shapes: Vec::new(),
+            spheres: Vec::new(),
             unbounded,
             near_zone: Aabb::EMPTY,
         };
@@ -96,11 +96,16 @@ impl Accelerator {
             });
             accel.fill(0, tree, margin);
         }
-        accel.shapes = accel
+        accel.spheres = accel
             .items
             .iter()
-            .map(|&i| objects[i as usize].shape)
+            .filter_map(|&i| match objects[i as usize].shape {
+                Shape::Sphere { centre, radius } => Some((centre, radius * radius)),
+                // Only spheres have bounds (`aabb::bounds`), so only spheres are items.
+                Shape::Plane { .. } => None,
+            })
             .collect();
+        debug_assert_eq!(accel.spheres.len(), accel.items.len());
         accel
     }
 
@@ -138,7 +143,7 @@ impl Accelerator {
         Accelerator {
             nodes: Vec::new(),
             items: Vec::new(),
-            shapes: Vec::new(),
+            spheres: Vec::new(),
             unbounded: objects.iter().map(|o| o.shape).enumerate().collect(),
             near_zone: Aabb::EMPTY,
         }
@@ -151,19 +156,10 @@ impl Accelerator {
         if self.nodes.is_empty() {
             return best;
         }
+        let terms = SphereTerms::of(ray);
         // A root that is a leaf (a handful of spheres) needs no box test at all.
         if self.nodes[0].count > 0 {
-            // Leaf order is not file order: ties are settled by `nearer`, as in the traversal.
-            for (&i, shape) in self.items.iter().zip(&self.shapes) {
-                if let Some(distance) = shape.intersect(ray) {
-                    let hit = Hit {
-                        object: i as usize,
-                        distance,
-                    };
-                    best = nearer(best, hit);
-                }
-            }
-            return best;
+            return self.nearest_in_leaf(0..self.items.len(), ray, &terms, best);
         }
         let prepared = RayMargin::new(ray, self.nodes[0].bounds, self.near_zone);
         let mut stack: SmallVec<[(u32, f64); 64]> = SmallVec::new();
@@ -178,17 +174,7 @@ impl Accelerator {
             let node = self.nodes[index as usize];
             if node.count > 0 {
                 let range = node.first as usize..(node.first + node.count) as usize;
-                for (shape, &i) in self.shapes[range.clone()].iter().zip(&self.items[range]) {
-                    if let Some(distance) = shape.intersect(ray) {
-                        best = nearer(
-                            best,
-                            Hit {
-                                object: i as usize,
-                                distance,
-                            },
-                        );
-                    }
-                }
+                best = self.nearest_in_leaf(range, ray, &terms, best);
                 continue;
             }
             let children = [node.first, node.first + 1]
@@ -207,6 +193,29 @@ impl Accelerator {
         best
     }
 
+    /// `best` or a nearer hit among the spheres of `range` (leaf order is not file order:
+    /// ties are settled by `nearer`).
+    fn nearest_in_leaf(
+        &self,
+        range: std::ops::Range<usize>,
+        ray: &Ray,
+        terms: &SphereTerms,
+        mut best: Option<Hit>,
+    ) -> Option<Hit> {
+        for (&(centre, radius_squared), &i) in
+            self.spheres[range.clone()].iter().zip(&self.items[range])
+        {
+            if let Some(distance) = sphere_hit(ray, terms, centre, radius_squared) {
+                let hit = Hit {
+                    object: i as usize,
+                    distance,
+                };
+                best = nearer(best, hit);
+            }
+        }
+        best
+    }
+
     /// Whether anything lies along `ray` strictly nearer than `max_distance`.
     pub fn occluded(&self, ray: &Ray, max_distance: f64) -> bool {
         let unbounded = self.unbounded.iter().map(|(i, s)| (*i, s));
@@ -216,9 +225,12 @@ impl Accelerator {
         if self.nodes.is_empty() {
             return false;
         }
+        let terms = SphereTerms::of(ray);
+        let blocks = |&(centre, radius_squared): &(DVec3, f64)| {
+            sphere_hit(ray, &terms, centre, radius_squared).is_some_and(|s| s < max_distance)
+        };
         if self.nodes[0].count > 0 {
-            let leaf = self.items.iter().zip(&self.shapes);
-            return geometry::occluded(leaf.map(|(&i, s)| (i as usize, s)), ray, max_distance);
+            return self.spheres.iter().any(blocks);
         }
         let prepared = RayMargin::new(ray, self.nodes[0].bounds, self.near_zone);
         let mut stack: SmallVec<[u32; 64]> = SmallVec::new();
@@ -231,8 +243,7 @@ impl Accelerator {
             }
             if node.count > 0 {
                 let range = node.first as usize..(node.first + node.count) as usize;
-                let hit = |shape: &Shape| shape.intersect(ray).is_some_and(|s| s < max_distance);
-                if self.shapes[range].iter().any(hit) {
+                if self.spheres[range].iter().any(blocks) {
                     return true;
                 }
             } else {

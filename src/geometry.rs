@@ -63,6 +63,47 @@ impl Ray {
     }
 }
 
+/// The terms of the sphere quadratic that depend on the ray alone: `a = D.D`, `2a` and `4a`,
+/// computed once per ray when many spheres are tested (the same values, so the same hits).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SphereTerms {
+    a: f64,
+    two_a: f64,
+    four_a: f64,
+}
+
+impl SphereTerms {
+    pub fn of(ray: &Ray) -> Self {
+        let a = ray.direction.dot(ray.direction);
+        SphereTerms {
+            a,
+            two_a: 2.0 * a,
+            four_a: 4.0 * a,
+        }
+    }
+}
+
+/// The course's ray-sphere test (docs/rendering.md), in its operation order: the near root
+/// of `a s^2 + b s + c`, if positive. `radius_squared` is `radius * radius`.
+pub fn sphere_hit(
+    ray: &Ray,
+    terms: &SphereTerms,
+    centre: DVec3,
+    radius_squared: f64,
+) -> Option<f64> {
+    let to_origin = ray.origin - centre;
+    let b = 2.0 * ray.direction.dot(to_origin);
+    let c = to_origin.dot(to_origin) - radius_squared;
+    // `4 a c` is `(4 a) c`, as written left to right.
+    let disc = b * b - terms.four_a * c;
+    if disc < 0.0 {
+        return None;
+    }
+    let s = (-b - disc.sqrt()) / terms.two_a;
+    debug_assert!(terms.a == ray.direction.dot(ray.direction));
+    (s > 0.0).then_some(s)
+}
+
 impl Shape {
     /// Ray parameter of the hit, or `None`.
     ///
@@ -72,16 +113,7 @@ impl Shape {
     pub fn intersect(&self, ray: &Ray) -> Option<f64> {
         match *self {
             Shape::Sphere { centre, radius } => {
-                let to_origin = ray.origin - centre;
-                let a = ray.direction.dot(ray.direction);
-                let b = 2.0 * ray.direction.dot(to_origin);
-                let c = to_origin.dot(to_origin) - radius * radius;
-                let disc = b * b - 4.0 * a * c;
-                if disc < 0.0 {
-                    return None;
-                }
-                let s = (-b - disc.sqrt()) / (2.0 * a);
-                (s > 0.0).then_some(s)
+                sphere_hit(ray, &SphereTerms::of(ray), centre, radius * radius)
             }
             Shape::Plane { point, normal } => {
                 let s = (point - ray.origin).dot(normal) / ray.direction.dot(normal);

@@ -63,38 +63,42 @@ pub fn encode(pixels: &[DVec3], width: u32, height: u32, encoding: &PngEncoding)
 /// Tone-maps and quantises whole rows of `width` pixels, the first of them image row
 /// `first_row` (which the dither depends on).
 fn encode_rows(pixels: &[DVec3], width: u32, first_row: u32, encoding: &PngEncoding) -> PngPixels {
-    let display: Vec<[f64; 3]> = pixels
-        .par_iter()
-        .map(|&v| to_display(v, encoding.tonemap, encoding.exposure))
-        .collect();
     let tick = !encoding.tonemap.srgb_encoded();
+    let display = |v: DVec3| to_display(v, encoding.tonemap, encoding.exposure);
+    let row = width.max(1) as usize;
     if encoding.depth == 16 {
-        PngPixels::Sixteen(
-            display
-                .iter()
-                .flatten()
-                .map(|&e| quantise(e, 65535.0, tick, 0.0) as u16)
-                .collect(),
-        )
+        let mut values = vec![0u16; pixels.len() * 3];
+        values
+            .par_chunks_mut(3 * row)
+            .zip(pixels.par_chunks(row))
+            .for_each(|(out, line)| {
+                for (o, &v) in out.chunks_exact_mut(3).zip(line) {
+                    for (o, e) in o.iter_mut().zip(display(v)) {
+                        *o = quantise(e, 65535.0, tick, 0.0) as u16;
+                    }
+                }
+            });
+        PngPixels::Sixteen(values)
     } else {
-        let row = width.max(1) as usize;
-        PngPixels::Eight(
-            display
-                .iter()
-                .enumerate()
-                .flat_map(|(i, e)| {
-                    let (x, y) = ((i % row) as u32, first_row + (i / row) as u32);
-                    (0..3u32).map(move |c| {
+        let mut bytes = vec![0u8; pixels.len() * 3];
+        bytes
+            .par_chunks_mut(3 * row)
+            .zip(pixels.par_chunks(row))
+            .enumerate()
+            .for_each(|(r, (out, line))| {
+                let y = first_row + r as u32;
+                for (x, (o, &v)) in out.chunks_exact_mut(3).zip(line).enumerate() {
+                    for (c, (o, e)) in o.iter_mut().zip(display(v)).enumerate() {
                         let noise = if encoding.dither && !tick {
-                            triangular_noise(x, y, c, DITHER_SEED)
+                            triangular_noise(x as u32, y, c as u32, DITHER_SEED)
                         } else {
                             0.0
                         };
-                        quantise(e[c as usize], 255.0, tick, noise) as u8
-                    })
-                })
-                .collect(),
-        )
+                        *o = quantise(e, 255.0, tick, noise) as u8;
+                    }
+                }
+            });
+        PngPixels::Eight(bytes)
     }
 }
 
