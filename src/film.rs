@@ -161,7 +161,8 @@ impl PixelAccumulator {
             let divisor = if mean { count } else { 1.0 };
             let sums = &self.sums[start..start + len];
             for (o, &s) in out[start..start + len].iter_mut().zip(sums) {
-                let v = s / divisor;
+                // Dividing by 1 changes no value: one sample per pixel skips the division.
+                let v = if divisor == 1.0 { s } else { s / divisor };
                 if v.is_finite() {
                     // Finite f64 beyond the f32 range stays finite, at the largest f32.
                     *o = v.clamp(-f64::from(f32::MAX), f64::from(f32::MAX)) as f32;
