@@ -8,3 +8,4 @@ pub mod exr_header;
 pub mod exr_stream;
 pub mod png;
 pub mod stdout;
+pub mod writers;

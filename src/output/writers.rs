@@ -1,0 +1,128 @@
+//! The outputs of one render, fed strip by strip as the renderer finishes them: the PNG's
+//! rows and the EXR's blocks, written side by side on the render's threads.
+
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+use crate::error::{Error, Result};
+use crate::film::Film;
+use crate::output::atomic::AtomicFile;
+use crate::output::destination::Destination;
+use crate::output::exr::{header, Placement};
+use crate::output::exr_block::{self, StoredChannel};
+use crate::output::exr_stream::ExrStream;
+use crate::output::png::PngStream;
+use crate::plan::RenderPlan;
+use crate::render_record;
+use crate::scene::Input;
+
+/// The render's EXR being written, and how its channels are stored.
+struct ExrOutput<'a> {
+    stream: ExrStream<'a>,
+    stored: Vec<StoredChannel>,
+    path: PathBuf,
+}
+
+/// The outputs of one render, fed strip by strip.
+pub struct Writers<'a> {
+    png: Option<(PngStream, PathBuf)>,
+    exr: Option<ExrOutput<'a>>,
+    /// Time spent packing, compressing and writing EXR blocks.
+    exr_time: Duration,
+}
+
+impl<'a> Writers<'a> {
+    pub fn open(
+        plan: &RenderPlan,
+        input: &Input,
+        png: Option<&mut Destination>,
+        exr_file: Option<&'a mut AtomicFile>,
+    ) -> Result<Self> {
+        let region = plan.frame.region;
+        let (width, height) = (region.width(), region.height());
+        let png = png
+            .map(|png| Ok((png.stream_png(width, height, plan.encoding)?, png.path())))
+            .transpose()?;
+        let exr = match exr_file {
+            None => None,
+            Some(file) => {
+                let path = file.target().to_path_buf();
+                let lights = input.scene.lights.iter().map(|l| l.name.clone()).collect();
+                let metadata = render_record::metadata(plan, &input.name, &input.bytes, lights);
+                let camera = &plan.frame.camera;
+                let at = Placement {
+                    size: (width as usize, height as usize),
+                    origin: (region.x0 as i32, region.y0 as i32),
+                    display: ((0, 0), (camera.width as usize, camera.height as usize)),
+                };
+                let (header, stored) = header(at, &plan.frame.layers, plan.exr_options, &metadata);
+                let stream = ExrStream::create(file.file(), header).map_err(|msg| Error::Exr {
+                    path: path.clone(),
+                    msg,
+                })?;
+                Some(ExrOutput {
+                    stream,
+                    stored,
+                    path,
+                })
+            }
+        };
+        Ok(Writers {
+            png,
+            exr,
+            exr_time: Duration::ZERO,
+        })
+    }
+
+    pub fn write(&mut self, strip: &Film) -> Result<()> {
+        let (png, exr) = (&mut self.png, &mut self.exr);
+        let (png_written, exr_written) = rayon::join(
+            || {
+                png.as_mut()
+                    .map(|(p, path)| {
+                        p.write_rows(&strip.beauty).map_err(|e| Error::Png {
+                            path: path.clone(),
+                            msg: e.to_string(),
+                        })
+                    })
+                    .transpose()
+            },
+            || {
+                let started = Instant::now();
+                let written = exr.as_mut().map(|e| {
+                    let stored = &e.stored;
+                    let pack = |rows| exr_block::pack(strip, rows, stored);
+                    e.stream
+                        .write_rows(strip.height, &pack)
+                        .map_err(|msg| Error::Exr {
+                            path: e.path.clone(),
+                            msg,
+                        })
+                });
+                (written.transpose(), started.elapsed())
+            },
+        );
+        self.exr_time += exr_written.1;
+        exr_written.0?;
+        png_written?;
+        Ok(())
+    }
+
+    /// Completes both files; returns the EXR writing time.
+    pub fn finish(self) -> Result<Duration> {
+        let started = Instant::now();
+        if let Some(exr) = self.exr {
+            let path = exr.path;
+            exr.stream
+                .finish()
+                .map_err(|msg| Error::Exr { path, msg })?;
+        }
+        if let Some((png, path)) = self.png {
+            png.finish().map_err(|e| Error::Png {
+                path,
+                msg: e.to_string(),
+            })?;
+        }
+        Ok(self.exr_time + started.elapsed())
+    }
+}
