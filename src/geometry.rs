@@ -63,11 +63,11 @@ impl Ray {
     }
 }
 
-/// The terms of the sphere quadratic that depend on the ray alone: `a = D.D`, `2a` and `4a`,
-/// computed once per ray when many spheres are tested (the same values, so the same hits).
+/// The terms of the sphere quadratic that depend on the ray alone, `2a` and `4a` with
+/// `a = D.D`, computed once per ray when many spheres are tested (the same values, so the
+/// same hits).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SphereTerms {
-    a: f64,
     two_a: f64,
     four_a: f64,
 }
@@ -76,7 +76,6 @@ impl SphereTerms {
     pub fn of(ray: &Ray) -> Self {
         let a = ray.direction.dot(ray.direction);
         SphereTerms {
-            a,
             two_a: 2.0 * a,
             four_a: 4.0 * a,
         }
@@ -100,7 +99,6 @@ pub fn sphere_hit(
         return None;
     }
     let s = (-b - disc.sqrt()) / terms.two_a;
-    debug_assert!(terms.a == ray.direction.dot(ray.direction));
     (s > 0.0).then_some(s)
 }
 

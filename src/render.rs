@@ -1,15 +1,14 @@
-//! Camera rays -> `trace` -> film, a strip of rows at a time: the strip renders a row per
-//! task on every core while the previous strip is written out.
+//! Camera rays -> `trace` -> film, a strip of rows at a time: the strip renders in runs of
+//! pixels on every core while the previous strip is written out.
 
 use std::time::{Duration, Instant};
 
+use glam::DVec3;
 use rayon::prelude::*;
 
 use crate::accel::Accelerator;
-use crate::error::Result;
-use glam::DVec3;
-
 use crate::aov::Layer;
+use crate::error::Result;
 use crate::film::{Film, PixelAccumulator};
 use crate::frame::{Acceleration, Frame};
 use crate::interrupt;

@@ -135,6 +135,8 @@ impl Destination {
         }
     }
 
+    /// Makes the output visible: renames the file into place, or copies the temporary file
+    /// to standard output.
     pub fn commit(self) -> Result<()> {
         match self {
             Destination::File(file) => file.commit(),

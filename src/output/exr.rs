@@ -6,7 +6,6 @@ use exr::image::write::layers::WritableLayers as _;
 use exr::prelude::{self as x, AttributeValue, Text};
 
 use exr::meta::header::Header;
-use exr::meta::Requirements;
 use glam::DVec3;
 
 use crate::aov::{Kind, Layer, Z_MISS};
@@ -42,11 +41,7 @@ impl ExrCompression {
 
     /// Scanlines per block, as OpenEXR defines it for each codec.
     pub fn lines_per_block(self) -> u32 {
-        match self {
-            ExrCompression::None | ExrCompression::Rle | ExrCompression::Zips => 1,
-            ExrCompression::Zip => 16,
-            ExrCompression::Piz => 32,
-        }
+        self.codec().scan_lines_per_block() as u32
     }
 
     fn codec(self) -> x::Compression {
@@ -180,20 +175,6 @@ pub fn header(
         .with_shared_attributes(image);
     let stored = channels.into_iter().map(|(_, stored)| stored).collect();
     (header, stored)
-}
-
-/// The magic number, version field and `header` of a single-part file.
-pub fn write_magic_and_header(
-    out: &mut impl std::io::Write,
-    requirements: Requirements,
-    header: &Header,
-) -> Result<(), String> {
-    let mut write = || -> exr::error::UnitResult {
-        exr::meta::magic_number::write(out)?;
-        requirements.write(out)?;
-        Header::write_all(std::slice::from_ref(header), out, false)
-    };
-    write().map_err(|e| e.to_string())
 }
 
 /// Where a plain RGBA image's pixels sit: its size, the data window's top-left corner, and

@@ -8,11 +8,10 @@ use std::fs::File;
 use std::io::{BufWriter, Cursor, Seek, SeekFrom, Write};
 use std::ops::Range;
 
-use ::exr::meta::header::Header;
-use ::exr::meta::MetaData;
+use exr::meta::header::Header;
+use exr::meta::{MetaData, Requirements};
 use rayon::prelude::*;
 
-use crate::output::exr;
 use crate::output::exr_block;
 use crate::output::exr_header;
 
@@ -35,7 +34,7 @@ impl<'f> ExrStream<'f> {
         let requirements =
             MetaData::validate(std::slice::from_ref(&header), true).map_err(|e| e.to_string())?;
         let mut bytes = Cursor::new(Vec::new());
-        exr::write_magic_and_header(&mut bytes, requirements, &header)?;
+        write_magic_and_header(&mut bytes, requirements, &header)?;
         exr_header::sort_attributes(&mut bytes).map_err(|e| e.to_string())?;
         let mut bytes = bytes.into_inner();
         let table = bytes.len() as u64;
@@ -110,4 +109,18 @@ impl<'f> ExrStream<'f> {
         };
         finish().map_err(|e| e.to_string())
     }
+}
+
+/// The magic number, version field and `header` of a single-part file.
+fn write_magic_and_header(
+    out: &mut impl std::io::Write,
+    requirements: Requirements,
+    header: &Header,
+) -> Result<(), String> {
+    let mut write = || -> exr::error::UnitResult {
+        exr::meta::magic_number::write(out)?;
+        requirements.write(out)?;
+        Header::write_all(std::slice::from_ref(header), out, false)
+    };
+    write().map_err(|e| e.to_string())
 }

@@ -64,42 +64,63 @@ pub fn encode(pixels: &[DVec3], width: u32, height: u32, encoding: &PngEncoding)
 /// `first_row` (which the dither depends on).
 fn encode_rows(pixels: &[DVec3], width: u32, first_row: u32, encoding: &PngEncoding) -> PngPixels {
     let tick = !encoding.tonemap.srgb_encoded();
-    let display = |v: DVec3| to_display(v, encoding.tonemap, encoding.exposure);
-    let row = width.max(1) as usize;
     if encoding.depth == 16 {
-        let mut values = vec![0u16; pixels.len() * 3];
-        values
-            .par_chunks_mut(3 * row)
-            .zip(pixels.par_chunks(row))
-            .for_each(|(out, line)| {
-                for (o, &v) in out.chunks_exact_mut(3).zip(line) {
-                    for (o, e) in o.iter_mut().zip(display(v)) {
-                        *o = quantise(e, 65535.0, tick, 0.0) as u16;
-                    }
-                }
-            });
-        PngPixels::Sixteen(values)
+        PngPixels::Sixteen(quantised(
+            pixels,
+            width,
+            first_row,
+            encoding,
+            65535.0,
+            false,
+            |c| c as u16,
+        ))
     } else {
-        let mut bytes = vec![0u8; pixels.len() * 3];
-        bytes
-            .par_chunks_mut(3 * row)
-            .zip(pixels.par_chunks(row))
-            .enumerate()
-            .for_each(|(r, (out, line))| {
-                let y = first_row + r as u32;
-                for (x, (o, &v)) in out.chunks_exact_mut(3).zip(line).enumerate() {
-                    for (c, (o, e)) in o.iter_mut().zip(display(v)).enumerate() {
-                        let noise = if encoding.dither && !tick {
-                            triangular_noise(x as u32, y, c as u32, DITHER_SEED)
-                        } else {
-                            0.0
-                        };
-                        *o = quantise(e, 255.0, tick, noise) as u8;
-                    }
-                }
-            });
-        PngPixels::Eight(bytes)
+        let dither = encoding.dither && !tick;
+        PngPixels::Eight(quantised(
+            pixels,
+            width,
+            first_row,
+            encoding,
+            255.0,
+            dither,
+            |c| c as u8,
+        ))
     }
+}
+
+/// Each pixel's three display values as codes `0..=max` (dithered if `dither`), row by row on
+/// every core.
+fn quantised<T: Copy + Default + Send>(
+    pixels: &[DVec3],
+    width: u32,
+    first_row: u32,
+    encoding: &PngEncoding,
+    max: f64,
+    dither: bool,
+    code: fn(f64) -> T,
+) -> Vec<T> {
+    let tick = !encoding.tonemap.srgb_encoded();
+    let row = width.max(1) as usize;
+    let mut codes = vec![T::default(); pixels.len() * 3];
+    codes
+        .par_chunks_mut(3 * row)
+        .zip(pixels.par_chunks(row))
+        .enumerate()
+        .for_each(|(r, (out, line))| {
+            let y = first_row + r as u32;
+            for (x, (o, &v)) in out.chunks_exact_mut(3).zip(line).enumerate() {
+                let display = to_display(v, encoding.tonemap, encoding.exposure);
+                for (c, (o, e)) in o.iter_mut().zip(display).enumerate() {
+                    let noise = if dither {
+                        triangular_noise(x as u32, y, c as u32, DITHER_SEED)
+                    } else {
+                        0.0
+                    };
+                    *o = code(quantise(e, max, tick, noise));
+                }
+            }
+        });
+    codes
 }
 
 /// `floor(max * e)` for the course's truncating tick output; `floor(max * e + 0.5 + noise)`

@@ -1,7 +1,7 @@
 //! The outputs of one render, fed strip by strip as the renderer finishes them: the PNG's
 //! rows and the EXR's blocks, written side by side on the render's threads.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use crate::error::{Error, Result};
@@ -56,10 +56,8 @@ impl<'a> Writers<'a> {
                     display: ((0, 0), (camera.width as usize, camera.height as usize)),
                 };
                 let (header, stored) = header(at, &plan.frame.layers, plan.exr_options, &metadata);
-                let stream = ExrStream::create(file.file(), header).map_err(|msg| Error::Exr {
-                    path: path.clone(),
-                    msg,
-                })?;
+                let stream =
+                    ExrStream::create(file.file(), header).map_err(|msg| exr_error(&path, msg))?;
                 Some(ExrOutput {
                     stream,
                     stored,
@@ -76,53 +74,55 @@ impl<'a> Writers<'a> {
 
     pub fn write(&mut self, strip: &Film) -> Result<()> {
         let (png, exr) = (&mut self.png, &mut self.exr);
-        let (png_written, exr_written) = rayon::join(
+        let (png_written, (exr_written, exr_time)) = rayon::join(
             || {
-                png.as_mut()
-                    .map(|(p, path)| {
-                        p.write_rows(&strip.beauty).map_err(|e| Error::Png {
-                            path: path.clone(),
-                            msg: e.to_string(),
-                        })
-                    })
-                    .transpose()
+                png.as_mut().map_or(Ok(()), |(p, path)| {
+                    p.write_rows(&strip.beauty).map_err(|e| png_error(path, e))
+                })
             },
             || {
                 let started = Instant::now();
-                let written = exr.as_mut().map(|e| {
+                let written = exr.as_mut().map_or(Ok(()), |e| {
                     let stored = &e.stored;
                     let pack = |rows| exr_block::pack(strip, rows, stored);
-                    e.stream
-                        .write_rows(strip.height, &pack)
-                        .map_err(|msg| Error::Exr {
-                            path: e.path.clone(),
-                            msg,
-                        })
+                    let written = e.stream.write_rows(strip.height, &pack);
+                    written.map_err(|msg| exr_error(&e.path, msg))
                 });
-                (written.transpose(), started.elapsed())
+                (written, started.elapsed())
             },
         );
-        self.exr_time += exr_written.1;
-        exr_written.0?;
-        png_written?;
-        Ok(())
+        self.exr_time += exr_time;
+        exr_written?;
+        png_written
     }
 
-    /// Completes both files; returns the EXR writing time.
+    /// Completes both files; returns the time spent on the EXR.
     pub fn finish(self) -> Result<Duration> {
-        let started = Instant::now();
+        let mut exr_time = self.exr_time;
         if let Some(exr) = self.exr {
-            let path = exr.path;
+            let started = Instant::now();
             exr.stream
                 .finish()
-                .map_err(|msg| Error::Exr { path, msg })?;
+                .map_err(|msg| exr_error(&exr.path, msg))?;
+            exr_time += started.elapsed();
         }
         if let Some((png, path)) = self.png {
-            png.finish().map_err(|e| Error::Png {
-                path,
-                msg: e.to_string(),
-            })?;
+            png.finish().map_err(|e| png_error(&path, e))?;
         }
-        Ok(self.exr_time + started.elapsed())
+        Ok(exr_time)
+    }
+}
+
+fn exr_error(path: &Path, msg: String) -> Error {
+    Error::Exr {
+        path: path.to_path_buf(),
+        msg,
+    }
+}
+
+fn png_error(path: &Path, e: png::EncodingError) -> Error {
+    Error::Png {
+        path: path.to_path_buf(),
+        msg: e.to_string(),
     }
 }

@@ -20,7 +20,7 @@ use rayon::prelude::*;
 use crate::error::{Error, Result};
 use crate::scene::{Object, Scene};
 use attributes::read_attributes;
-use elements::{object, Element, SceneBuilder};
+use elements::{is_object, object, Element, SceneBuilder};
 use source::{shown, Source};
 
 pub use elements::MAX_LIGHT_NAME;
@@ -236,7 +236,7 @@ impl<'a> Parser<'a> {
                 ),
             ));
         }
-        if matches!(e.name().0, "sphere" | "plane") {
+        if is_object(e.name().0) {
             self.pending.push((e, offset));
             if self.pending.len() == BATCH {
                 self.read_pending()?;
@@ -260,14 +260,14 @@ impl<'a> Parser<'a> {
         let objects: Vec<Result<Object>> = self
             .pending
             .par_iter()
-            .map(|(tag, offset)| {
+            .filter_map(|(tag, offset)| {
                 let element = Element {
                     tag,
                     name: tag.name().0,
                     offset: *offset,
                     source,
                 };
-                object(&element).unwrap_or_else(|| unreachable!("only objects are pending"))
+                object(&element)
             })
             .collect();
         self.pending.clear();

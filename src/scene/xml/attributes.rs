@@ -52,7 +52,7 @@ pub(super) fn read_attributes<'e>(
         })?;
         let key = attr.key.0;
         let offset = source.offset_of(key);
-        if let Some(first) = list.iter().find(|a| same_name(a.key, key)) {
+        if let Some(first) = list.iter().find(|a| a.key == key) {
             return Err(source.error_at(
                 offset,
                 format!(
@@ -61,10 +61,7 @@ pub(super) fn read_attributes<'e>(
                 ),
             ));
         }
-        if !allowed
-            .iter()
-            .any(|group| group.iter().any(|name| same_name(name, key)))
-        {
+        if !allowed.iter().any(|group| group.contains(&key)) {
             let allowed: Vec<&str> = allowed.iter().flat_map(|a| a.iter().copied()).collect();
             let hint = match suggest::nearest(key, &allowed) {
                 Some(s) => format!("did you mean `{s}`? "),
@@ -103,12 +100,6 @@ pub(super) fn read_attributes<'e>(
     })
 }
 
-/// `a == b` for attribute names, which are mostly one letter: the first bytes are compared
-/// before calling `memcmp`, which a large scene would otherwise call tens of millions of times.
-fn same_name(a: &str, b: &str) -> bool {
-    a.as_bytes().first() == b.as_bytes().first() && a == b
-}
-
 pub(super) struct Attribute<'e> {
     pub(super) key: &'e str,
     pub(super) value: Cow<'e, str>,
@@ -124,7 +115,7 @@ pub(super) struct Attributes<'e> {
 
 impl<'e> Attributes<'e> {
     pub(super) fn get(&self, key: &str) -> Option<&Attribute<'e>> {
-        self.list.iter().find(|a| same_name(a.key, key))
+        self.list.iter().find(|a| a.key == key)
     }
 
     pub(super) fn error(&self, key: &str, msg: String) -> Error {

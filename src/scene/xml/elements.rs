@@ -49,12 +49,11 @@ pub(super) struct Element<'e, 'a> {
 impl SceneBuilder {
     /// Adds the element `e` to the scene, or says why it cannot be.
     pub(super) fn add(&mut self, e: &Element) -> Result<()> {
+        if let Some(object) = object(e) {
+            self.objects.push(object?);
+            return Ok(());
+        }
         match e.name {
-            "sphere" | "plane" => {
-                let object = object(e).unwrap_or_else(|| unreachable!("an object element"))?;
-                self.objects.push(object);
-                Ok(())
-            }
             "point-light" => self.point_light(e),
             "ambient-light" => self.ambient_light(e),
             other => {
@@ -73,6 +72,11 @@ impl SceneBuilder {
             }
         }
     }
+}
+
+/// Whether an element named `name` is an object (`object` reads it).
+pub(super) fn is_object(name: &str) -> bool {
+    matches!(name, "sphere" | "plane")
 }
 
 /// The object an element describes, if it is one (`<sphere>`, `<plane>`): these need nothing
