@@ -52,9 +52,10 @@ impl ToneMap {
     }
 }
 
-/// `v * 2^EV`.
-pub fn expose(v: DVec3, ev: f64) -> DVec3 {
-    v * 2f64.powf(ev)
+/// The factor `2^EV` an exposure of `ev` stops multiplies linear values by: computed once per
+/// image, not once per pixel.
+pub fn exposure_gain(ev: f64) -> f64 {
+    2f64.powf(ev)
 }
 
 /// The sRGB OETF of IEC 61966-2-1 (piecewise: linear toe, then a 1/2.4 power), via palette.
@@ -62,11 +63,11 @@ pub fn srgb_oetf(t: f64) -> f64 {
     <Srgb as FromLinear<f64, f64>>::from_linear(t)
 }
 
-/// Linear `v` as display values in [0, 1], ready to quantise: exposure, the tone map, then
-/// the sRGB curve for every operator but `tick`. The one place the PNG writer and the contact
-/// sheet share.
-pub fn to_display(v: DVec3, tone_map: ToneMap, exposure: f64) -> [f64; 3] {
-    let t = tone_map.apply(expose(v, exposure)).to_array();
+/// Linear `v` as display values in [0, 1], ready to quantise: exposure (`gain` from
+/// `exposure_gain`), the tone map, then the sRGB curve for every operator but `tick`. The one
+/// place the PNG writer and the contact sheet share.
+pub fn to_display(v: DVec3, tone_map: ToneMap, gain: f64) -> [f64; 3] {
+    let t = tone_map.apply(v * gain).to_array();
     if tone_map.srgb_encoded() {
         t.map(srgb_oetf)
     } else {
@@ -247,7 +248,8 @@ mod tests {
 
     #[test]
     fn exposure_doubles_per_stop() {
-        assert_eq!(expose(DVec3::ONE, 1.0), DVec3::splat(2.0));
-        assert_eq!(expose(DVec3::ONE, -2.0), DVec3::splat(0.25));
+        assert_eq!(exposure_gain(1.0), 2.0);
+        assert_eq!(exposure_gain(-2.0), 0.25);
+        assert_eq!(exposure_gain(0.0), 1.0);
     }
 }

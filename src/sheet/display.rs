@@ -24,6 +24,7 @@ pub(super) fn display_values(
             .find(|c| suffix(&c.name) == suffix_name)
     };
     let pixels = image.width * image.height;
+    let gain = tonemap::exposure_gain(exposure);
     let values = |i: usize| &image.channels[layer.channels[i]].values;
     if image.is_colour(layer) {
         let (r, g, b) = (channel("R"), channel("G"), channel("B"));
@@ -38,7 +39,7 @@ pub(super) fn display_values(
                     f64::from(b.values[p]),
                 );
                 match image.format {
-                    Format::Exr | Format::Hdr => tonemap::to_display(v, tone_map, exposure),
+                    Format::Exr | Format::Hdr => tonemap::to_display(v, tone_map, gain),
                     // Already display values (PNG, JPEG, TIFF): shown as they are.
                     _ => v.clamp(DVec3::ZERO, DVec3::ONE).to_array(),
                 }
