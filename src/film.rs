@@ -96,6 +96,8 @@ pub struct PixelAccumulator {
     /// are averaged (else the sample nearest the pixel centre is kept): looked up once, not
     /// per sample.
     slots: Vec<(Quantity, usize, usize, bool)>,
+    /// Per channel: whether it is averaged over the samples (the slots' flag, flattened).
+    averaged: Vec<bool>,
     beauty: DVec3,
     sums: Vec<f64>,
     samples: u32,
@@ -117,9 +119,14 @@ impl PixelAccumulator {
                 start += slot.2;
                 slot
             })
+            .collect::<Vec<_>>();
+        let averaged = slots
+            .iter()
+            .flat_map(|&(_, _, len, mean)| std::iter::repeat_n(mean, len))
             .collect();
         PixelAccumulator {
             slots,
+            averaged,
             beauty: DVec3::ZERO,
             sums: vec![0.0; channel_count],
             samples: 0,
@@ -127,26 +134,31 @@ impl PixelAccumulator {
     }
 
     /// Adds one sample; `nearest_centre` marks the sample whose depth, position and id the
-    /// pixel keeps.
+    /// pixel keeps. Values are written straight into the sums where they replace them (a
+    /// pixel's first sample, the nearest-centre sample): at one sample per pixel nothing is
+    /// copied twice.
     pub fn add(&mut self, sample: &Sample, nearest_centre: bool) {
         self.beauty += sample.beauty;
         let first = self.samples == 0;
         self.samples += 1;
-        let mut values = [0.0; 4];
         for &(quantity, start, len, mean) in &self.slots {
-            if !mean && !nearest_centre {
-                continue;
-            }
-            quantity.values(sample, &mut values[..len]);
             let sums = &mut self.sums[start..start + len];
-            for (s, &v) in sums.iter_mut().zip(&values[..len]) {
-                // `0.0 + v` on the first sample, not `v`: the sum of one -0.0 is +0.0, as
-                // when the sums started at zero.
-                *s = match (mean, first) {
-                    (true, true) => 0.0 + v,
-                    (true, false) => *s + v,
-                    (false, _) => v,
-                };
+            match (mean, first) {
+                (true, true) => {
+                    quantity.values(sample, sums);
+                    // `v + 0.0`, as when the sums started at zero: the sum of one -0.0 is
+                    // +0.0.
+                    sums.iter_mut().for_each(|s| *s += 0.0);
+                }
+                (true, false) => {
+                    let mut values = [0.0; 4];
+                    quantity.values(sample, &mut values[..len]);
+                    for (s, v) in sums.iter_mut().zip(values) {
+                        *s += v;
+                    }
+                }
+                (false, _) if nearest_centre => quantity.values(sample, sums),
+                (false, _) => {}
             }
         }
     }
@@ -157,25 +169,31 @@ impl PixelAccumulator {
         let count = f64::from(self.samples.max(1));
         *beauty = self.beauty / count;
         let mut non_finite = 0;
-        for &(_, start, len, mean) in &self.slots {
-            let divisor = if mean { count } else { 1.0 };
-            let sums = &self.sums[start..start + len];
-            for (o, &s) in out[start..start + len].iter_mut().zip(sums) {
-                // Dividing by 1 changes no value: one sample per pixel skips the division.
-                let v = if divisor == 1.0 { s } else { s / divisor };
-                if v.is_finite() {
-                    // Finite f64 beyond the f32 range stays finite, at the largest f32.
-                    *o = v.clamp(-f64::from(f32::MAX), f64::from(f32::MAX)) as f32;
-                } else {
-                    *o = 0.0;
-                    non_finite += 1;
-                }
+        if self.samples <= 1 {
+            // Every channel is its one value: dividing by 1 would change none.
+            for (o, &s) in out.iter_mut().zip(&self.sums) {
+                non_finite += store(o, s);
+            }
+        } else {
+            for ((o, &s), &mean) in out.iter_mut().zip(&self.sums).zip(&self.averaged) {
+                non_finite += store(o, if mean { s / count } else { s });
             }
         }
         self.beauty = DVec3::ZERO;
         self.samples = 0;
         non_finite
     }
+}
+
+/// Stores a channel value as f32; returns 1 if it was not finite (then stored as 0). Both
+/// outcomes are computed and one selected, so that the loops over a pixel's channels
+/// vectorise.
+fn store(out: &mut f32, v: f64) -> u64 {
+    let finite = v.is_finite();
+    // Finite f64 beyond the f32 range stays finite, at the largest f32.
+    let converted = v.clamp(-f64::from(f32::MAX), f64::from(f32::MAX)) as f32;
+    *out = if finite { converted } else { 0.0 };
+    u64::from(!finite)
 }
 
 #[cfg(test)]
@@ -228,6 +246,36 @@ mod tests {
         assert_eq!(at("Z"), 7.0);
         assert_eq!(at("objectid.X"), 5.0);
         assert_eq!(at("N.Y"), 1.0);
+    }
+
+    #[test]
+    fn sums_start_at_plus_zero_and_kept_values_keep_their_sign() {
+        let layers = all_layers(&[], 0);
+        let film = Film::new(1, 1, layers.clone()).expect("film");
+        let at = |out: &[f32], name: &str| {
+            out[film
+                .channel_names
+                .iter()
+                .position(|n| n == name)
+                .expect(name)]
+        };
+        for samples in [1, 3] {
+            let mut acc = PixelAccumulator::new(&layers, film.channel_count());
+            let mut s = sample(1.0, -0.0);
+            s.direct = DVec3::splat(-0.0);
+            for i in 0..samples {
+                acc.add(&s, i == 0);
+            }
+            let mut out = vec![9.0; film.channel_count()];
+            acc.finish(&mut DVec3::default(), &mut out);
+            // A mean of -0.0 samples is +0.0, as a sum from zero gives; Z is the sample's own.
+            assert_eq!(
+                at(&out, "direct.R").to_bits(),
+                0.0f32.to_bits(),
+                "{samples}"
+            );
+            assert_eq!(at(&out, "Z").to_bits(), (-0.0f32).to_bits(), "{samples}");
+        }
     }
 
     #[test]

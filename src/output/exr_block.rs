@@ -36,28 +36,32 @@ pub struct StoredChannel {
 
 /// Packs rows `rows` of `strip` (strip-relative) in OpenEXR's uncompressed block layout:
 /// line by line, and within a line each stored channel's samples in turn, little-endian.
-/// One pass over the film's pixels, each value written straight to its place in the block.
+/// Channel by channel within a line, so that each inner loop writes one run of samples of one
+/// type (a line of the film is a few hundred KiB at most and stays in cache meanwhile).
 pub fn pack(strip: &Film, rows: std::ops::Range<u32>, stored: &[StoredChannel]) -> Vec<u8> {
     let width = strip.width as usize;
     let channels = strip.channel_count();
-    // Where each stored channel's samples start within a packed line.
-    let mut starts = Vec::with_capacity(stored.len());
-    let mut line_bytes = 0;
-    for channel in stored {
-        starts.push(line_bytes);
-        line_bytes += width * if channel.half { 2 } else { 4 };
-    }
+    let sample_bytes = |c: &StoredChannel| if c.half { 2 } else { 4 };
+    let line_bytes: usize = stored.iter().map(|c| width * sample_bytes(c)).sum();
     let mut out = vec![0u8; rows.len() * line_bytes];
     for (row, packed) in rows.zip(out.chunks_exact_mut(line_bytes.max(1))) {
         let line = &strip.data[row as usize * width * channels..][..width * channels];
-        for (x, pixel) in line.chunks_exact(channels).enumerate() {
-            for (channel, &start) in stored.iter().zip(&starts) {
-                let v = pixel[channel.film_index];
-                if channel.half {
+        let mut rest = packed;
+        for channel in stored {
+            let (samples, tail) = rest.split_at_mut(width * sample_bytes(channel));
+            rest = tail;
+            let values = line
+                .iter()
+                .skip(channel.film_index)
+                .step_by(channels.max(1));
+            if channel.half {
+                for (o, &v) in samples.chunks_exact_mut(2).zip(values) {
                     let h = f16::from_f32(v.clamp(-HALF_MAX, HALF_MAX));
-                    packed[start + 2 * x..][..2].copy_from_slice(&h.to_le_bytes());
-                } else {
-                    packed[start + 4 * x..][..4].copy_from_slice(&v.to_le_bytes());
+                    o.copy_from_slice(&h.to_le_bytes());
+                }
+            } else {
+                for (o, &v) in samples.chunks_exact_mut(4).zip(values) {
+                    o.copy_from_slice(&v.to_le_bytes());
                 }
             }
         }
