@@ -7,6 +7,7 @@
 
 mod attributes;
 mod elements;
+mod key;
 mod source;
 #[cfg(test)]
 mod tests;

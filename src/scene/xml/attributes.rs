@@ -5,8 +5,8 @@ use std::borrow::Cow;
 
 use glam::DVec3;
 use quick_xml::events::BytesStart;
-use smallvec::SmallVec;
 
+use super::key::Key;
 use super::source::{shown, Source};
 use crate::error::{Error, Result};
 use crate::numbers::exact;
@@ -19,17 +19,17 @@ const MAX_LENGTH: f64 = 1e150;
 
 /// Collects the attributes of `e`, rejecting duplicates and any name not in `allowed`.
 ///
-/// Nothing is allocated for a well-formed element: keys and values borrow the scene text
-/// (a 1M-sphere scene has 8M attributes).
+/// Nothing is allocated for a well-formed element: values borrow the scene text (a
+/// 1M-sphere scene has 5M attributes).
 pub(super) fn read_attributes<'e>(
     source: Source<'e>,
     e: &'e BytesStart,
     element: &'e str,
-    allowed: &[&[&str]],
+    allowed: &[&[Key]],
 ) -> Result<Attributes<'e>> {
     let tag: &str = e;
     let tag_offset = source.offset_of(tag);
-    let mut list: SmallVec<[Attribute<'e>; 12]> = SmallVec::new();
+    let mut values: [Option<Attribute<'e>>; Key::COUNT] = Default::default();
     let mut iter = e.attributes();
     iter.with_checks(false);
     for attr in iter {
@@ -50,19 +50,15 @@ pub(super) fn read_attributes<'e>(
             };
             source.error_at(tag_offset + pos, format!("not well-formed XML: {what}"))
         })?;
-        let key = attr.key.0;
-        let offset = source.offset_of(key);
-        if let Some(first) = list.iter().find(|a| a.key == key) {
-            return Err(source.error_at(
-                offset,
-                format!(
-                    "duplicate attribute `{key}` on <{element}> (first given at {})",
-                    source.position(first.offset)
-                ),
-            ));
-        }
-        if !allowed.iter().any(|group| group.contains(&key)) {
-            let allowed: Vec<&str> = allowed.iter().flat_map(|a| a.iter().copied()).collect();
+        let name = attr.key.0;
+        let offset = source.offset_of(name);
+        let known = Key::from_name(name).filter(|k| allowed.iter().any(|g| g.contains(k)));
+        let Some(key) = known else {
+            let allowed: Vec<&str> = allowed
+                .iter()
+                .flat_map(|g| g.iter().map(|k| k.name()))
+                .collect();
+            let key = name;
             let hint = match suggest::nearest(key, &allowed) {
                 Some(s) => format!("did you mean `{s}`? "),
                 None => String::new(),
@@ -79,6 +75,15 @@ pub(super) fn read_attributes<'e>(
                     shown(key)
                 ),
             ));
+        };
+        if let Some(first) = &values[key as usize] {
+            return Err(source.error_at(
+                offset,
+                format!(
+                    "duplicate attribute `{name}` on <{element}> (first given at {})",
+                    source.position(first.offset)
+                ),
+            ));
         }
         let value = attr
             .normalized_value(quick_xml::XmlVersion::Implicit1_0)
@@ -86,23 +91,23 @@ pub(super) fn read_attributes<'e>(
                 source.error_at(
                     offset,
                     format!(
-                        "`{key}` has an entity or character reference that scenes do not \
+                        "`{name}` has an entity or character reference that scenes do not \
                              expand ({err}); only &lt; &gt; &amp; &quot; &apos; and &#...; are"
                     ),
                 )
             })?;
-        list.push(Attribute { key, value, offset });
+        values[key as usize] = Some(Attribute { value, offset });
     }
     Ok(Attributes {
         source,
         element,
-        list,
+        values,
     })
 }
 
 pub(super) struct Attribute<'e> {
-    pub(super) key: &'e str,
     pub(super) value: Cow<'e, str>,
+    /// Where its name starts in the scene text.
     pub(super) offset: usize,
 }
 
@@ -110,70 +115,74 @@ pub(super) struct Attribute<'e> {
 pub(super) struct Attributes<'e> {
     pub(super) source: Source<'e>,
     pub(super) element: &'e str,
-    pub(super) list: SmallVec<[Attribute<'e>; 12]>,
+    /// Indexed by `Key as usize`.
+    values: [Option<Attribute<'e>>; Key::COUNT],
 }
 
 impl<'e> Attributes<'e> {
-    pub(super) fn get(&self, key: &str) -> Option<&Attribute<'e>> {
-        self.list.iter().find(|a| a.key == key)
+    pub(super) fn get(&self, key: Key) -> Option<&Attribute<'e>> {
+        self.values[key as usize].as_ref()
     }
 
-    pub(super) fn error(&self, key: &str, msg: String) -> Error {
+    pub(super) fn error(&self, key: Key, msg: String) -> Error {
         let offset = self.get(key).map_or(0, |a| a.offset);
         self.source.error_at(offset, msg)
     }
 
     /// A finite decimal number, or `default` when the attribute is absent.
-    pub(super) fn number(&self, key: &str, default: f64) -> Result<f64> {
+    pub(super) fn number(&self, key: Key, default: f64) -> Result<f64> {
         let Some(attr) = self.get(key) else {
             return Ok(default);
         };
+        let name = key.name();
         match attr.value.trim().parse::<f64>() {
             Ok(v) if v.is_finite() => Ok(v),
             Ok(_) => Err(self.error(
                 key,
                 format!(
-                    "`{key}` must be a finite number, got `{}`",
+                    "`{name}` must be a finite number, got `{}`",
                     shown(&attr.value)
                 ),
             )),
             Err(_) => Err(self.error(
                 key,
                 format!(
-                    "`{key}` must be a number (like 1.5 or -.4), got `{}`",
+                    "`{name}` must be a number (like 1.5 or -.4), got `{}`",
                     shown(&attr.value)
                 ),
             )),
         }
     }
 
-    pub(super) fn non_negative(&self, key: &str, default: f64) -> Result<f64> {
+    pub(super) fn non_negative(&self, key: Key, default: f64) -> Result<f64> {
         let v = self.number(key, default)?;
         if v < 0.0 {
-            return Err(self.error(key, format!("`{key}` must be >= 0, got {}", exact(v))));
+            let name = key.name();
+            return Err(self.error(key, format!("`{name}` must be >= 0, got {}", exact(v))));
         }
         Ok(v)
     }
 
     pub(super) fn position(&self) -> Result<DVec3> {
         Ok(DVec3::new(
-            self.length("x", 0.0)?,
-            self.length("y", 0.0)?,
-            self.length("z", 0.0)?,
+            self.length(Key::X, 0.0)?,
+            self.length(Key::Y, 0.0)?,
+            self.length(Key::Z, 0.0)?,
         ))
     }
 
     /// A coordinate or radius: a number small enough that the squared distances the
     /// renderer computes from it stay finite (an overflow would make an object silently
     /// vanish).
-    pub(super) fn length(&self, key: &str, default: f64) -> Result<f64> {
+    pub(super) fn length(&self, key: Key, default: f64) -> Result<f64> {
         let v = self.number(key, default)?;
         if v.abs() > MAX_LENGTH {
             return Err(self.error(
                 key,
                 format!(
-                    "`{key}` = {} is too large: distances this far overflow when squared \
+                    "`{}` = {} is too large: distances this far overflow when squared \
                      (coordinates and radii up to {MAX_LENGTH:e})",
+                    key.name(),
                     exact(v)
                 ),
             ));
@@ -183,7 +192,7 @@ impl<'e> Attributes<'e> {
 
     /// `colour="#RRGGBB"`, required; `element_offset` locates the error when it is missing.
     pub(super) fn required_colour(&self, element_offset: usize) -> Result<DVec3> {
-        let Some(attr) = self.get("colour") else {
+        let Some(attr) = self.get(Key::Colour) else {
             return Err(self.source.error_at(
                 element_offset,
                 format!(
@@ -194,7 +203,7 @@ impl<'e> Attributes<'e> {
         };
         parse_colour(attr.value.trim()).ok_or_else(|| {
             self.error(
-                "colour",
+                Key::Colour,
                 format!(
                     "`colour` must be #RRGGBB with six hex digits, got `{}`",
                     shown(&attr.value)
@@ -205,10 +214,10 @@ impl<'e> Attributes<'e> {
 
     /// The material attributes, over the course's defaults for this shape.
     pub(super) fn material(&self, defaults: Material) -> Result<Material> {
-        let reflectivity = self.number("reflectivity", defaults.reflectivity)?;
+        let reflectivity = self.number(Key::Reflectivity, defaults.reflectivity)?;
         if !(0.0..=1.0).contains(&reflectivity) {
             return Err(self.error(
-                "reflectivity",
+                Key::Reflectivity,
                 format!(
                     "`reflectivity` must be between 0 and 1, got {}",
                     exact(reflectivity)
@@ -217,9 +226,9 @@ impl<'e> Attributes<'e> {
         }
         Ok(Material {
             colour: defaults.colour,
-            kd: self.non_negative("kD", defaults.kd)?,
-            ks: self.non_negative("kS", defaults.ks)?,
-            n: self.non_negative("n", defaults.n)?,
+            kd: self.non_negative(Key::KD, defaults.kd)?,
+            ks: self.non_negative(Key::KS, defaults.ks)?,
+            n: self.non_negative(Key::N, defaults.n)?,
             reflectivity,
         })
     }

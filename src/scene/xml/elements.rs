@@ -7,6 +7,7 @@ use glam::DVec3;
 use quick_xml::events::BytesStart;
 
 use super::attributes::read_attributes;
+use super::key::Key;
 use super::source::{shown, Source};
 use crate::error::Result;
 use crate::geometry::{normalise, Shape};
@@ -15,11 +16,26 @@ use crate::scene::{Material, Object, PointLight, Scene};
 use crate::suggest;
 
 pub(super) const ELEMENTS: [&str; 4] = ["sphere", "plane", "point-light", "ambient-light"];
-const MATERIAL_ATTRIBUTES: [&str; 4] = ["kD", "kS", "n", "reflectivity"];
-const SPHERE_ATTRIBUTES: [&str; 5] = ["x", "y", "z", "radius", "colour"];
-const PLANE_ATTRIBUTES: [&str; 7] = ["x", "y", "z", "nx", "ny", "nz", "colour"];
-const LIGHT_ATTRIBUTES: [&str; 6] = ["x", "y", "z", "colour", "intensity", "name"];
-const AMBIENT_ATTRIBUTES: [&str; 1] = ["colour"];
+const MATERIAL_ATTRIBUTES: [Key; 4] = [Key::KD, Key::KS, Key::N, Key::Reflectivity];
+const SPHERE_ATTRIBUTES: [Key; 5] = [Key::X, Key::Y, Key::Z, Key::Radius, Key::Colour];
+const PLANE_ATTRIBUTES: [Key; 7] = [
+    Key::X,
+    Key::Y,
+    Key::Z,
+    Key::Nx,
+    Key::Ny,
+    Key::Nz,
+    Key::Colour,
+];
+const LIGHT_ATTRIBUTES: [Key; 6] = [
+    Key::X,
+    Key::Y,
+    Key::Z,
+    Key::Colour,
+    Key::Intensity,
+    Key::Name,
+];
+const AMBIENT_ATTRIBUTES: [Key; 1] = [Key::Colour];
 
 /// Longest light name (docs/scene-format.md): names become EXR layer names such as
 /// `unshadowed_<name>`, and this keeps them short.
@@ -93,10 +109,10 @@ fn sphere(e: &Element) -> Result<Object> {
     let allowed = [&SPHERE_ATTRIBUTES[..], &MATERIAL_ATTRIBUTES];
     let a = read_attributes(e.source, e.tag, e.name, &allowed)?;
     let colour = a.required_colour(e.offset)?;
-    let radius = a.length("radius", 1.0)?;
+    let radius = a.length(Key::Radius, 1.0)?;
     if radius <= 0.0 {
         return Err(a.error(
-            "radius",
+            Key::Radius,
             format!("`radius` must be > 0, got {}", exact(radius)),
         ));
     }
@@ -113,9 +129,9 @@ fn plane(e: &Element) -> Result<Object> {
     let a = read_attributes(e.source, e.tag, e.name, &allowed)?;
     let colour = a.required_colour(e.offset)?;
     let n = DVec3::new(
-        a.number("nx", 0.0)?,
-        a.number("ny", 0.0)?,
-        a.number("nz", 0.0)?,
+        a.number(Key::Nx, 0.0)?,
+        a.number(Key::Ny, 0.0)?,
+        a.number(Key::Nz, 0.0)?,
     );
     if n.length().is_infinite() {
         return Err(e.source.error_at(
@@ -153,15 +169,15 @@ impl SceneBuilder {
     fn point_light(&mut self, e: &Element) -> Result<()> {
         let a = read_attributes(e.source, e.tag, e.name, &[&LIGHT_ATTRIBUTES])?;
         let colour = a.required_colour(e.offset)?;
-        let intensity = a.number("intensity", 100.0)?;
+        let intensity = a.number(Key::Intensity, 100.0)?;
         if intensity < 0.0 {
             return Err(a.error(
-                "intensity",
+                Key::Intensity,
                 format!("`intensity` must be >= 0, got {}", exact(intensity)),
             ));
         }
         let index = self.lights.len();
-        let name = match a.get("name") {
+        let name = match a.get(Key::Name) {
             Some(attr) => {
                 let name = attr.value.trim();
                 self.check_light_name(&e.source, name, attr.offset)?;
