@@ -11,14 +11,15 @@ use crate::error::{Error, Result};
 
 /// Bytes a render of this size needs at its peak, streamed in strips of `strip_rows` rows:
 /// two strips of f64 beauty and f32 channels (one rendering, one being written), the EXR
-/// blocks of a strip (packed, split, predicted, compressed: about four copies of its f32
-/// values) and its offset table, and the PNG's display values and bytes for a strip. The
-/// image's height only adds the offset table.
+/// blocks of two strips (one compressing in the background while the next is packed: packed,
+/// predicted and compressed copies, about six copies of a strip's f32 values in all) and its
+/// offset table, and the PNG's display values and bytes for a strip. The image's height only
+/// adds the offset table.
 pub fn render_bytes(width: u32, height: u32, channels: usize, exr: bool, strip_rows: u32) -> u64 {
     let channels = channels as u64;
     let strip = u64::from(width).saturating_mul(u64::from(strip_rows.min(height)));
     let film = 2 * (24 + 4 * channels);
-    let writing = if exr { 4 * 4 * channels } else { 0 } + 24 + 3;
+    let writing = if exr { 6 * 4 * channels } else { 0 } + 24 + 3;
     let table = if exr { 8 * u64::from(height) } else { 0 };
     strip.saturating_mul(film + writing).saturating_add(table)
 }

@@ -85,7 +85,8 @@ struct Times {
     load: Duration,
     /// Hierarchy build, tracing and writing, which overlap.
     render: Duration,
-    /// Packing, compressing and writing EXR blocks (on other cores while strips render).
+    /// Packing, compressing and writing EXR blocks, summed over the threads that did it
+    /// (alongside the render, so it can exceed the render's wall time).
     exr: Duration,
 }
 
@@ -95,7 +96,7 @@ fn summary(plan: &RenderPlan, stats: &RenderStats, layers: usize, times: Times) 
     let mut outputs = Vec::new();
     if let Some(exr) = &plan.exr {
         outputs.push(format!(
-            "{} ({layers} layers, written in {:.2} s)",
+            "{} ({layers} layers, {:.2} s of CPU to write)",
             exr.display(),
             times.exr.as_secs_f64()
         ));

@@ -242,7 +242,7 @@ pub fn write_image(file: &mut File, image: &FlatImage) -> Result<(), String> {
     let mut stream = ExrStream::create(file, header)?;
     let rows = image.layer_data.size.1 as u32;
     stream.write_rows(rows, &|range| exr_block::pack_planes(image, range))?;
-    stream.finish()
+    stream.finish().map(|_| ())
 }
 
 /// Rec.709 primaries with a D65 white point: the linear sRGB the renderer works in.

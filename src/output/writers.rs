@@ -2,7 +2,7 @@
 //! rows and the EXR's blocks, written side by side on the render's threads.
 
 use std::path::{Path, PathBuf};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use crate::error::{Error, Result};
 use crate::film::Film;
@@ -27,8 +27,6 @@ struct ExrOutput<'a> {
 pub struct Writers<'a> {
     png: Option<(PngStream, PathBuf)>,
     exr: Option<ExrOutput<'a>>,
-    /// Time spent packing, compressing and writing EXR blocks.
-    exr_time: Duration,
 }
 
 impl<'a> Writers<'a> {
@@ -65,46 +63,37 @@ impl<'a> Writers<'a> {
                 })
             }
         };
-        Ok(Writers {
-            png,
-            exr,
-            exr_time: Duration::ZERO,
-        })
+        Ok(Writers { png, exr })
     }
 
     pub fn write(&mut self, strip: &Film) -> Result<()> {
         let (png, exr) = (&mut self.png, &mut self.exr);
-        let (png_written, (exr_written, exr_time)) = rayon::join(
+        let (png_written, exr_written) = rayon::join(
             || {
                 png.as_mut().map_or(Ok(()), |(p, path)| {
                     p.write_rows(&strip.beauty).map_err(|e| png_error(path, e))
                 })
             },
             || {
-                let started = Instant::now();
-                let written = exr.as_mut().map_or(Ok(()), |e| {
+                exr.as_mut().map_or(Ok(()), |e| {
                     let stored = &e.stored;
                     let pack = |rows| exr_block::pack(strip, rows, stored);
                     let written = e.stream.write_rows(strip.height, &pack);
                     written.map_err(|msg| exr_error(&e.path, msg))
-                });
-                (written, started.elapsed())
+                })
             },
         );
-        self.exr_time += exr_time;
         exr_written?;
         png_written
     }
 
-    /// Completes both files; returns the time spent on the EXR.
+    /// Completes both files; returns the EXR's share of the threads' time (packing,
+    /// compressing and writing, summed over threads: it overlaps the render).
     pub fn finish(self) -> Result<Duration> {
-        let mut exr_time = self.exr_time;
+        let mut exr_time = Duration::ZERO;
         if let Some(exr) = self.exr {
-            let started = Instant::now();
-            exr.stream
-                .finish()
-                .map_err(|msg| exr_error(&exr.path, msg))?;
-            exr_time += started.elapsed();
+            let finished = exr.stream.finish();
+            exr_time = finished.map_err(|msg| exr_error(&exr.path, msg))?;
         }
         if let Some((png, path)) = self.png {
             png.finish().map_err(|e| png_error(&path, e))?;
