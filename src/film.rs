@@ -96,8 +96,10 @@ pub struct PixelAccumulator {
     /// are averaged (else the sample nearest the pixel centre is kept): looked up once, not
     /// per sample.
     slots: Vec<(Quantity, usize, usize, bool)>,
-    /// Per channel: whether it is averaged over the samples (the slots' flag, flattened).
-    averaged: Vec<bool>,
+    /// Per channel, the zero its sum starts from: +0.0 for a mean (so that a sum of -0.0
+    /// values is +0.0), -0.0 for a kept value (adding -0.0 changes no value at all).
+    start: Vec<f64>,
+    /// Per channel, what its sum is divided by: the sample count for a mean, else 1.
     beauty: DVec3,
     sums: Vec<f64>,
     samples: u32,
@@ -120,13 +122,13 @@ impl PixelAccumulator {
                 slot
             })
             .collect::<Vec<_>>();
-        let averaged = slots
+        let start = slots
             .iter()
-            .flat_map(|&(_, _, len, mean)| std::iter::repeat_n(mean, len))
+            .flat_map(|&(_, _, len, mean)| std::iter::repeat_n(if mean { 0.0 } else { -0.0 }, len))
             .collect();
         PixelAccumulator {
             slots,
-            averaged,
+            start,
             beauty: DVec3::ZERO,
             sums: vec![0.0; channel_count],
             samples: 0,
@@ -134,49 +136,51 @@ impl PixelAccumulator {
     }
 
     /// Adds one sample; `nearest_centre` marks the sample whose depth, position and id the
-    /// pixel keeps. Values are written straight into the sums where they replace them (a
-    /// pixel's first sample, the nearest-centre sample): at one sample per pixel nothing is
-    /// copied twice.
+    /// pixel keeps. Values are written straight into the sums wherever they replace them (a
+    /// pixel's first sample, the nearest-centre sample): at one sample per pixel that is
+    /// every value, with nothing added and nothing copied twice.
     pub fn add(&mut self, sample: &Sample, nearest_centre: bool) {
         self.beauty += sample.beauty;
         let first = self.samples == 0;
         self.samples += 1;
         for &(quantity, start, len, mean) in &self.slots {
             let sums = &mut self.sums[start..start + len];
-            match (mean, first) {
-                (true, true) => {
-                    quantity.values(sample, sums);
-                    // `v + 0.0`, as when the sums started at zero: the sum of one -0.0 is
-                    // +0.0.
-                    sums.iter_mut().for_each(|s| *s += 0.0);
+            if first || (nearest_centre && !mean) {
+                quantity.values(sample, sums);
+            } else if mean {
+                let mut values = [0.0; 4];
+                quantity.values(sample, &mut values[..len]);
+                for (s, v) in sums.iter_mut().zip(values) {
+                    *s += v;
                 }
-                (true, false) => {
-                    let mut values = [0.0; 4];
-                    quantity.values(sample, &mut values[..len]);
-                    for (s, v) in sums.iter_mut().zip(values) {
-                        *s += v;
-                    }
-                }
-                (false, _) if nearest_centre => quantity.values(sample, sums),
-                (false, _) => {}
             }
         }
     }
 
     /// Writes the pixel (means, and nearest-centre values) and starts the next one.
     /// Returns how many channel values were not finite and were stored as 0.
+    ///
+    /// A mean is `(0.0 + v1 + v2 + ...) / n`, the sum started at zero so that a sum of -0.0
+    /// values is +0.0: `add` starts from `v1` instead, and adding the channel's `start` here
+    /// gives the same value (the two running sums differ at most in the sign of a zero, which
+    /// adding +0.0 removes). Branch-free, so that it vectorises.
     pub fn finish(&mut self, beauty: &mut DVec3, out: &mut [f32]) -> u64 {
         let count = f64::from(self.samples.max(1));
         *beauty = self.beauty / count;
         let mut non_finite = 0;
+        let values = out.iter_mut().zip(&self.sums).zip(&self.start);
         if self.samples <= 1 {
-            // Every channel is its one value: dividing by 1 would change none.
-            for (o, &s) in out.iter_mut().zip(&self.sums) {
-                non_finite += store(o, s);
+            // Dividing by 1 would change no value.
+            for ((o, &s), &start) in values {
+                non_finite += store(o, s + start);
             }
         } else {
-            for ((o, &s), &mean) in out.iter_mut().zip(&self.sums).zip(&self.averaged) {
-                non_finite += store(o, if mean { s / count } else { s });
+            let divisors = self
+                .start
+                .iter()
+                .map(|&z| if z.is_sign_positive() { count } else { 1.0 });
+            for (((o, &s), &start), divisor) in values.zip(divisors) {
+                non_finite += store(o, (s + start) / divisor);
             }
         }
         self.beauty = DVec3::ZERO;
