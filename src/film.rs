@@ -96,10 +96,11 @@ pub struct PixelAccumulator {
     /// are averaged (else the sample nearest the pixel centre is kept): looked up once, not
     /// per sample.
     slots: Vec<(Quantity, usize, usize, bool)>,
+    /// Per channel, whether it is averaged over the samples (the slots' flag, flattened).
+    averaged: Vec<bool>,
     /// Per channel, the zero its sum starts from: +0.0 for a mean (so that a sum of -0.0
     /// values is +0.0), -0.0 for a kept value (adding -0.0 changes no value at all).
-    start: Vec<f64>,
-    /// Per channel, what its sum is divided by: the sample count for a mean, else 1.
+    zero: Vec<f64>,
     beauty: DVec3,
     sums: Vec<f64>,
     samples: u32,
@@ -122,13 +123,18 @@ impl PixelAccumulator {
                 slot
             })
             .collect::<Vec<_>>();
-        let start = slots
+        let averaged: Vec<bool> = slots
             .iter()
-            .flat_map(|&(_, _, len, mean)| std::iter::repeat_n(if mean { 0.0 } else { -0.0 }, len))
+            .flat_map(|&(_, _, len, mean)| std::iter::repeat_n(mean, len))
+            .collect();
+        let zero = averaged
+            .iter()
+            .map(|&mean| if mean { 0.0 } else { -0.0 })
             .collect();
         PixelAccumulator {
             slots,
-            start,
+            averaged,
+            zero,
             beauty: DVec3::ZERO,
             sums: vec![0.0; channel_count],
             samples: 0,
@@ -161,26 +167,22 @@ impl PixelAccumulator {
     /// Returns how many channel values were not finite and were stored as 0.
     ///
     /// A mean is `(0.0 + v1 + v2 + ...) / n`, the sum started at zero so that a sum of -0.0
-    /// values is +0.0: `add` starts from `v1` instead, and adding the channel's `start` here
+    /// values is +0.0: `add` starts from `v1` instead, and adding the channel's `zero` here
     /// gives the same value (the two running sums differ at most in the sign of a zero, which
-    /// adding +0.0 removes). Branch-free, so that it vectorises.
+    /// adding +0.0 removes). Branch-free at one sample, so that it vectorises.
     pub fn finish(&mut self, beauty: &mut DVec3, out: &mut [f32]) -> u64 {
         let count = f64::from(self.samples.max(1));
         *beauty = self.beauty / count;
         let mut non_finite = 0;
-        let values = out.iter_mut().zip(&self.sums).zip(&self.start);
+        let values = out.iter_mut().zip(&self.sums).zip(&self.zero);
         if self.samples <= 1 {
             // Dividing by 1 would change no value.
-            for ((o, &s), &start) in values {
-                non_finite += store(o, s + start);
+            for ((o, &s), &zero) in values {
+                non_finite += store(o, s + zero);
             }
         } else {
-            let divisors = self
-                .start
-                .iter()
-                .map(|&z| if z.is_sign_positive() { count } else { 1.0 });
-            for (((o, &s), &start), divisor) in values.zip(divisors) {
-                non_finite += store(o, (s + start) / divisor);
+            for (((o, &s), &zero), &mean) in values.zip(&self.averaged) {
+                non_finite += store(o, if mean { (s + zero) / count } else { s + zero });
             }
         }
         self.beauty = DVec3::ZERO;
