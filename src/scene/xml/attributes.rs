@@ -58,8 +58,7 @@ pub(super) fn read_attributes<'e>(
                 .iter()
                 .flat_map(|g| g.iter().map(|k| k.name()))
                 .collect();
-            let key = name;
-            let hint = match suggest::nearest(key, &allowed) {
+            let hint = match suggest::nearest(name, &allowed) {
                 Some(s) => format!("did you mean `{s}`? "),
                 None => String::new(),
             };
@@ -72,7 +71,7 @@ pub(super) fn read_attributes<'e>(
                 offset,
                 format!(
                     "unknown attribute `{}` on <{element}> ({hint}{expected})",
-                    shown(key)
+                    shown(name)
                 ),
             ));
         };
