@@ -105,7 +105,7 @@ pub fn explain(scene: &Scene, spec: &FrameSpec, x: u32, y: u32) -> Result<Explan
         miss: None,
         fold: Vec::new(),
     };
-    trace_observed(
+    trace_observed::<true>(
         scene,
         &accel,
         camera_ray,

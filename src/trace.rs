@@ -46,7 +46,7 @@ pub fn trace_into(
     options: TraceOptions,
     sample: &mut Sample,
 ) {
-    trace_with::<true>(scene, accel, primary, options, sample, &mut Silent);
+    trace_observed::<true>(scene, accel, primary, options, sample, &mut Silent);
 }
 
 /// `trace_into` for the beauty alone: the same `sample.beauty` and ray count, bit for bit, and
@@ -58,23 +58,13 @@ pub fn trace_beauty(
     options: TraceOptions,
     sample: &mut Sample,
 ) {
-    trace_with::<false>(scene, accel, primary, options, sample, &mut Silent);
+    trace_observed::<false>(scene, accel, primary, options, sample, &mut Silent);
 }
 
-/// `trace_into`, telling `observer` every vertex and light term on the way (`explain`).
-pub fn trace_observed(
-    scene: &Scene,
-    accel: &Accelerator,
-    primary: Ray,
-    options: TraceOptions,
-    sample: &mut Sample,
-    observer: &mut impl Observer,
-) {
-    trace_with::<true>(scene, accel, primary, options, sample, observer);
-}
-
-/// The trace itself; with `LAYERS` false, the per-effect sums are left out at compile time.
-fn trace_with<const LAYERS: bool>(
+/// The trace itself, telling `observer` every vertex and light term on the way (`explain`
+/// watches; the render passes `Silent`). With `LAYERS` false the per-effect sums are left out
+/// at compile time.
+pub fn trace_observed<const LAYERS: bool>(
     scene: &Scene,
     accel: &Accelerator,
     primary: Ray,
