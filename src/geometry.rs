@@ -42,7 +42,12 @@ pub struct Hit {
 /// `v` divided by its length, component by component. The course divides; glam's `normalize`
 /// multiplies by the reciprocal, which differs in the last bit and changes tick pixels.
 pub fn normalise(v: DVec3) -> DVec3 {
-    let length = v.length();
+    divide_by_length(v, v.length())
+}
+
+/// `normalise` for a vector whose length is already at hand (`length` must be `v.length()`):
+/// the same divisions, without computing the square root twice.
+pub fn divide_by_length(v: DVec3, length: f64) -> DVec3 {
     DVec3::new(v.x / length, v.y / length, v.z / length)
 }
 

@@ -9,7 +9,7 @@ use smallvec::SmallVec;
 use observe::{FoldStep, LightRecord, Observer, Silent, VertexRecord};
 
 use crate::accel::Accelerator;
-use crate::geometry::{normalise, Ray};
+use crate::geometry::{divide_by_length, normalise, Ray};
 use crate::sample::{PrimaryHit, Sample};
 use crate::scene::{Material, Scene};
 
@@ -192,6 +192,17 @@ pub fn java_max_zero(x: f64) -> f64 {
     }
 }
 
+/// `x^n` for the specular term. `pow(x, ±0)` is 1 for every `x`, NaN included (IEEE 754 and
+/// C's `pow`), so the library call is skipped for an exponent of 0 (the plane's default) with
+/// the very same result.
+fn phong_power(x: f64, n: f64) -> f64 {
+    if n == 0.0 {
+        1.0
+    } else {
+        x.powf(n)
+    }
+}
+
 /// A surface point being shaded and how much it counts towards the pixel.
 struct Vertex<'a> {
     point: DVec3,
@@ -236,13 +247,13 @@ fn shade<const LAYERS: bool>(
         let to_light = light.position - p;
         let d = to_light.length();
         let illumination = light.illumination_at(d);
-        let l = normalise(to_light);
+        let l = divide_by_length(to_light, d);
         let n_dot_l = java_max_zero(n.dot(l));
         // Built from the clamped N.L, as the reference does.
         let r = n * (2.0 * n_dot_l) - l;
         let diffuse = ((m.colour * illumination) * m.kd) * n_dot_l;
         let r_dot_v = java_max_zero(r.dot(v));
-        let specular = (illumination * m.ks) * r_dot_v.powf(m.n);
+        let specular = (illumination * m.ks) * phong_power(r_dot_v, m.n);
         let shadow_ray = Ray::offset_from(p, l);
         let in_shadow = shadows && {
             sample.rays += 1;
@@ -441,6 +452,19 @@ mod tests {
             assert_eq!(s.reflected_by_bounce.len(), bounces as usize);
             assert!(s.reflected_by_bounce.iter().all(|r| r.min_element() > 0.0));
             assert_eq!(s.rays, 2 * (u64::from(bounces) + 1));
+        }
+    }
+
+    #[test]
+    fn phong_power_is_pow_including_a_zero_exponent() {
+        for x in [0.0, 0.5, 1.0, 1.5, f64::NAN, f64::INFINITY] {
+            for n in [0.0, -0.0, 1.0, 10.0, 1e300] {
+                assert_eq!(
+                    phong_power(x, n).to_bits(),
+                    x.powf(n).to_bits(),
+                    "pow({x}, {n})"
+                );
+            }
         }
     }
 
