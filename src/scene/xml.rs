@@ -2,27 +2,27 @@
 //! error naming the file, the line:column of the offending element or attribute, and what was
 //! expected, because a silently different picture is worse than no picture.
 //!
-//! This file walks the XML events; `source` turns offsets into line:column, `attributes`
-//! reads and types an element's attributes, and `elements` has one function per element.
+//! This file runs the parse: `scan` walks the XML events and checks the structure, `source`
+//! turns offsets into line:column, `attributes` reads and types an element's attributes, and
+//! `elements` has one function per element.
 
 mod attributes;
 mod elements;
 mod key;
+mod scan;
 mod source;
 #[cfg(test)]
 mod tests;
 
 use std::path::Path;
 
-use quick_xml::events::{BytesStart, Event};
-use quick_xml::Reader;
 use rayon::prelude::*;
 
 use crate::error::{Error, Result};
 use crate::scene::{Object, Scene};
-use attributes::read_attributes;
-use elements::{is_object, object, Element, SceneBuilder};
-use source::{shown, Source};
+use elements::{object, Element, SceneBuilder};
+use scan::{Child, Scanner};
+use source::Source;
 
 pub use elements::MAX_LIGHT_NAME;
 
@@ -80,201 +80,64 @@ pub fn parse_str(file: &str, text: &str) -> Result<Scene> {
     if text.trim().is_empty() {
         return Err(source.error_at(0, "the file is empty (expected a <scene> element)".into()));
     }
-    let mut parser = Parser {
-        source,
-        builder: SceneBuilder::default(),
-        pending: Vec::new(),
-    };
-    // An error in an element read before a later structural error is the one reported: the
-    // first in the file, as if everything were read in order.
-    let scanned = parser.scan();
-    parser.read_pending()?;
-    scanned?;
-    Ok(parser.builder.finish())
+    let mut scanner = Scanner::new(source);
+    let mut builder = SceneBuilder::default();
+    let mut batch = Vec::with_capacity(BATCH);
+    let mut scanned = scanner.scan(&mut batch, BATCH);
+    // A batch's attributes are read on every core while the scanner walks on to the next:
+    // the walk is one thread's work, and the reading would otherwise wait for it.
+    loop {
+        let more = matches!(scanned, Ok(false));
+        let mut next = Vec::with_capacity(if more { BATCH } else { 0 });
+        let (added, next_scanned) = rayon::join(
+            || add_batch(&mut builder, &batch, source),
+            || {
+                if more {
+                    scanner.scan(&mut next, BATCH)
+                } else {
+                    Ok(true)
+                }
+            },
+        );
+        // An error in an element read before a later structural error is the one reported:
+        // the first in the file, as if everything were read in order.
+        added?;
+        scanned?;
+        if !more {
+            break;
+        }
+        (batch, scanned) = (next, next_scanned);
+    }
+    Ok(builder.finish())
 }
 
-/// Objects read at once, on every core; what the parser holds back at most.
+/// Child elements scanned at once, then read on every core; what the parser holds back at
+/// most (twice: one batch being read, the next being scanned).
 const BATCH: usize = 16_384;
 
-struct Parser<'a> {
-    source: Source<'a>,
-    builder: SceneBuilder,
-    /// Object elements (`<sphere>`, `<plane>`) whose attributes are still to be read, in file
-    /// order: the bulk of a large scene, read a batch at a time in parallel.
-    pending: Vec<(BytesStart<'a>, usize)>,
+/// Adds `children` to the scene in file order, reading the objects' attributes in parallel
+/// first (an object needs nothing from the rest of the scene); the first error in the file
+/// if any.
+fn add_batch(builder: &mut SceneBuilder, children: &[Child], source: Source) -> Result<()> {
+    let objects: Vec<Option<Result<Object>>> = children
+        .par_iter()
+        .map(|child| object(&element(child, source)))
+        .collect();
+    for (child, object) in children.iter().zip(objects) {
+        match object {
+            Some(object) => builder.objects.push(object?),
+            // Lights and the rest depend on what came before them: added in order.
+            None => builder.add(&element(child, source))?,
+        }
+    }
+    Ok(())
 }
 
-/// An element still waiting for its end tag.
-struct Open {
-    name: String,
-    offset: usize,
-}
-
-impl<'a> Parser<'a> {
-    /// Walks the XML events, checking the structure and reading every element (objects into
-    /// `pending`).
-    fn scan(&mut self) -> Result<()> {
-        let mut reader = Reader::from_str(self.source.text);
-        let mut open: Vec<Open> = Vec::new();
-        let mut seen_root = false;
-        loop {
-            let event = reader.read_event().map_err(|e| {
-                let offset = usize::try_from(reader.error_position()).unwrap_or(usize::MAX);
-                self.source
-                    .error_at(offset, format!("not well-formed XML: {e}"))
-            })?;
-            match event {
-                Event::Start(e) => {
-                    let name = e.name().0.to_string();
-                    let offset = self.element(e, &open, &mut seen_root)?;
-                    open.push(Open { name, offset });
-                }
-                Event::Empty(e) => {
-                    self.element(e, &open, &mut seen_root)?;
-                }
-                Event::End(_) => {
-                    open.pop();
-                }
-                Event::Text(t) => {
-                    let content: &str = &t;
-                    if !content.trim().is_empty() {
-                        let offset = self.source.offset_of(content)
-                            + (content.len() - content.trim_start().len());
-                        return Err(self.unexpected_text(offset, content.trim(), &open));
-                    }
-                }
-                Event::CData(t) => {
-                    let offset = self.source.offset_of(&t);
-                    return Err(self.unexpected_text(offset, "<![CDATA[...]]>", &open));
-                }
-                Event::GeneralRef(r) => {
-                    let offset = self.source.offset_of(&r).saturating_sub(1);
-                    return Err(self.unexpected_text(offset, &format!("&{};", &*r), &open));
-                }
-                Event::Comment(_) | Event::Decl(_) | Event::PI(_) | Event::DocType(_) => {}
-                Event::Eof => break,
-            }
-        }
-        if let Some(unclosed) = open.last() {
-            return Err(self.source.error_at(
-                unclosed.offset,
-                format!(
-                    "<{}> is never closed (expected </{}> or a self-closing <{} .../>)",
-                    unclosed.name, unclosed.name, unclosed.name
-                ),
-            ));
-        }
-        if !seen_root {
-            return Err(self.source.error_at(
-                self.source.text.len(),
-                "no <scene> element (expected <scene> ... </scene>)".into(),
-            ));
-        }
-        Ok(())
-    }
-
-    fn unexpected_text(&self, offset: usize, text: &str, open: &[Open]) -> Error {
-        let text = shown(text);
-        let place = match open.last() {
-            Some(o) => format!("inside <{}>", o.name),
-            None => "outside <scene>".into(),
-        };
-        self.source.error_at(
-            offset,
-            format!(
-                "unexpected text `{text}` {place} (a scene holds only elements with attributes)"
-            ),
-        )
-    }
-
-    /// Handles a start or empty-element tag; returns the offset of its `<`.
-    fn element(&mut self, e: BytesStart<'a>, open: &[Open], seen_root: &mut bool) -> Result<usize> {
-        let tag: &str = &e;
-        let offset = self.source.offset_of(tag).saturating_sub(1);
-        let name = e.name().0;
-        match open {
-            [] => {
-                if *seen_root {
-                    return Err(self.source.error_at(
-                        offset,
-                        format!(
-                            "a second root element <{}> (a file holds one <scene>)",
-                            shown(name)
-                        ),
-                    ));
-                }
-                if name != "scene" {
-                    return Err(self.source.error_at(
-                        offset,
-                        format!("the root element is <{}>, expected <scene>", shown(name)),
-                    ));
-                }
-                *seen_root = true;
-                read_attributes(self.source, &e, "scene", &[])?;
-            }
-            [_] => self.child(e, offset)?,
-            [.., parent] => {
-                return Err(self.source.error_at(
-                    offset,
-                    format!(
-                        "<{}> is nested inside <{}> (elements go directly inside <scene>)",
-                        shown(name),
-                        shown(&parent.name)
-                    ),
-                ));
-            }
-        }
-        Ok(offset)
-    }
-
-    fn child(&mut self, e: BytesStart<'a>, offset: usize) -> Result<()> {
-        let count = self.builder.objects.len() + self.builder.lights.len() + self.pending.len();
-        if count >= MAX_ELEMENTS {
-            return Err(self.source.error_at(
-                offset,
-                format!(
-                    "too many elements: a scene holds at most {MAX_ELEMENTS} objects and lights"
-                ),
-            ));
-        }
-        if is_object(e.name().0) {
-            self.pending.push((e, offset));
-            if self.pending.len() == BATCH {
-                self.read_pending()?;
-            }
-            return Ok(());
-        }
-        // Lights and the rest depend on what came before them: read in order.
-        self.read_pending()?;
-        self.builder.add(&Element {
-            tag: &e,
-            name: e.name().0,
-            offset,
-            source: self.source,
-        })
-    }
-
-    /// Reads the pending objects on every core and adds them in file order; the first
-    /// error in the file if any.
-    fn read_pending(&mut self) -> Result<()> {
-        let source = self.source;
-        let objects: Vec<Result<Object>> = self
-            .pending
-            .par_iter()
-            .filter_map(|(tag, offset)| {
-                let element = Element {
-                    tag,
-                    name: tag.name().0,
-                    offset: *offset,
-                    source,
-                };
-                object(&element)
-            })
-            .collect();
-        self.pending.clear();
-        for object in objects {
-            self.builder.objects.push(object?);
-        }
-        Ok(())
+fn element<'e, 'a>(child: &'e Child<'e>, source: Source<'a>) -> Element<'e, 'a> {
+    Element {
+        tag: &child.tag,
+        name: child.tag.name().0,
+        offset: child.offset,
+        source,
     }
 }
