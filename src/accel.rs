@@ -8,7 +8,6 @@
 //! hits that formula reports outside the sphere on badly conditioned rays: see `accel/margin.rs`.
 
 use glam::DVec3;
-use rayon::iter::Either;
 use rayon::prelude::*;
 use smallvec::SmallVec;
 
@@ -18,8 +17,8 @@ mod margin;
 #[cfg(test)]
 mod tests;
 
-use aabb::{bounds, Aabb};
-use build::{build, Extent, Subtree, SubtreeKind, MAX_LEAF, PARALLEL_BIN_CHUNK};
+use aabb::Aabb;
+use build::{build, Extent, Record, Subtree, SubtreeKind, MAX_LEAF, PARALLEL_BIN_CHUNK};
 use margin::{near_zone, RayMargin};
 
 use crate::geometry::{self, sphere_hit, Hit, Ray, Shape, SphereTerms};
@@ -63,49 +62,53 @@ fn nearer(best: Option<Hit>, candidate: Hit) -> Option<Hit> {
 }
 
 impl Accelerator {
-    /// Builds the hierarchy over `objects`' bounded shapes.
+    /// Builds the hierarchy over `objects`' bounded shapes (the spheres).
     pub fn build(objects: &[Object]) -> Self {
         // Whole-scene passes run on every core (rayon keeps the order).
-        let (mut boxes, unbounded): (Vec<(u32, Aabb)>, Vec<Unbounded>) = objects
+        let unbounded: Vec<Unbounded> = objects
             .par_iter()
             .enumerate()
-            .partition_map(|(i, o)| match bounds(&o.shape) {
-                Some(b) => Either::Left((i as u32, b)),
-                None => Either::Right((i, o.shape)),
-            });
+            .filter_map(|(i, o)| match o.shape {
+                Shape::Plane { .. } => Some((i, o.shape)),
+                Shape::Sphere { .. } => None,
+            })
+            .collect();
+        let mut records: Vec<Record> = objects
+            .par_iter()
+            .enumerate()
+            .filter_map(|(i, o)| match o.shape {
+                Shape::Sphere { centre, radius } => Some(Record::sphere(i as u32, centre, radius)),
+                Shape::Plane { .. } => None,
+            })
+            .collect();
         let mut accel = Accelerator {
-            nodes: Vec::with_capacity(2 * boxes.len() / MAX_LEAF + 1),
-            items: Vec::with_capacity(boxes.len()),
+            nodes: Vec::with_capacity(2 * records.len() / MAX_LEAF + 1),
+            items: Vec::new(),
             spheres: Vec::new(),
             unbounded,
             near_zone: Aabb::EMPTY,
         };
-        if !boxes.is_empty() {
-            let extent = boxes
-                .par_chunks(PARALLEL_BIN_CHUNK)
-                .map(Extent::of)
-                .reduce(|| Extent::EMPTY, Extent::merge);
-            let tree = build(&mut boxes, 0, extent);
-            let (near_zone, margin) = near_zone(extent.bounds);
-            accel.near_zone = near_zone;
-            accel.items = boxes.par_iter().map(|(i, _)| *i).collect();
-            accel.nodes.push(Node {
-                bounds: Aabb::EMPTY,
-                first: 0,
-                count: 0,
-            });
-            accel.fill(0, tree, margin);
+        if records.is_empty() {
+            return accel;
         }
-        accel.spheres = accel
-            .items
-            .iter()
-            .filter_map(|&i| match objects[i as usize].shape {
-                Shape::Sphere { centre, radius } => Some((centre, radius * radius)),
-                // Only spheres have bounds (`aabb::bounds`), so only spheres are items.
-                Shape::Plane { .. } => None,
-            })
+        let extent = records
+            .par_chunks(PARALLEL_BIN_CHUNK)
+            .map(Extent::of)
+            .reduce(|| Extent::EMPTY, Extent::merge);
+        let tree = build(&mut records, 0, extent);
+        let (near_zone, margin) = near_zone(extent.bounds);
+        accel.near_zone = near_zone;
+        accel.items = records.par_iter().map(|r| r.object).collect();
+        accel.spheres = records
+            .par_iter()
+            .map(|r| (r.centre, r.radius * r.radius))
             .collect();
-        debug_assert_eq!(accel.spheres.len(), accel.items.len());
+        accel.nodes.push(Node {
+            bounds: Aabb::EMPTY,
+            first: 0,
+            count: 0,
+        });
+        accel.fill(0, tree, margin);
         accel
     }
 

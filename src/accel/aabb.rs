@@ -3,7 +3,6 @@
 use glam::DVec3;
 
 use super::margin::RayMargin;
-use crate::geometry::Shape;
 
 /// An axis-aligned box.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -58,20 +57,19 @@ impl Aabb {
     }
 }
 
-/// The box around a bounded shape; `None` for unbounded shapes. The half-side exceeds the
-/// radius by 2^-40 of the coordinates' size, far more than the rounding of `centre +- pad`
-/// (2^-53 of it), so the stored box contains the exact sphere. Hits the formula reports
-/// *outside* the sphere are the per-ray margin's job ([`RayMargin`]), not the box's.
-pub(super) fn bounds(shape: &Shape) -> Option<Aabb> {
-    match *shape {
-        Shape::Sphere { centre, radius } => {
-            let pad = radius + (centre.abs().max_element() + radius) * REPRESENTATION_SLACK;
-            Some(Aabb {
-                min: centre - DVec3::splat(pad),
-                max: centre + DVec3::splat(pad),
-            })
-        }
-        Shape::Plane { .. } => None,
+/// The half side of the box stored around a sphere. It exceeds the radius by 2^-40 of the
+/// coordinates' size, far more than the rounding of `centre +- half side` (2^-53 of it), so the
+/// stored box contains the exact sphere. Hits the formula reports *outside* the sphere are the
+/// per-ray margin's job ([`RayMargin`]), not the box's.
+pub(super) fn sphere_half_side(centre: DVec3, radius: f64) -> f64 {
+    radius + (centre.abs().max_element() + radius) * REPRESENTATION_SLACK
+}
+
+/// The box of half side `half_side` around `centre`.
+pub(super) fn cube(centre: DVec3, half_side: f64) -> Aabb {
+    Aabb {
+        min: centre - DVec3::splat(half_side),
+        max: centre + DVec3::splat(half_side),
     }
 }
 

@@ -4,13 +4,39 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
-use super::aabb::Aabb;
+use super::aabb::{cube, sphere_half_side, Aabb};
 
 /// Leaves hold at most this many objects unless their centres coincide.
 pub(super) const MAX_LEAF: usize = 8;
 
 /// SAH bins per split.
 const BINS: usize = 16;
+
+/// A sphere as the builder moves it around: compact, and with what the leaves keep.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Record {
+    pub(super) centre: DVec3,
+    pub(super) radius: f64,
+    /// Of its stored box (`aabb::sphere_half_side`).
+    half_side: f64,
+    /// Its index in the scene's objects.
+    pub(super) object: u32,
+}
+
+impl Record {
+    pub(super) fn sphere(object: u32, centre: DVec3, radius: f64) -> Record {
+        Record {
+            centre,
+            radius,
+            half_side: sphere_half_side(centre, radius),
+            object,
+        }
+    }
+
+    fn bounds(&self) -> Aabb {
+        cube(self.centre, self.half_side)
+    }
+}
 
 /// A hierarchy under construction: built in parallel as a tree, then flattened.
 pub(super) struct Subtree {
@@ -19,7 +45,7 @@ pub(super) struct Subtree {
 }
 
 pub(super) enum SubtreeKind {
-    /// A range of the box array, which partitioning has left in leaf order.
+    /// A range of the record array, which partitioning has left in leaf order.
     Leaf {
         first: usize,
         count: usize,
@@ -27,7 +53,7 @@ pub(super) enum SubtreeKind {
     Split(Box<Subtree>, Box<Subtree>),
 }
 
-/// Nodes with more boxes than four of these chunks are binned in parallel, chunk by chunk.
+/// Nodes with more records than four of these chunks are binned in parallel, chunk by chunk.
 pub(super) const PARALLEL_BIN_CHUNK: usize = 16_384;
 
 /// Below this many objects a subtree is built on the current thread.
@@ -46,15 +72,10 @@ impl Extent {
         centroids: Aabb::EMPTY,
     };
 
-    fn add(self, b: &Aabb) -> Extent {
-        self.add_centred(b, centre(b))
-    }
-
-    /// `add` for a box whose centre `c` is already known.
-    fn add_centred(self, b: &Aabb, c: DVec3) -> Extent {
+    fn add(self, r: &Record) -> Extent {
         Extent {
-            bounds: self.bounds.grow(*b),
-            centroids: self.centroids.grow_point(c),
+            bounds: self.bounds.grow(r.bounds()),
+            centroids: self.centroids.grow_point(r.centre),
         }
     }
 
@@ -65,20 +86,16 @@ impl Extent {
         }
     }
 
-    pub(super) fn of(boxes: &[(u32, Aabb)]) -> Extent {
-        boxes.iter().fold(Extent::EMPTY, |e, (_, b)| e.add(b))
+    pub(super) fn of(records: &[Record]) -> Extent {
+        records.iter().fold(Extent::EMPTY, Extent::add)
     }
 }
 
-fn centre(b: &Aabb) -> DVec3 {
-    (b.min + b.max) / 2.0
-}
-
-/// Builds the subtree over `boxes` (whose extent is `extent`), splitting by the surface area
-/// heuristic; large halves are built in parallel. Each level makes two passes over its boxes
+/// Builds the subtree over `records` (whose extent is `extent`), splitting by the surface area
+/// heuristic; large halves are built in parallel. Each level makes two passes over its records
 /// (binning, partitioning): the children's extents come from the bins. The result does not
 /// depend on scheduling.
-pub(super) fn build(boxes: &mut [(u32, Aabb)], offset: usize, extent: Extent) -> Subtree {
+pub(super) fn build(records: &mut [Record], offset: usize, extent: Extent) -> Subtree {
     let size = extent.centroids.max - extent.centroids.min;
     let axis = if size.x >= size.y && size.x >= size.z {
         0
@@ -87,20 +104,20 @@ pub(super) fn build(boxes: &mut [(u32, Aabb)], offset: usize, extent: Extent) ->
     } else {
         2
     };
-    let split = (boxes.len() > MAX_LEAF && size[axis] > 0.0)
-        .then(|| best_split(boxes, extent, axis))
+    let split = (records.len() > MAX_LEAF && size[axis] > 0.0)
+        .then(|| best_split(records, extent, axis))
         .flatten();
     let Some(split) = split else {
         return Subtree {
             bounds: extent.bounds,
             kind: SubtreeKind::Leaf {
                 first: offset,
-                count: boxes.len(),
+                count: records.len(),
             },
         };
     };
-    let left = partition(boxes, &split);
-    let (l, r) = boxes.split_at_mut(left);
+    let left = partition(records, &split);
+    let (l, r) = records.split_at_mut(left);
     let right_offset = offset + l.len();
     let (l, r) = if l.len().min(r.len()) >= PARALLEL_BUILD {
         rayon::join(
@@ -119,20 +136,20 @@ pub(super) fn build(boxes: &mut [(u32, Aabb)], offset: usize, extent: Extent) ->
     }
 }
 
-/// Moves the boxes that go left to the front (as the bins were filled), in place; returns how
-/// many. Every box is swapped whichever way it goes: the side is a coin toss for the branch
-/// predictor, and an unconditional swap costs less than a mispredicted branch.
-fn partition(boxes: &mut [(u32, Aabb)], split: &Split) -> usize {
+/// Moves the records that go left to the front (as the bins were filled), in place; returns
+/// how many. Every record is swapped whichever way it goes: the side is a coin toss for the
+/// branch predictor, and an unconditional swap costs less than a mispredicted branch.
+fn partition(records: &mut [Record], split: &Split) -> usize {
     let mut left = 0;
-    for i in 0..boxes.len() {
-        let goes_left = split.bin_of(&boxes[i].1) < split.bin;
-        boxes.swap(left, i);
+    for i in 0..records.len() {
+        let goes_left = split.bin_of(records[i].centre) < split.bin;
+        records.swap(left, i);
         left += usize::from(goes_left);
     }
     left
 }
 
-/// A chosen split: boxes whose centre falls in a bin below `bin` go left.
+/// A chosen split: records whose centre falls in a bin below `bin` go left.
 struct Split {
     axis: usize,
     start: f64,
@@ -143,17 +160,43 @@ struct Split {
 }
 
 impl Split {
-    fn bin_of(&self, b: &Aabb) -> usize {
-        self.bin_of_centre(centre(b))
-    }
-
-    fn bin_of_centre(&self, c: DVec3) -> usize {
-        (((c[self.axis] - self.start) * self.scale) as usize).min(BINS - 1)
+    fn bin_of(&self, centre: DVec3) -> usize {
+        (((centre[self.axis] - self.start) * self.scale) as usize).min(BINS - 1)
     }
 }
 
-/// The SAH-best split of `boxes` along `axis`, if splitting beats a leaf.
-fn best_split(boxes: &[(u32, Aabb)], extent: Extent, axis: usize) -> Option<Split> {
+/// The extents and counts of the records in each bin.
+type Bins = [(Extent, usize); BINS];
+
+const EMPTY_BINS: Bins = [(Extent::EMPTY, 0); BINS];
+
+fn merge_bins(mut a: Bins, b: &Bins) -> Bins {
+    for (x, y) in a.iter_mut().zip(b) {
+        *x = (x.0.merge(y.0), x.1 + y.1);
+    }
+    a
+}
+
+/// The bins of `records`, filled from `SETS` sets in turn. Neighbours in a file are usually
+/// neighbours in space and fall in the same bin: with one set, each update of a large node
+/// would wait for the one before it. Small nodes use one set (more would cost more to clear
+/// and merge than they save).
+fn fill<const SETS: usize>(records: &[Record], split: &Split) -> Bins {
+    let mut sets = [EMPTY_BINS; SETS];
+    for group in records.chunks(SETS) {
+        for (bins, r) in sets.iter_mut().zip(group) {
+            let bin = &mut bins[split.bin_of(r.centre)];
+            *bin = (bin.0.add(r), bin.1 + 1);
+        }
+    }
+    sets.iter().fold(EMPTY_BINS, merge_bins)
+}
+
+/// Nodes with at least this many records are binned from several sets.
+const SEVERAL_SETS: usize = 256;
+
+/// The SAH-best split of `records` along `axis`, if splitting beats a leaf.
+fn best_split(records: &[Record], extent: Extent, axis: usize) -> Option<Split> {
     let start = extent.centroids.min[axis];
     let scale = BINS as f64 / (extent.centroids.max[axis] - start);
     let mut split = Split {
@@ -164,32 +207,19 @@ fn best_split(boxes: &[(u32, Aabb)], extent: Extent, axis: usize) -> Option<Spli
         left: Extent::EMPTY,
         right: Extent::EMPTY,
     };
-    let fill = |chunk: &[(u32, Aabb)]| {
-        let mut bins = [(Extent::EMPTY, 0usize); BINS];
-        for (_, b) in chunk {
-            let c = centre(b);
-            let bin = &mut bins[split.bin_of_centre(c)];
-            bin.0 = bin.0.add_centred(b, c);
-            bin.1 += 1;
-        }
-        bins
-    };
-    // The top levels hold most of the boxes: bin them on every core.
-    let bins = if boxes.len() >= 4 * PARALLEL_BIN_CHUNK {
-        boxes.par_chunks(PARALLEL_BIN_CHUNK).map(fill).reduce(
-            || [(Extent::EMPTY, 0usize); BINS],
-            |mut a, b| {
-                for (x, y) in a.iter_mut().zip(b) {
-                    *x = (x.0.merge(y.0), x.1 + y.1);
-                }
-                a
-            },
-        )
+    // The top levels hold most of the records: bin them on every core.
+    let bins = if records.len() >= 4 * PARALLEL_BIN_CHUNK {
+        records
+            .par_chunks(PARALLEL_BIN_CHUNK)
+            .map(|chunk| fill::<4>(chunk, &split))
+            .reduce(|| EMPTY_BINS, |a, b| merge_bins(a, &b))
+    } else if records.len() >= SEVERAL_SETS {
+        fill::<4>(records, &split)
     } else {
-        fill(boxes)
+        fill::<1>(records, &split)
     };
     // Extents and counts left of each boundary, then sweep from the right for the cost.
-    let mut left = [(Extent::EMPTY, 0usize); BINS];
+    let mut left = EMPTY_BINS;
     for i in 1..BINS {
         left[i] = (
             left[i - 1].0.merge(bins[i - 1].0),
@@ -213,7 +243,7 @@ fn best_split(boxes: &[(u32, Aabb)], extent: Extent, axis: usize) -> Option<Spli
     }
     let (cost, bin, right) = best?;
     // Splitting pays if its expected work is below testing every object here.
-    if cost >= extent.bounds.area() * boxes.len() as f64 {
+    if cost >= extent.bounds.area() * records.len() as f64 {
         return None;
     }
     split.bin = bin;
