@@ -180,4 +180,19 @@ fn objects_read_in_batches_keep_file_order_and_the_first_error() {
             "{err}"
         );
     }
+    // A bad object in the first batch is reported before a malformed tag that the scanner
+    // meets in a later batch, while the first is still being read.
+    let err = error(&format!(
+        "<scene>\n<sphere radius=\"-1\" colour=\"#FFFFFF\"/>\n{spheres}{spheres}\
+         <sphere colour=\"#FFFFFF\" <\n</scene>"
+    ));
+    assert!(
+        err.starts_with("test.xml:2:") && err.contains("radius"),
+        "{err}"
+    );
+    // Without it, the malformed tag is the error.
+    let err = error(&format!(
+        "<scene>\n{spheres}{spheres}<sphere colour=\"#FFFFFF\" <\n</scene>"
+    ));
+    assert!(err.contains("not well-formed"), "{err}");
 }
