@@ -73,14 +73,17 @@ impl Accelerator {
                 Shape::Sphere { .. } => None,
             })
             .collect();
+        // A record per object, written straight into place; then each plane's slot is given
+        // to the last record (planes from the last down, so the record moved is a sphere's).
+        // The records' order changes no answer, only the order within leaves.
         let mut records: Vec<Record> = objects
             .par_iter()
             .enumerate()
-            .filter_map(|(i, o)| match o.shape {
-                Shape::Sphere { centre, radius } => Some(Record::sphere(i as u32, centre, radius)),
-                Shape::Plane { .. } => None,
-            })
+            .map(|(i, o)| Record::of(i as u32, &o.shape))
             .collect();
+        for &(i, _) in unbounded.iter().rev() {
+            records.swap_remove(i);
+        }
         let mut accel = Accelerator {
             nodes: Vec::with_capacity(2 * records.len() / MAX_LEAF + 1),
             items: Vec::new(),

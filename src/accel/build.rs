@@ -5,6 +5,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use super::aabb::{cube, sphere_half_side, Aabb};
+use crate::geometry::Shape;
 
 /// Leaves hold at most this many objects unless their centres coincide.
 pub(super) const MAX_LEAF: usize = 8;
@@ -24,12 +25,22 @@ pub(super) struct Record {
 }
 
 impl Record {
-    pub(super) fn sphere(object: u32, centre: DVec3, radius: f64) -> Record {
-        Record {
-            centre,
-            radius,
-            half_side: sphere_half_side(centre, radius),
-            object,
+    /// The record of object number `object`; a plane's is empty (no box), to be removed before
+    /// the build.
+    pub(super) fn of(object: u32, shape: &Shape) -> Record {
+        match *shape {
+            Shape::Sphere { centre, radius } => Record {
+                centre,
+                radius,
+                half_side: sphere_half_side(centre, radius),
+                object,
+            },
+            Shape::Plane { .. } => Record {
+                centre: DVec3::NAN,
+                radius: f64::NAN,
+                half_side: f64::NAN,
+                object,
+            },
         }
     }
 
