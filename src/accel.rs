@@ -13,12 +13,14 @@ use smallvec::SmallVec;
 
 mod aabb;
 mod build;
+mod flatten;
 mod margin;
 #[cfg(test)]
 mod tests;
 
 use aabb::Aabb;
-use build::{build, Extent, Record, Subtree, SubtreeKind, MAX_LEAF, PARALLEL_BIN_CHUNK};
+use build::{build, Extent, Record, PARALLEL_BIN_CHUNK};
+use flatten::flatten;
 use margin::{near_zone, RayMargin};
 
 use crate::geometry::{self, sphere_hit, Hit, Ray, Shape, SphereTerms};
@@ -84,15 +86,14 @@ impl Accelerator {
         for &(i, _) in unbounded.iter().rev() {
             records.swap_remove(i);
         }
-        let mut accel = Accelerator {
-            nodes: Vec::with_capacity(2 * records.len() / MAX_LEAF + 1),
-            items: Vec::new(),
-            spheres: Vec::new(),
-            unbounded,
-            near_zone: Aabb::EMPTY,
-        };
         if records.is_empty() {
-            return accel;
+            return Accelerator {
+                nodes: Vec::new(),
+                items: Vec::new(),
+                spheres: Vec::new(),
+                unbounded,
+                near_zone: Aabb::EMPTY,
+            };
         }
         let extent = records
             .par_chunks(PARALLEL_BIN_CHUNK)
@@ -100,47 +101,15 @@ impl Accelerator {
             .reduce(|| Extent::EMPTY, Extent::merge);
         let tree = build(&mut records, 0, extent);
         let (near_zone, margin) = near_zone(extent.bounds);
-        accel.near_zone = near_zone;
-        accel.items = records.par_iter().map(|r| r.object).collect();
-        accel.spheres = records
-            .par_iter()
-            .map(|r| (r.centre, r.radius * r.radius))
-            .collect();
-        accel.nodes.push(Node {
-            bounds: Aabb::EMPTY,
-            first: 0,
-            count: 0,
-        });
-        accel.fill(0, tree, margin);
-        accel
-    }
-
-    /// Writes `tree` into the already reserved node `index`, its nodes depth first; the two
-    /// children of a node sit next to each other, so a node needs only the first's index.
-    /// Every box is stored grown by `margin`, the near zone's share of the per-ray margin.
-    fn fill(&mut self, index: usize, tree: Subtree, margin: f64) {
-        self.nodes[index].bounds = Aabb {
-            min: tree.bounds.min - DVec3::splat(margin),
-            max: tree.bounds.max + DVec3::splat(margin),
-        };
-        match tree.kind {
-            SubtreeKind::Leaf { first, count } => {
-                self.nodes[index].first = first as u32;
-                self.nodes[index].count = count as u32;
-            }
-            SubtreeKind::Split(left, right) => {
-                let children = self.nodes.len();
-                for _ in 0..2 {
-                    self.nodes.push(Node {
-                        bounds: Aabb::EMPTY,
-                        first: 0,
-                        count: 0,
-                    });
-                }
-                self.nodes[index].first = children as u32;
-                self.fill(children, *left, margin);
-                self.fill(children + 1, *right, margin);
-            }
+        Accelerator {
+            nodes: flatten(tree, margin),
+            items: records.par_iter().map(|r| r.object).collect(),
+            spheres: records
+                .par_iter()
+                .map(|r| (r.centre, r.radius * r.radius))
+                .collect(),
+            unbounded,
+            near_zone,
         }
     }
 

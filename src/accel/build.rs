@@ -53,6 +53,8 @@ impl Record {
 pub(super) struct Subtree {
     pub(super) bounds: Aabb,
     pub(super) kind: SubtreeKind,
+    /// Nodes in it, itself included: where each part goes in the flat array.
+    pub(super) nodes: usize,
 }
 
 pub(super) enum SubtreeKind {
@@ -125,6 +127,7 @@ pub(super) fn build(records: &mut [Record], offset: usize, extent: Extent) -> Su
                 first: offset,
                 count: records.len(),
             },
+            nodes: 1,
         };
     };
     let left = partition(records, &split);
@@ -143,6 +146,7 @@ pub(super) fn build(records: &mut [Record], offset: usize, extent: Extent) -> Su
     };
     Subtree {
         bounds: extent.bounds,
+        nodes: 1 + l.nodes + r.nodes,
         kind: SubtreeKind::Split(Box::new(l), Box::new(r)),
     }
 }

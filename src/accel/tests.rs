@@ -232,3 +232,31 @@ fn builds_a_real_hierarchy() {
     assert!(leaves.len() > 5000 / 8, "{} leaves", leaves.len());
     assert!(leaves.iter().all(|n| n.count <= 16));
 }
+
+#[test]
+fn the_hierarchy_is_the_same_for_any_thread_count() {
+    // Large enough for the parallel paths (binning in chunks, subtrees and node writing on
+    // several threads), with planes scattered through the file.
+    let mut objects = scene(4 * build::PARALLEL_BIN_CHUNK + 5000, 11);
+    let plane = objects[5].clone();
+    for i in [0, 17, 40_000, objects.len() - 1] {
+        objects.insert(i, plane.clone());
+    }
+    let on = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("a thread pool")
+            .install(|| Accelerator::build(&objects))
+    };
+    let one = on(1);
+    assert_eq!(one, on(3));
+    // Every sphere is in exactly one leaf, and only spheres are.
+    let mut items: Vec<usize> = one.items.iter().map(|&i| i as usize).collect();
+    items.sort_unstable();
+    let spheres: Vec<usize> = (0..objects.len())
+        .filter(|&i| matches!(objects[i].shape, Shape::Sphere { .. }))
+        .collect();
+    assert_eq!(items, spheres);
+    assert_eq!(one.unbounded.len(), 5);
+}
