@@ -37,7 +37,8 @@ pub struct StoredChannel {
 /// Packs rows `rows` of `strip` (strip-relative) in OpenEXR's uncompressed block layout:
 /// line by line, and within a line each stored channel's samples in turn, little-endian.
 /// Channel by channel within a line, so that each inner loop writes one run of samples of one
-/// type (a line of the film is a few hundred KiB at most and stays in cache meanwhile).
+/// type (a line of the film is a few hundred KiB at most and stays in cache meanwhile); the
+/// film is walked pixel by pixel, which compiles to a plain strided load per sample.
 pub fn pack(strip: &Film, rows: std::ops::Range<u32>, stored: &[StoredChannel]) -> Vec<u8> {
     let width = strip.width as usize;
     let channels = strip.channel_count();
@@ -50,17 +51,15 @@ pub fn pack(strip: &Film, rows: std::ops::Range<u32>, stored: &[StoredChannel]) 
         for channel in stored {
             let (samples, tail) = rest.split_at_mut(width * sample_bytes(channel));
             rest = tail;
-            let values = line
-                .iter()
-                .skip(channel.film_index)
-                .step_by(channels.max(1));
+            let c = channel.film_index;
+            let values = line.chunks_exact(channels.max(1)).map(|pixel| pixel[c]);
             if channel.half {
-                for (o, &v) in samples.chunks_exact_mut(2).zip(values) {
+                for (o, v) in samples.chunks_exact_mut(2).zip(values) {
                     let h = f16::from_f32(v.clamp(-HALF_MAX, HALF_MAX));
                     o.copy_from_slice(&h.to_le_bytes());
                 }
             } else {
-                for (o, &v) in samples.chunks_exact_mut(4).zip(values) {
+                for (o, v) in samples.chunks_exact_mut(4).zip(values) {
                     o.copy_from_slice(&v.to_le_bytes());
                 }
             }
