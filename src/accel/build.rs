@@ -192,23 +192,15 @@ fn merge_bins(mut a: Bins, b: &Bins) -> Bins {
     a
 }
 
-/// The bins of `records`, filled from `SETS` sets in turn. Neighbours in a file are usually
-/// neighbours in space and fall in the same bin: with one set, each update of a large node
-/// would wait for the one before it. Small nodes use one set (more would cost more to clear
-/// and merge than they save).
-fn fill<const SETS: usize>(records: &[Record], split: &Split) -> Bins {
-    let mut sets = [EMPTY_BINS; SETS];
-    for group in records.chunks(SETS) {
-        for (bins, r) in sets.iter_mut().zip(group) {
-            let bin = &mut bins[split.bin_of(r.centre)];
-            *bin = (bin.0.add(r), bin.1 + 1);
-        }
+/// The bins of `records`.
+fn fill(records: &[Record], split: &Split) -> Bins {
+    let mut bins = EMPTY_BINS;
+    for r in records {
+        let bin = &mut bins[split.bin_of(r.centre)];
+        *bin = (bin.0.add(r), bin.1 + 1);
     }
-    sets.iter().fold(EMPTY_BINS, merge_bins)
+    bins
 }
-
-/// Nodes with at least this many records are binned from several sets.
-const SEVERAL_SETS: usize = 256;
 
 /// The SAH-best split of `records` along `axis`, if splitting beats a leaf.
 fn best_split(records: &[Record], extent: Extent, axis: usize) -> Option<Split> {
@@ -226,12 +218,10 @@ fn best_split(records: &[Record], extent: Extent, axis: usize) -> Option<Split> 
     let bins = if records.len() >= 4 * PARALLEL_BIN_CHUNK {
         records
             .par_chunks(PARALLEL_BIN_CHUNK)
-            .map(|chunk| fill::<4>(chunk, &split))
+            .map(|chunk| fill(chunk, &split))
             .reduce(|| EMPTY_BINS, |a, b| merge_bins(a, &b))
-    } else if records.len() >= SEVERAL_SETS {
-        fill::<4>(records, &split)
     } else {
-        fill::<1>(records, &split)
+        fill(records, &split)
     };
     // Extents and counts left of each boundary, then sweep from the right for the cost.
     let mut left = EMPTY_BINS;
