@@ -84,17 +84,20 @@ pub(super) fn read_attributes<'e>(
                 ),
             ));
         }
-        let value = attr
-            .normalized_value(quick_xml::XmlVersion::Implicit1_0)
-            .map_err(|err| {
-                source.error_at(
-                    offset,
-                    format!(
-                        "`{name}` has an entity or character reference that scenes do not \
+        let value = if !needs_normalising(&attr.value) {
+            attr.value
+        } else {
+            attr.normalized_value(quick_xml::XmlVersion::Implicit1_0)
+                .map_err(|err| {
+                    source.error_at(
+                        offset,
+                        format!(
+                            "`{name}` has an entity or character reference that scenes do not \
                              expand ({err}); only &lt; &gt; &amp; &quot; &apos; and &#...; are"
-                    ),
-                )
-            })?;
+                        ),
+                    )
+                })?
+        };
         values[key as usize] = Some(Attribute { value, offset });
     }
     Ok(Attributes {
@@ -102,6 +105,24 @@ pub(super) fn read_attributes<'e>(
         element,
         values,
     })
+}
+
+/// Whether XML 1.0's attribute-value normalisation would change `raw`: only tabs, line ends
+/// and references (`&...;`) are changed (XML 1.0, 3.3.3). Checking first spares nearly every
+/// value the library's pass, which a million-sphere scene would make five million times.
+pub(super) fn needs_normalising(raw: &str) -> bool {
+    raw.bytes()
+        .any(|b| matches!(b, b'\t' | b'\r' | b'\n' | b'&'))
+}
+
+/// `text` without leading and trailing whitespace; the common case, a value starting and
+/// ending with a visible ASCII character, is decided from two bytes.
+pub(super) fn trimmed(text: &str) -> &str {
+    let bytes = text.as_bytes();
+    match (bytes.first(), bytes.last()) {
+        (Some(first), Some(last)) if first.is_ascii_graphic() && last.is_ascii_graphic() => text,
+        _ => text.trim(),
+    }
 }
 
 pub(super) struct Attribute<'e> {
@@ -134,7 +155,7 @@ impl<'e> Attributes<'e> {
             return Ok(default);
         };
         let name = key.name();
-        match attr.value.trim().parse::<f64>() {
+        match trimmed(&attr.value).parse::<f64>() {
             Ok(v) if v.is_finite() => Ok(v),
             Ok(_) => Err(self.error(
                 key,
@@ -200,7 +221,7 @@ impl<'e> Attributes<'e> {
                 ),
             ));
         };
-        parse_colour(attr.value.trim()).ok_or_else(|| {
+        parse_colour(trimmed(&attr.value)).ok_or_else(|| {
             self.error(
                 Key::Colour,
                 format!(

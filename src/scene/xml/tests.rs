@@ -1,6 +1,6 @@
 //! The loader against every element, default and error class.
 
-use super::attributes::parse_colour;
+use super::attributes::{needs_normalising, parse_colour, trimmed};
 use super::*;
 use crate::geometry::Shape;
 use crate::scene::Material;
@@ -195,4 +195,44 @@ fn objects_read_in_batches_keep_file_order_and_the_first_error() {
         "<scene>\n{spheres}{spheres}<sphere colour=\"#FFFFFF\" <\n</scene>"
     ));
     assert!(err.contains("not well-formed"), "{err}");
+}
+
+#[test]
+fn values_are_trimmed_and_normalised_as_the_library_does() {
+    for text in [
+        "",
+        " ",
+        "1.5",
+        " 1.5",
+        "1.5 ",
+        "\u{a0}1.5",
+        "1.5\u{2003}",
+        "x",
+        "\t-2\n",
+        "é",
+        " é ",
+    ] {
+        assert_eq!(trimmed(text), text.trim(), "{text:?}");
+    }
+    // Exactly the values that XML 1.0 normalisation would change need it.
+    for (raw, needs) in [
+        ("1.5", false),
+        ("#FFFFFF", false),
+        ("a b", false),
+        ("1\t5", true),
+        ("1\r\n", true),
+        ("\n", true),
+        ("&lt;", true),
+        ("&#x31;", true),
+    ] {
+        assert_eq!(needs_normalising(raw), needs, "{raw:?}");
+    }
+    // Values with tabs, line ends and references read as the library normalises them.
+    let scene =
+        parse("<scene><sphere x=\"&#x31;\" y=\"\t2\n\" z=\"\r\n3\" colour=\"#FFFFFF\"/></scene>")
+            .expect("valid");
+    let Shape::Sphere { centre, .. } = scene.objects[0].shape else {
+        panic!("a sphere")
+    };
+    assert_eq!(centre, DVec3::new(1.0, 2.0, 3.0));
 }
