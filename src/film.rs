@@ -92,10 +92,8 @@ impl Film {
 
 /// Sums the samples of one pixel, then writes their reduction into the film's storage.
 pub struct PixelAccumulator {
-    /// Each layer's quantity, where its channels start, how many there are, and whether they
-    /// are averaged (else the sample nearest the pixel centre is kept): looked up once, not
-    /// per sample.
-    slots: Vec<(Quantity, usize, usize, bool)>,
+    /// Each layer's place in the sums, looked up once, not per sample.
+    slots: Vec<Slot>,
     /// Per channel, whether it is averaged over the samples (the slots' flag, flattened).
     averaged: Vec<bool>,
     /// Per channel, the zero its sum starts from: +0.0 for a mean (so that a sum of -0.0
@@ -106,26 +104,37 @@ pub struct PixelAccumulator {
     samples: u32,
 }
 
+/// One layer's channels in a pixel's sums.
+#[derive(Debug, Clone, Copy)]
+struct Slot {
+    quantity: Quantity,
+    /// Where its channels start, and how many there are.
+    start: usize,
+    len: usize,
+    /// Averaged over the samples; else the sample nearest the pixel centre is kept.
+    mean: bool,
+}
+
 impl PixelAccumulator {
     pub fn new(layers: &[Layer], channel_count: usize) -> Self {
         let mut start = 0;
         let slots = layers
             .iter()
             .map(|layer| {
-                let q = layer.quantity;
-                let slot = (
-                    q,
+                let quantity = layer.quantity;
+                let slot = Slot {
+                    quantity,
                     start,
-                    q.channels().len(),
-                    q.reduction() == Reduction::Mean,
-                );
-                start += slot.2;
+                    len: quantity.channels().len(),
+                    mean: quantity.reduction() == Reduction::Mean,
+                };
+                start += slot.len;
                 slot
             })
             .collect::<Vec<_>>();
         let averaged: Vec<bool> = slots
             .iter()
-            .flat_map(|&(_, _, len, mean)| std::iter::repeat_n(mean, len))
+            .flat_map(|slot| std::iter::repeat_n(slot.mean, slot.len))
             .collect();
         let zero = averaged
             .iter()
@@ -149,7 +158,13 @@ impl PixelAccumulator {
         self.beauty += sample.beauty;
         let first = self.samples == 0;
         self.samples += 1;
-        for &(quantity, start, len, mean) in &self.slots {
+        for &Slot {
+            quantity,
+            start,
+            len,
+            mean,
+        } in &self.slots
+        {
             let sums = &mut self.sums[start..start + len];
             if first || (nearest_centre && !mean) {
                 quantity.values(sample, sums);

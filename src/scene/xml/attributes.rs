@@ -84,9 +84,7 @@ pub(super) fn read_attributes<'e>(
                 ),
             ));
         }
-        let value = if !needs_normalising(&attr.value) {
-            attr.value
-        } else {
+        let value = if needs_normalising(&attr.value) {
             attr.normalized_value(quick_xml::XmlVersion::Implicit1_0)
                 .map_err(|err| {
                     source.error_at(
@@ -97,6 +95,8 @@ pub(super) fn read_attributes<'e>(
                         ),
                     )
                 })?
+        } else {
+            attr.value
         };
         values[key as usize] = Some(Attribute { value, offset });
     }

@@ -90,8 +90,13 @@ impl SceneBuilder {
     }
 }
 
+/// Whether an element named `name` counts towards `MAX_ELEMENTS`: objects and lights.
+pub(super) fn is_counted(name: &str) -> bool {
+    is_object(name) || name == "point-light"
+}
+
 /// Whether an element named `name` is an object (`object` reads it).
-pub(super) fn is_object(name: &str) -> bool {
+fn is_object(name: &str) -> bool {
     matches!(name, "sphere" | "plane")
 }
 

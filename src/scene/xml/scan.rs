@@ -6,7 +6,7 @@ use quick_xml::events::{BytesStart, Event};
 use quick_xml::Reader;
 
 use super::attributes::read_attributes;
-use super::elements::is_object;
+use super::elements::is_counted;
 use super::source::{shown, Source};
 use super::MAX_ELEMENTS;
 use crate::error::{Error, Result};
@@ -160,7 +160,7 @@ impl<'a> Scanner<'a> {
                         ),
                     ));
                 }
-                if is_object(name) || name == "point-light" {
+                if is_counted(name) {
                     self.counted += 1;
                 }
                 children.push(Child { tag: e, offset });
