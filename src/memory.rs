@@ -11,8 +11,9 @@ use crate::error::{Error, Result};
 
 /// Bytes a render of this size needs at its peak, streamed in strips of `strip_rows` rows:
 /// two strips of f64 beauty and f32 channels (one rendering, one being written), the EXR
-/// blocks of two strips (one compressing in the background while the next is packed: packed,
-/// predicted and compressed copies, about six copies of a strip's f32 values in all) and its
+/// blocks of two strips (one compressing in the background while the next is packed: packed
+/// and predicted copies, the compressed bytes written over the packed ones; six copies of a
+/// strip's f32 values are counted, leaving the allocator some slack) and its
 /// offset table, and the PNG's display values and bytes for a strip. The image's height only
 /// adds the offset table.
 pub fn render_bytes(width: u32, height: u32, channels: usize, exr: bool, strip_rows: u32) -> u64 {

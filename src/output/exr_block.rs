@@ -130,9 +130,10 @@ pub fn pack_planes(image: &FlatImage, rows: std::ops::Range<u32>) -> Vec<u8> {
 fn zip(mut packed: Vec<u8>) -> Vec<u8> {
     let predicted = predict(&packed);
     // The packed bytes are needed again only if the block does not shrink, and then they are
-    // recovered from the predicted ones: so their buffer takes the compressed bytes, and a
-    // block fills two fresh buffers instead of three (every fresh page costs a fault: this
-    // took a third of the system time off a tick2 full-AOV run, and 5 MiB off its peak).
+    // recovered from the predicted ones: so their buffer takes the compressed bytes. With the
+    // predictor working in place, a block fills two fresh buffers instead of four (every
+    // fresh page costs a fault: this took a third of the system time off a tick2 full-AOV
+    // run, and 5 MiB off its peak).
     let config = zlib_rs::DeflateConfig::new(ZIP_LEVEL);
     let (compressed, code) = zlib_rs::compress_slice(&mut packed, &predicted, config);
     let length = compressed.len();
