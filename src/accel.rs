@@ -101,13 +101,14 @@ impl Accelerator {
             .reduce(|| Extent::EMPTY, Extent::merge);
         let tree = build(&mut records, 0, extent);
         let (near_zone, margin) = near_zone(extent.bounds);
+        let (items, spheres) = records
+            .par_iter()
+            .map(|r| (r.object, (r.centre, r.radius * r.radius)))
+            .unzip();
         Accelerator {
             nodes: flatten(tree, margin),
-            items: records.par_iter().map(|r| r.object).collect(),
-            spheres: records
-                .par_iter()
-                .map(|r| (r.centre, r.radius * r.radius))
-                .collect(),
+            items,
+            spheres,
             unbounded,
             near_zone,
         }

@@ -31,6 +31,14 @@ impl Aabb {
         }
     }
 
+    /// The box moved out by `by` on every side.
+    pub(super) fn grown(self, by: f64) -> Aabb {
+        Aabb {
+            min: self.min - DVec3::splat(by),
+            max: self.max + DVec3::splat(by),
+        }
+    }
+
     pub(super) fn contains(self, p: DVec3) -> bool {
         (self.min.x <= p.x && p.x <= self.max.x)
             && (self.min.y <= p.y && p.y <= self.max.y)
@@ -68,9 +76,10 @@ pub(super) fn sphere_half_side(centre: DVec3, radius: f64) -> f64 {
 /// The box of half side `half_side` around `centre`.
 pub(super) fn cube(centre: DVec3, half_side: f64) -> Aabb {
     Aabb {
-        min: centre - DVec3::splat(half_side),
-        max: centre + DVec3::splat(half_side),
+        min: centre,
+        max: centre,
     }
+    .grown(half_side)
 }
 
 /// 2^-40: relative slack for storing a box's corners in f64 (whose rounding is 2^-53).

@@ -1,8 +1,6 @@
 //! The built tree -> the node array the searches walk: depth first, the two children of a node
 //! side by side (so a node needs only the first's index), written on every core.
 
-use glam::DVec3;
-
 use super::aabb::Aabb;
 use super::build::{Subtree, SubtreeKind};
 use super::Node;
@@ -53,10 +51,7 @@ fn write_pair(slots: &mut [Node], at: usize, left: Subtree, right: Subtree, marg
 
 fn node(bounds: &Aabb, margin: f64) -> Node {
     Node {
-        bounds: Aabb {
-            min: bounds.min - DVec3::splat(margin),
-            max: bounds.max + DVec3::splat(margin),
-        },
+        bounds: bounds.grown(margin),
         first: 0,
         count: 0,
     }

@@ -85,10 +85,7 @@ impl RayMargin {
 pub(super) fn near_zone(root: Aabb) -> (Aabb, f64) {
     let root = root.grow_point(DVec3::ZERO);
     let side = (root.max - root.min).max_element();
-    let zone = Aabb {
-        min: root.min - DVec3::splat(side),
-        max: root.max + DVec3::splat(side),
-    };
+    let zone = root.grown(side);
     let size = zone.min.abs().max(zone.max.abs()).max_element();
     let margin = 6.0 * side * CONDITIONING_BOUND + size * REPRESENTATION_SLACK;
     (zone, margin)

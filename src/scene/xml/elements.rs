@@ -6,7 +6,7 @@ use std::collections::HashMap;
 use glam::DVec3;
 use quick_xml::events::BytesStart;
 
-use super::attributes::read_attributes;
+use super::attributes::{read_attributes, trimmed};
 use super::key::Key;
 use super::source::{shown, Source};
 use crate::error::Result;
@@ -184,7 +184,7 @@ impl SceneBuilder {
         let index = self.lights.len();
         let name = match a.get(Key::Name) {
             Some(attr) => {
-                let name = attr.value.trim();
+                let name = trimmed(&attr.value);
                 self.check_light_name(&e.source, name, attr.offset)?;
                 name.to_string()
             }
