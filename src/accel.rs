@@ -1,7 +1,7 @@
 //! Finding the nearest object without testing every object: a bounding volume hierarchy
 //! (binned SAH) over the bounded shapes, with unbounded planes tested one by one.
 //!
-//! It must give exactly the brute-force answer of `geometry::closest_hit`, including ties:
+//! It must give exactly the brute-force answer of `model::search::closest_hit`, including ties:
 //! the same intersection code runs on every candidate, and candidates are ranked by
 //! (distance, file index), which is what "earlier object wins ties" means. A box is only ever
 //! skipped when no sphere in it can be *reported* hit by the brute-force formula, including the
@@ -23,7 +23,8 @@ use build::{build, Extent, Record, PARALLEL_BIN_CHUNK};
 use flatten::flatten;
 use margin::{near_zone, RayMargin};
 
-use crate::geometry::{self, sphere_hit, Hit, Ray, Shape, SphereTerms};
+use crate::geometry::{Hit, Ray, Shape, SphereTerms};
+use crate::model::{search, Model};
 use crate::scene::Object;
 
 /// A shape without bounds (a plane) and its file index.
@@ -125,17 +126,19 @@ impl Accelerator {
         }
     }
 
-    /// The nearest hit along `ray`, exactly as `geometry::closest_hit` finds it over every
-    /// object.
-    pub fn closest_hit(&self, ray: &Ray) -> Option<Hit> {
-        let mut best = geometry::closest_hit(self.unbounded.iter().map(|(i, s)| (*i, s)), ray);
+    /// The nearest hit along `ray` under `model`'s rules, exactly as
+    /// `model::search::closest_hit` finds it over every object. The hierarchy is only correct
+    /// for models it is exact for (`Model::hierarchy_exact`); others use `brute_force`.
+    pub fn closest_hit(&self, model: &impl Model, ray: &Ray) -> Option<Hit> {
+        let unbounded = self.unbounded.iter().map(|(i, s)| (*i, s));
+        let mut best = search::closest_hit(model, unbounded, ray);
         if self.nodes.is_empty() {
             return best;
         }
         let terms = SphereTerms::of(ray);
         // A root that is a leaf (a handful of spheres) needs no box test at all.
         if self.nodes[0].count > 0 {
-            return self.nearest_in_leaf(0..self.items.len(), ray, &terms, best);
+            return self.nearest_in_leaf(model, 0..self.items.len(), ray, &terms, best);
         }
         let prepared = RayMargin::new(ray, self.nodes[0].bounds, self.near_zone);
         let mut stack: SmallVec<[(u32, f64); 64]> = SmallVec::new();
@@ -150,7 +153,7 @@ impl Accelerator {
             let node = self.nodes[index as usize];
             if node.count > 0 {
                 let range = node.first as usize..(node.first + node.count) as usize;
-                best = self.nearest_in_leaf(range, ray, &terms, best);
+                best = self.nearest_in_leaf(model, range, ray, &terms, best);
                 continue;
             }
             let children = [node.first, node.first + 1]
@@ -173,6 +176,7 @@ impl Accelerator {
     /// ties are settled by `nearer`).
     fn nearest_in_leaf(
         &self,
+        model: &impl Model,
         range: std::ops::Range<usize>,
         ray: &Ray,
         terms: &SphereTerms,
@@ -181,7 +185,7 @@ impl Accelerator {
         for (&(centre, radius_squared), &i) in
             self.spheres[range.clone()].iter().zip(&self.items[range])
         {
-            if let Some(distance) = sphere_hit(ray, terms, centre, radius_squared) {
+            if let Some(distance) = model.sphere_root(ray, terms, centre, radius_squared) {
                 let hit = Hit {
                     object: i as usize,
                     distance,
@@ -193,9 +197,9 @@ impl Accelerator {
     }
 
     /// Whether anything lies along `ray` strictly nearer than `max_distance`.
-    pub fn occluded(&self, ray: &Ray, max_distance: f64) -> bool {
+    pub fn occluded(&self, model: &impl Model, ray: &Ray, max_distance: f64) -> bool {
         let unbounded = self.unbounded.iter().map(|(i, s)| (*i, s));
-        if geometry::occluded(unbounded, ray, max_distance) {
+        if search::occluded(model, unbounded, ray, max_distance) {
             return true;
         }
         if self.nodes.is_empty() {
@@ -203,7 +207,9 @@ impl Accelerator {
         }
         let terms = SphereTerms::of(ray);
         let blocks = |&(centre, radius_squared): &(DVec3, f64)| {
-            sphere_hit(ray, &terms, centre, radius_squared).is_some_and(|s| s < max_distance)
+            model
+                .sphere_root(ray, &terms, centre, radius_squared)
+                .is_some_and(|s| s < max_distance)
         };
         if self.nodes[0].count > 0 {
             return self.spheres.iter().any(blocks);

@@ -8,20 +8,19 @@ use glam::DVec3;
 
 use crate::accel::Accelerator;
 use crate::error::{Error, Result};
-use crate::frame::{Frame, FrameSpec};
-use crate::geometry::{self, Ray};
+use crate::frame::{Acceleration, Frame, FrameSpec};
+use crate::geometry::Ray;
+use crate::model::Model;
 use crate::sample::Sample;
 use crate::scene::Scene;
 use crate::trace::observe::{FoldStep, LightRecord, Observer, VertexRecord};
 use crate::trace::{trace_observed, BACKGROUND};
 
-/// A light's terms at a vertex, with the light's name and what shadows it.
+/// A light's terms at a vertex (with what shadows it), and the light's name.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LightTerms {
     pub name: String,
     pub record: LightRecord,
-    /// The nearest object on the shadow ray before the light: (object index, distance).
-    pub occluder: Option<(usize, f64)>,
 }
 
 /// A vertex and its lights.
@@ -57,18 +56,12 @@ struct Recorder<'a> {
 }
 
 impl Observer for Recorder<'_> {
+    const RECORDS_OCCLUDERS: bool = true;
+
     fn light(&mut self, record: LightRecord) {
-        // The brute-force closest hit is the definition of what blocks the shadow ray.
-        let occluder = record.shadow_ray.and_then(|ray| {
-            let shapes = self.scene.objects.iter().map(|o| &o.shape).enumerate();
-            geometry::closest_hit(shapes, &ray)
-                .filter(|hit| hit.distance < record.distance)
-                .map(|hit| (hit.object, hit.distance))
-        });
         self.pending.push(LightTerms {
             name: self.scene.lights[record.light].name.clone(),
             record,
-            occluder,
         });
     }
 
@@ -86,8 +79,15 @@ impl Observer for Recorder<'_> {
     }
 }
 
-/// Explains pixel (x, y) of `scene` rendered as `spec` says (one sample at the pixel centre).
-pub fn explain(scene: &Scene, spec: &FrameSpec, x: u32, y: u32) -> Result<Explanation> {
+/// Explains pixel (x, y) of `scene` rendered as `spec` says (one sample at the pixel centre)
+/// under `model`'s rules: the course's ([`crate::model::Tick`]), or a student's mistakes.
+pub fn explain(
+    model: &impl Model,
+    scene: &Scene,
+    spec: &FrameSpec,
+    x: u32,
+    y: u32,
+) -> Result<Explanation> {
     let frame = Frame::new(scene, spec)?;
     if x >= frame.camera.width || y >= frame.camera.height {
         return Err(Error::Usage(format!(
@@ -95,7 +95,10 @@ pub fn explain(scene: &Scene, spec: &FrameSpec, x: u32, y: u32) -> Result<Explan
             frame.camera.width, frame.camera.height
         )));
     }
-    let accel = Accelerator::build(&scene.objects);
+    let accel = match (frame.acceleration, model.hierarchy_exact()) {
+        (Acceleration::Bvh, true) => Accelerator::build(&scene.objects),
+        _ => Accelerator::brute_force(&scene.objects),
+    };
     let camera_ray = frame.camera.pixel_centre_ray(x, y);
     let mut sample = Sample::empty(scene.lights.len(), frame.trace.bounces);
     let mut recorder = Recorder {
@@ -106,6 +109,7 @@ pub fn explain(scene: &Scene, spec: &FrameSpec, x: u32, y: u32) -> Result<Explan
         fold: Vec::new(),
     };
     trace_observed::<true>(
+        model,
         scene,
         &accel,
         camera_ray,

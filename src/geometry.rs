@@ -107,24 +107,14 @@ pub fn sphere_hit(
     (s > 0.0).then_some(s)
 }
 
-impl Shape {
-    /// Ray parameter of the hit, or `None`.
-    ///
-    /// Spheres use only the near root, and only when it is positive: a ray that starts inside a
-    /// sphere does not hit it (the reference's behaviour, which keeps spheres from shadowing
-    /// their own unlit side). Planes hit from either side.
-    pub fn intersect(&self, ray: &Ray) -> Option<f64> {
-        match *self {
-            Shape::Sphere { centre, radius } => {
-                sphere_hit(ray, &SphereTerms::of(ray), centre, radius * radius)
-            }
-            Shape::Plane { point, normal } => {
-                let s = (point - ray.origin).dot(normal) / ray.direction.dot(normal);
-                (s.is_finite() && s >= 0.0).then_some(s)
-            }
-        }
-    }
+/// The parameter `s = ((Q - O).N) / (D.N)` at which `ray` meets the plane through `point`
+/// with `normal`, before any test: infinite or NaN for a ray parallel to it, negative
+/// behind it (the model decides which hits count).
+pub fn plane_parameter(point: DVec3, normal: DVec3, ray: &Ray) -> f64 {
+    (point - ray.origin).dot(normal) / ray.direction.dot(normal)
+}
 
+impl Shape {
     /// Unit surface normal at a point `p` on the shape.
     pub fn normal_at(&self, p: DVec3) -> DVec3 {
         match *self {
@@ -134,40 +124,11 @@ impl Shape {
     }
 }
 
-/// The brute-force nearest hit along `ray` over `(file index, shape)` pairs given in file
-/// order: the definition of the closest hit (docs/rendering.md). A later shape wins only when
-/// strictly nearer, so ties go to the earlier one (`min_by` keeps the first minimum). The
-/// hierarchy uses this for its unbounded shapes, and the tests as the reference.
-pub fn closest_hit<'a>(
-    shapes: impl IntoIterator<Item = (usize, &'a Shape)>,
-    ray: &Ray,
-) -> Option<Hit> {
-    shapes
-        .into_iter()
-        .filter_map(|(object, shape)| {
-            shape
-                .intersect(ray)
-                .map(|distance| Hit { object, distance })
-        })
-        .min_by(|a, b| a.distance.total_cmp(&b.distance))
-}
-
-/// Whether any of `shapes` lies along `ray` strictly nearer than `max_distance`: the shadow
-/// test. The same answer as `closest_hit(..).distance < max_distance`, but stops at the first
-/// blocker.
-pub fn occluded<'a>(
-    shapes: impl IntoIterator<Item = (usize, &'a Shape)>,
-    ray: &Ray,
-    max_distance: f64,
-) -> bool {
-    shapes
-        .into_iter()
-        .any(|(_, shape)| shape.intersect(ray).is_some_and(|s| s < max_distance))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::search::{closest_hit, intersect};
+    use crate::model::Tick;
 
     fn sphere(centre: DVec3, radius: f64) -> Shape {
         Shape::Sphere { centre, radius }
@@ -181,12 +142,12 @@ mod tests {
     fn sphere_hit_distance_and_normal_match_the_analytic_answer() {
         let s = sphere(DVec3::new(0.0, 0.0, 5.0), 1.0);
         let ray = Ray::new(DVec3::ZERO, DVec3::Z);
-        assert_eq!(s.intersect(&ray), Some(4.0));
+        assert_eq!(intersect(&Tick, &s, &ray), Some(4.0));
         assert_eq!(s.normal_at(ray.at(4.0)), DVec3::new(0.0, 0.0, -1.0));
 
         // Off-axis: the ray y = 0.6 meets the unit sphere at z = 5 - 0.8.
         let ray = Ray::new(DVec3::new(0.0, 0.6, 0.0), DVec3::Z);
-        let hit = s.intersect(&ray).expect("hits");
+        let hit = intersect(&Tick, &s, &ray).expect("hits");
         assert!((hit - 4.2).abs() < 1e-12, "{hit}");
         let n = s.normal_at(ray.at(hit));
         assert!((n - DVec3::new(0.0, 0.6, -0.8)).length() < 1e-12, "{n}");
@@ -196,10 +157,10 @@ mod tests {
     fn sphere_missed_and_behind_gives_no_hit() {
         let s = sphere(DVec3::new(0.0, 0.0, 5.0), 1.0);
         assert_eq!(
-            s.intersect(&Ray::new(DVec3::new(0.0, 1.5, 0.0), DVec3::Z)),
+            intersect(&Tick, &s, &Ray::new(DVec3::new(0.0, 1.5, 0.0), DVec3::Z)),
             None
         );
-        assert_eq!(s.intersect(&Ray::new(DVec3::ZERO, -DVec3::Z)), None);
+        assert_eq!(intersect(&Tick, &s, &Ray::new(DVec3::ZERO, -DVec3::Z)), None);
     }
 
     #[test]
@@ -212,7 +173,7 @@ mod tests {
             DVec3::new(0.3, -0.4, 0.5).normalize(),
         ] {
             assert_eq!(
-                s.intersect(&Ray::new(DVec3::new(0.0, 0.0, 5.2), dir)),
+                intersect(&Tick, &s, &Ray::new(DVec3::new(0.0, 0.0, 5.2), dir)),
                 None,
                 "{dir}"
             );
@@ -224,18 +185,18 @@ mod tests {
         let floor = plane(DVec3::new(0.0, -1.0, 0.0), DVec3::Y);
         // In front, seen from above.
         let down = Ray::new(DVec3::ZERO, DVec3::new(0.0, -1.0, 0.0));
-        assert_eq!(floor.intersect(&down), Some(1.0));
+        assert_eq!(intersect(&Tick, &floor, &down), Some(1.0));
         // Behind the ray.
-        assert_eq!(floor.intersect(&Ray::new(DVec3::ZERO, DVec3::Y)), None);
+        assert_eq!(intersect(&Tick, &floor, &Ray::new(DVec3::ZERO, DVec3::Y)), None);
         // Parallel: D.N = 0 gives an infinite or NaN parameter, never a hit.
-        assert_eq!(floor.intersect(&Ray::new(DVec3::ZERO, DVec3::X)), None);
+        assert_eq!(intersect(&Tick, &floor, &Ray::new(DVec3::ZERO, DVec3::X)), None);
         assert_eq!(
-            floor.intersect(&Ray::new(DVec3::new(0.0, -1.0, 0.0), DVec3::X)),
+            intersect(&Tick, &floor, &Ray::new(DVec3::new(0.0, -1.0, 0.0), DVec3::X)),
             None
         );
         // Seen from behind: still hit, and the normal is not flipped.
         let up = Ray::new(DVec3::new(0.0, -3.0, 0.0), DVec3::Y);
-        assert_eq!(floor.intersect(&up), Some(2.0));
+        assert_eq!(intersect(&Tick, &floor, &up), Some(2.0));
         assert_eq!(floor.normal_at(up.at(2.0)), DVec3::Y);
     }
 
@@ -247,7 +208,7 @@ mod tests {
             plane(DVec3::new(0.0, 0.0, 4.0), DVec3::Z),
         ];
         let hit =
-            closest_hit(shapes.iter().enumerate(), &Ray::new(DVec3::ZERO, DVec3::Z)).expect("hits");
+            closest_hit(&Tick, shapes.iter().enumerate(), &Ray::new(DVec3::ZERO, DVec3::Z)).expect("hits");
         assert_eq!(
             hit,
             Hit {
@@ -264,13 +225,13 @@ mod tests {
         for i in 0..100 {
             let t = i as f64 * 0.173;
             let dir = normalise(DVec3::new(t.sin(), (2.0 * t).cos(), -0.5 - t.cos().abs()));
-            let hit = s.intersect(&Ray::new(DVec3::ZERO, dir));
+            let hit = intersect(&Tick, &s, &Ray::new(DVec3::ZERO, dir));
             let Some(d) = hit else { continue };
             let p = dir * d;
             let n = s.normal_at(p);
             let out = normalise(n + DVec3::new(0.1 * t.cos(), 0.1 * t.sin(), 0.0));
             assert!(
-                closest_hit(shapes.iter().enumerate(), &Ray::offset_from(p, out)).is_none(),
+                closest_hit(&Tick, shapes.iter().enumerate(), &Ray::offset_from(p, out)).is_none(),
                 "ray {i}"
             );
         }

@@ -43,6 +43,8 @@ pub mod input;
 pub mod interrupt;
 pub mod memory;
 pub mod merge;
+pub mod mistakes;
+pub mod model;
 pub mod numbers;
 pub mod openexr;
 pub mod output;

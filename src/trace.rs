@@ -9,9 +9,10 @@ use smallvec::SmallVec;
 use observe::{FoldStep, LightRecord, Observer, Silent, VertexRecord};
 
 use crate::accel::Accelerator;
-use crate::geometry::{divide_by_length, normalise, Ray};
+use crate::geometry::Ray;
+use crate::model::{Model, Tick};
 use crate::sample::{PrimaryHit, Sample};
-use crate::scene::{Material, Scene};
+use crate::scene::{Material, PointLight, Scene};
 
 /// Radiance of every ray that leaves the scene.
 pub const BACKGROUND: DVec3 = DVec3::splat(0.1);
@@ -46,7 +47,7 @@ pub fn trace_into(
     options: TraceOptions,
     sample: &mut Sample,
 ) {
-    trace_observed::<true>(scene, accel, primary, options, sample, &mut Silent);
+    trace_observed::<true>(&Tick, scene, accel, primary, options, sample, &mut Silent);
 }
 
 /// `trace_into` for the beauty alone: the same `sample.beauty` and ray count, bit for bit, and
@@ -58,13 +59,15 @@ pub fn trace_beauty(
     options: TraceOptions,
     sample: &mut Sample,
 ) {
-    trace_observed::<false>(scene, accel, primary, options, sample, &mut Silent);
+    trace_observed::<false>(&Tick, scene, accel, primary, options, sample, &mut Silent);
 }
 
-/// The trace itself, telling `observer` every vertex and light term on the way (`explain`
-/// watches; the render passes `Silent`). With `LAYERS` false the per-effect sums are left out
-/// at compile time.
+/// The trace itself under `model`'s rules, telling `observer` every vertex and light term on
+/// the way (`explain` watches; the render passes `Silent`). With `LAYERS` false the
+/// per-effect sums are left out at compile time. `accel` must be a brute-force one for a
+/// model the hierarchy is not exact for (`Model::hierarchy_exact`).
 pub fn trace_observed<const LAYERS: bool>(
+    model: &impl Model,
     scene: &Scene,
     accel: &Accelerator,
     primary: Ray,
@@ -85,7 +88,7 @@ pub fn trace_observed<const LAYERS: bool>(
     let mut throughput = 1.0;
     for k in 0..=options.bounces {
         sample.rays += 1;
-        let Some(hit) = accel.closest_hit(&ray) else {
+        let Some(hit) = accel.closest_hit(model, &ray) else {
             observer.miss(k, ray);
             if LAYERS {
                 let background = BACKGROUND * throughput;
@@ -106,13 +109,16 @@ pub fn trace_observed<const LAYERS: bool>(
             throughput
         };
         let vertex = Vertex {
+            ray,
             point,
             normal,
             material,
             weight,
             depth: k,
         };
-        let colour = shade::<LAYERS>(scene, accel, &vertex, options.shadows, sample, observer);
+        let (ambient, colour) =
+            shade::<LAYERS, _>(model, scene, accel, &vertex, options.shadows, sample, observer);
+        let spawned = continues.then(|| model.mirror_ray(point, ray.direction, normal));
         observer.vertex(VertexRecord {
             depth: k,
             ray,
@@ -122,7 +128,8 @@ pub fn trace_observed<const LAYERS: bool>(
             normal,
             material: *material,
             weight,
-            continues,
+            spawned,
+            ambient,
             colour,
         });
         if LAYERS {
@@ -137,11 +144,11 @@ pub fn trace_observed<const LAYERS: bool>(
             });
         }
         chain.push((colour, continues.then_some(material.reflectivity)));
-        if !continues {
+        let Some(next) = spawned else {
             break;
-        }
+        };
         throughput *= material.reflectivity;
-        ray = Ray::offset_from(point, mirror_direction(ray.direction, normal));
+        ray = next;
     }
     sample.beauty =
         chain
@@ -150,7 +157,7 @@ pub fn trace_observed<const LAYERS: bool>(
             .rev()
             .fold(far_end, |reflected, (depth, &(colour, r))| {
                 let result = match r {
-                    Some(r) => colour * (1.0 - r) + reflected * r,
+                    Some(r) => model.blend(colour, reflected, r),
                     None => colour,
                 };
                 observer.fold(FoldStep {
@@ -171,13 +178,6 @@ fn bucket(sample: &mut Sample, k: u32) -> &mut DVec3 {
         0 => &mut sample.direct,
         k => &mut sample.reflected_by_bounce[k as usize - 1],
     }
-}
-
-/// The direction a ray along `d` leaves a mirror with normal `n`: `-d` reflected about `n`,
-/// `2 (n . -d) n - (-d)`, normalised as the course does.
-pub fn mirror_direction(d: DVec3, n: DVec3) -> DVec3 {
-    let to_eye = -d;
-    normalise(n * (2.0 * n.dot(to_eye)) - to_eye)
 }
 
 /// `Math.max(0, x)` as Java evaluates it, which the course's reference does for every clamp
@@ -205,6 +205,8 @@ fn phong_power(x: f64, n: f64) -> f64 {
 
 /// A surface point being shaded and how much it counts towards the pixel.
 struct Vertex<'a> {
+    /// The ray that found the point.
+    ray: Ray,
     point: DVec3,
     normal: DVec3,
     material: &'a Material,
@@ -214,86 +216,110 @@ struct Vertex<'a> {
     depth: u32,
 }
 
-/// Phong shading at a vertex, in the course's order (docs/rendering.md, Shading). Returns the
-/// unweighted colour and adds the weighted per-effect terms to `sample`.
-fn shade<const LAYERS: bool>(
+/// One light's terms at a vertex, in the course's order (docs/rendering.md, Shading), and its
+/// shadow test: a pure function of the vertex, the light and `V`. The occluder is found only
+/// for an observer that records it; otherwise the search stops at the first blocker.
+fn light_terms<O: Observer>(
+    model: &impl Model,
+    accel: &Accelerator,
+    vertex: &Vertex,
+    (index, light): (usize, &PointLight),
+    v: DVec3,
+    shadows: bool,
+) -> LightRecord {
+    let Vertex {
+        point: p,
+        normal: n,
+        material: m,
+        ..
+    } = *vertex;
+    let to_light = light.position - p;
+    let d = to_light.length();
+    let illumination = model.illumination(light, d);
+    let l = model.to_light(to_light, d);
+    let n_dot_l = java_max_zero(n.dot(l));
+    let r = model.specular_mirror(n, l, n_dot_l);
+    let diffuse = model.diffuse(m.colour, illumination, m.kd, n_dot_l);
+    let r_dot_v = java_max_zero(r.dot(v));
+    let phong = phong_power(r_dot_v, m.n);
+    let specular = model.specular(illumination, m.ks, phong, m.colour, n_dot_l);
+    let shadow_ray = model.shadow_ray(p, l);
+    let reach = model.shadow_reach(d);
+    let (in_shadow, occluder) = match (shadows, O::RECORDS_OCCLUDERS) {
+        (false, _) => (false, None),
+        (true, true) => {
+            // The nearest hit is before `reach` exactly when something blocks the ray.
+            let hit = accel
+                .closest_hit(model, &shadow_ray)
+                .filter(|hit| hit.distance < reach);
+            (hit.is_some(), hit)
+        }
+        (true, false) => (accel.occluded(model, &shadow_ray, reach), None),
+    };
+    LightRecord {
+        depth: vertex.depth,
+        light: index,
+        distance: d,
+        illumination,
+        to_light: l,
+        n_dot_l,
+        r_dot_v,
+        diffuse,
+        specular,
+        shadow_ray: shadows.then_some(shadow_ray),
+        in_shadow,
+        occluder,
+    }
+}
+
+/// Phong shading at a vertex: the ambient term, then each light's terms added where it is not
+/// in shadow. Returns the (unweighted) ambient term and shaded colour, and adds the weighted
+/// per-effect terms to `sample`.
+fn shade<const LAYERS: bool, O: Observer>(
+    model: &impl Model,
     scene: &Scene,
     accel: &Accelerator,
     vertex: &Vertex,
     shadows: bool,
     sample: &mut Sample,
-    observer: &mut impl Observer,
-) -> DVec3 {
-    let Vertex {
-        point: p,
-        normal: n,
-        material: m,
-        weight,
-        ..
-    } = *vertex;
-    let ambient = scene.ambient * m.colour;
+    observer: &mut O,
+) -> (DVec3, DVec3) {
+    let weight = vertex.weight;
+    let ambient = model.ambient(scene.ambient, vertex.material.colour);
     if LAYERS {
         sample.ambient += ambient * weight;
     }
     let mut colour = ambient;
-    // Towards the camera at the origin, even for reflected rays: the reference does this.
-    let v = normalise(-p);
-    for (index, (light, out)) in scene
-        .lights
-        .iter()
-        .zip(sample.lights.iter_mut())
-        .enumerate()
-    {
-        let to_light = light.position - p;
-        let d = to_light.length();
-        let illumination = light.illumination_at(d);
-        let l = divide_by_length(to_light, d);
-        let n_dot_l = java_max_zero(n.dot(l));
-        // Built from the clamped N.L, as the reference does.
-        let r = n * (2.0 * n_dot_l) - l;
-        let diffuse = ((m.colour * illumination) * m.kd) * n_dot_l;
-        let r_dot_v = java_max_zero(r.dot(v));
-        let specular = (illumination * m.ks) * phong_power(r_dot_v, m.n);
-        let shadow_ray = Ray::offset_from(p, l);
-        let in_shadow = shadows && {
-            sample.rays += 1;
-            accel.occluded(&shadow_ray, d)
-        };
-        observer.light(LightRecord {
-            depth: vertex.depth,
-            light: index,
-            distance: d,
-            illumination,
-            to_light: l,
-            n_dot_l,
-            r_dot_v,
-            diffuse,
-            specular,
-            shadow_ray: shadows.then_some(shadow_ray),
-            in_shadow,
-        });
+    let v = model.view(vertex.point, &vertex.ray);
+    let lights = model.lights(&scene.lights).iter().enumerate();
+    for (light, out) in lights.zip(sample.lights.iter_mut()) {
+        let record = light_terms::<O>(model, accel, vertex, light, v, shadows);
+        sample.rays += u64::from(shadows);
+        let (diffuse, specular) = (record.diffuse, record.specular);
         if LAYERS {
             out.unshadowed += (diffuse + specular) * weight;
             if vertex.depth == 0 {
-                out.occluded_at_primary = in_shadow;
+                out.occluded_at_primary = record.in_shadow;
             }
         }
-        if !in_shadow {
-            colour = (colour + diffuse) + specular;
+        if !record.in_shadow {
+            colour = model.add_light(colour, ambient, diffuse, specular);
             if LAYERS {
                 out.shadowed += (diffuse + specular) * weight;
                 sample.diffuse += diffuse * weight;
                 sample.specular += specular * weight;
             }
         }
+        observer.light(record);
     }
-    colour
+    (ambient, colour)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::Shape;
+    use crate::geometry::{normalise, Shape};
+    use crate::model::mirror_direction;
     use crate::scene::{Object, PointLight};
     use std::f64::consts::PI;
 

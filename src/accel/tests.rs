@@ -3,15 +3,17 @@
 use super::*;
 use crate::geometry::normalise;
 use crate::geometry::Shape;
+use crate::model::Tick;
 use crate::scene::{Material, Object};
 
 /// Brute force over every object, the reference.
 fn closest_hit(objects: &[Object], ray: &Ray) -> Option<Hit> {
-    geometry::closest_hit(objects.iter().map(|o| &o.shape).enumerate(), ray)
+    search::closest_hit(&Tick, objects.iter().map(|o| &o.shape).enumerate(), ray)
 }
 
 fn occluded(objects: &[Object], ray: &Ray, max_distance: f64) -> bool {
-    geometry::occluded(
+    search::occluded(
+        &Tick,
         objects.iter().map(|o| &o.shape).enumerate(),
         ray,
         max_distance,
@@ -84,10 +86,10 @@ fn agrees_with_brute_force_on_random_rays_including_ties() {
             ));
             let ray = Ray::new(origin, direction);
             let expected = closest_hit(&objects, &ray);
-            assert_eq!(accel.closest_hit(&ray), expected);
-            assert_eq!(brute.closest_hit(&ray), expected);
+            assert_eq!(accel.closest_hit(&Tick, &ray), expected);
+            assert_eq!(brute.closest_hit(&Tick, &ray), expected);
             let d = rng.range(0.1, 20.0);
-            assert_eq!(accel.occluded(&ray, d), occluded(&objects, &ray, d));
+            assert_eq!(accel.occluded(&Tick, &ray, d), occluded(&objects, &ray, d));
         }
     }
 }
@@ -147,9 +149,9 @@ fn agrees_with_brute_force_on_long_badly_conditioned_rays() {
     let mut outside = 0;
     for (ray, max_distance) in &cases {
         let expected = closest_hit(&objects, ray);
-        assert_eq!(accel.closest_hit(ray), expected, "{ray:?}");
+        assert_eq!(accel.closest_hit(&Tick, ray), expected, "{ray:?}");
         assert_eq!(
-            accel.occluded(ray, *max_distance),
+            accel.occluded(&Tick, ray, *max_distance),
             occluded(&objects, ray, *max_distance),
             "{ray:?}"
         );
@@ -177,7 +179,7 @@ fn reported_hits_stay_within_the_conditioning_bound() {
             let Shape::Sphere { centre, radius } = object.shape else {
                 unreachable!("only spheres")
             };
-            if let Some(s) = object.shape.intersect(ray) {
+            if let Some(s) = search::intersect(&Tick, &object.shape, ray) {
                 let outside = (ray.at(s) - centre).length() - radius;
                 let scale = (ray.origin - centre).length() + radius;
                 worst = worst.max(outside / scale);
@@ -201,9 +203,9 @@ fn a_single_leaf_hierarchy_keeps_brute_force_ties() {
         panic!("sphere")
     };
     let ray = Ray::new(DVec3::new(centre.x, centre.y, -20.0), DVec3::Z);
-    assert_eq!(accel.closest_hit(&ray), closest_hit(&objects, &ray));
-    assert_eq!(accel.closest_hit(&ray).expect("hits").object, 0);
-    assert_eq!(accel.occluded(&ray, 100.0), occluded(&objects, &ray, 100.0));
+    assert_eq!(accel.closest_hit(&Tick, &ray), closest_hit(&objects, &ray));
+    assert_eq!(accel.closest_hit(&Tick, &ray).expect("hits").object, 0);
+    assert_eq!(accel.occluded(&Tick, &ray, 100.0), occluded(&objects, &ray, 100.0));
 }
 
 #[test]
@@ -214,7 +216,7 @@ fn duplicate_spheres_tie_to_the_first_in_file_order() {
         panic!("sphere")
     };
     let ray = Ray::new(DVec3::new(centre.x, centre.y, -20.0), DVec3::Z);
-    let hit = accel.closest_hit(&ray).expect("hits");
+    let hit = accel.closest_hit(&Tick, &ray).expect("hits");
     assert_eq!(hit, closest_hit(&objects, &ray).expect("hits"));
     assert!(
         hit.object < objects.len() - 1,

@@ -7,13 +7,14 @@ use serde_json::{json, Value};
 use crate::cli::ExplainArgs;
 use crate::error::Result;
 use crate::explain::{explain, vector, Explanation};
+use crate::model::Tick;
 use crate::output::stdout;
 use crate::scene::{self, Scene};
 
 pub fn run(args: &ExplainArgs) -> Result<()> {
     let scene::Input { scene, name, .. } = scene::load_input(args.input.as_deref())?;
     let (x, y) = args.pixel;
-    let e = explain(&scene, &args.frame(), x, y)?;
+    let e = explain(&Tick, &scene, &args.frame(), x, y)?;
     let text = if args.json {
         // serde_json cannot fail to print a Value it built itself.
         serde_json::to_string_pretty(&to_json(&e, &scene)).unwrap_or_default()
@@ -55,19 +56,24 @@ fn tree(e: &Explanation, scene: &Scene, name: &str) -> String {
             m.n,
             m.reflectivity,
             v.weight,
-            if v.continues { " (a mirror: the chain goes on)" } else { "" },
-            vector(scene.ambient * m.colour),
+            if v.spawned.is_some() { " (a mirror: the chain goes on)" } else { "" },
+            vector(v.ambient),
         );
         for light in &vertex.lights {
             let l = &light.record;
-            let shadow = match (&l.shadow_ray, light.occluder) {
+            let shadow = match (&l.shadow_ray, l.occluder) {
                 (None, _) => "shadows off: lit".to_string(),
-                (Some(_), Some((object, s))) => format!(
-                    "shadow ray from P + 0.0001 L: blocked by object {} ({}) at s = {s} < d: in shadow, adds nothing",
-                    object + 1,
-                    kind(scene, object)
+                (Some(ray), Some(hit)) => format!(
+                    "shadow ray from {}: blocked by object {} ({}) at s = {}: in shadow, adds nothing",
+                    vector(ray.origin),
+                    hit.object + 1,
+                    kind(scene, hit.object),
+                    hit.distance
                 ),
-                (Some(_), None) => "shadow ray from P + 0.0001 L: reaches the light: lit".to_string(),
+                (Some(ray), None) => format!(
+                    "shadow ray from {}: reaches the light: lit",
+                    vector(ray.origin)
+                ),
             };
             out += &format!(
                 "  light {}: d = {}, I = {}\n    L = {}, max(0, N.L) = {}, max(0, R.V) = {}\n    diffuse = {}, specular = {}\n    {shadow}\n",
@@ -156,7 +162,8 @@ fn to_json(e: &Explanation, scene: &Scene) -> Value {
                         "specular": array(l.specular),
                         "shadow_tested": l.shadow_ray.is_some(),
                         "in_shadow": l.in_shadow,
-                        "occluder": light.occluder.map(|(o, s)| json!({"object": o + 1, "kind": kind(scene, o), "distance": s})),
+                        "shadow_origin": l.shadow_ray.map(|r| array(r.origin)),
+                        "occluder": l.occluder.map(|h| json!({"object": h.object + 1, "kind": kind(scene, h.object), "distance": h.distance})),
                     })
                 })
                 .collect();
@@ -175,8 +182,9 @@ fn to_json(e: &Explanation, scene: &Scene) -> Value {
                     "reflectivity": v.material.reflectivity,
                 },
                 "weight": v.weight,
-                "continues": v.continues,
-                "ambient": array(scene.ambient * v.material.colour),
+                "continues": v.spawned.is_some(),
+                "reflected_ray": v.spawned.map(|r| json!({"origin": array(r.origin), "direction": array(r.direction)})),
+                "ambient": array(v.ambient),
                 "lights": lights,
                 "colour": array(v.colour),
             })

@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 
-use crate::geometry::Ray;
+use crate::geometry::{Hit, Ray};
 use crate::scene::Material;
 
 /// One surface point of a mirror chain.
@@ -21,8 +21,11 @@ pub struct VertexRecord {
     pub material: Material,
     /// `w_k`: the share of the pixel this vertex's shading makes up.
     pub weight: f64,
-    /// Whether the chain goes on from here (a mirror with bounces left).
-    pub continues: bool,
+    /// The reflected ray as the trace spawned it, where the chain goes on from here (a mirror
+    /// with bounces left).
+    pub spawned: Option<Ray>,
+    /// The ambient term as the trace computed it.
+    pub ambient: DVec3,
     /// The shaded colour (ambient plus every light that is not in shadow).
     pub colour: DVec3,
 }
@@ -41,9 +44,12 @@ pub struct LightRecord {
     pub r_dot_v: f64,
     pub diffuse: DVec3,
     pub specular: DVec3,
-    /// The shadow ray, if shadows are tested, and whether something blocks it.
+    /// The shadow ray as spawned, if shadows are tested, and whether something blocks it.
     pub shadow_ray: Option<Ray>,
     pub in_shadow: bool,
+    /// What blocks it: the nearest hit before the light, for an observer that
+    /// `RECORDS_OCCLUDERS` (else `None`).
+    pub occluder: Option<Hit>,
 }
 
 /// One step of the beauty's fold, far end first: `result = colour * (1 - r) + reflected * r`
@@ -60,6 +66,10 @@ pub struct FoldStep {
 
 /// Receives what `trace` computes; every method does nothing by default.
 pub trait Observer {
+    /// Whether the shadow test should find the nearest occluder (a full closest-hit search)
+    /// instead of stopping at the first one: the same answer, for an observer that shows it.
+    const RECORDS_OCCLUDERS: bool = false;
+
     fn fold(&mut self, _step: FoldStep) {}
     fn light(&mut self, _record: LightRecord) {}
     fn vertex(&mut self, _record: VertexRecord) {}

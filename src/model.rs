@@ -1,0 +1,130 @@
+//! The seam in the tick model (docs/rendering.md): every rule a student's Tick 2 can get wrong
+//! is one method of [`Model`], and the default method *is* the course's rule. `trace`, `shade`
+//! and the hit searches are generic over the model and monomorphised, so [`Tick`] compiles to
+//! the renderer's own code, while [`crate::mistakes::Mistakes`] overrides the rules a
+//! student got wrong (`whitted check`) without a second copy of the shading.
+//!
+//! Mistakes that are options rather than rules (one bounce more or fewer, no shadow rays)
+//! change the frame instead (`Mistakes::frame_spec`).
+
+pub mod search;
+
+use glam::DVec3;
+
+use crate::geometry::{divide_by_length, normalise, plane_parameter, sphere_hit, Ray, SphereTerms};
+use crate::scene::PointLight;
+
+/// The course's rules, one method each. Each default is the rule of docs/rendering.md in its
+/// operation order; an implementation overrides only the rules it changes.
+pub trait Model: Sync {
+    /// Whether the hierarchy's exactness argument (`accel/margin.rs`) covers this model's
+    /// hits: it assumes the near sphere root and planes ahead of the ray. A model that
+    /// accepts other hits is rendered with brute force.
+    fn hierarchy_exact(&self) -> bool {
+        true
+    }
+
+    /// The ray parameter at which `ray` hits the sphere, if it does: the near root, if > 0.
+    fn sphere_root(
+        &self,
+        ray: &Ray,
+        terms: &SphereTerms,
+        centre: DVec3,
+        radius_squared: f64,
+    ) -> Option<f64> {
+        sphere_hit(ray, terms, centre, radius_squared)
+    }
+
+    /// Whether a plane hit at parameter `s` counts: finite and not behind the ray.
+    fn plane_accepts(&self, s: f64) -> bool {
+        s.is_finite() && s >= 0.0
+    }
+
+    /// The lights that shade a point: all of them, in file order.
+    fn lights<'a>(&self, lights: &'a [PointLight]) -> &'a [PointLight] {
+        lights
+    }
+
+    /// `I` at distance `d`: `c * (k / (4 pi d^2))`.
+    fn illumination(&self, light: &PointLight, d: f64) -> DVec3 {
+        light.illumination_at(d)
+    }
+
+    /// `L` from `X - P` and its length `d`: normalised.
+    fn to_light(&self, to_light: DVec3, d: f64) -> DVec3 {
+        divide_by_length(to_light, d)
+    }
+
+    /// `V` at `p` for a ray along `ray`: towards the camera at the origin, even for reflected
+    /// rays (the reference does this).
+    fn view(&self, p: DVec3, _ray: &Ray) -> DVec3 {
+        normalise(-p)
+    }
+
+    /// `R`, the mirror of `L` for the specular term, from the clamped `N.L`.
+    fn specular_mirror(&self, n: DVec3, l: DVec3, n_dot_l: f64) -> DVec3 {
+        n * (2.0 * n_dot_l) - l
+    }
+
+    /// The ambient term `I_a * C`.
+    fn ambient(&self, ambient_light: DVec3, colour: DVec3) -> DVec3 {
+        ambient_light * colour
+    }
+
+    /// `((C * I) * kD) * max(0, N.L)`.
+    fn diffuse(&self, colour: DVec3, illumination: DVec3, kd: f64, n_dot_l: f64) -> DVec3 {
+        ((colour * illumination) * kd) * n_dot_l
+    }
+
+    /// `(I * kS) * max(0, R.V)^n`, white; `colour` and `n_dot_l` are there for the rules that
+    /// get it wrong.
+    fn specular(&self, illumination: DVec3, ks: f64, phong: f64, _colour: DVec3, _n_dot_l: f64) -> DVec3 {
+        illumination * ks * phong
+    }
+
+    /// The shadow ray towards a light along `l` from `p`: started `EPSILON` along `l`.
+    fn shadow_ray(&self, p: DVec3, l: DVec3) -> Ray {
+        Ray::offset_from(p, l)
+    }
+
+    /// How far along the shadow ray a hit shadows the point: up to the light, `d`.
+    fn shadow_reach(&self, d: f64) -> f64 {
+        d
+    }
+
+    /// The colour after a light that is not in shadow: `(colour + diffuse) + specular`.
+    fn add_light(&self, colour: DVec3, _ambient: DVec3, diffuse: DVec3, specular: DVec3) -> DVec3 {
+        (colour + diffuse) + specular
+    }
+
+    /// The reflected ray at `p` with normal `n` for a ray along `d`: `-d` mirrored about `n`,
+    /// started `EPSILON` along it.
+    fn mirror_ray(&self, p: DVec3, d: DVec3, n: DVec3) -> Ray {
+        Ray::offset_from(p, mirror_direction(d, n))
+    }
+
+    /// A mirror's colour from its own shading and what it reflects:
+    /// `direct * (1 - r) + reflected * r`.
+    fn blend(&self, direct: DVec3, reflected: DVec3, r: f64) -> DVec3 {
+        direct * (1.0 - r) + reflected * r
+    }
+}
+
+/// The course's model, every rule as docs/rendering.md states it: what `render` draws.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Tick;
+
+impl Model for Tick {}
+
+/// The direction a ray along `d` leaves a mirror with normal `n`: `-d` reflected about `n`,
+/// `2 (n . -d) n - (-d)`, normalised as the course does.
+pub fn mirror_direction(d: DVec3, n: DVec3) -> DVec3 {
+    let to_eye = -d;
+    normalise(n * (2.0 * n.dot(to_eye)) - to_eye)
+}
+
+/// The plane rule's raw parameter, for the search's plane test.
+pub(crate) fn plane_hit(model: &impl Model, point: DVec3, normal: DVec3, ray: &Ray) -> Option<f64> {
+    let s = plane_parameter(point, normal, ray);
+    model.plane_accepts(s).then_some(s)
+}
