@@ -5,6 +5,7 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
 
+mod check;
 mod look;
 mod parse;
 mod values;
@@ -14,6 +15,7 @@ use crate::frame::{FrameSpec, Region};
 use crate::output::exr::ExrOptions;
 use crate::plan::{RenderRequest, ToneRequest};
 use crate::sheet::SheetOptions;
+pub use check::CheckArgs;
 pub use look::{ExplainArgs, RelightArgs, ViewArgs};
 use parse::*;
 pub use values::{CompressionArg, ToneMapArg};
@@ -61,6 +63,9 @@ pub enum Command {
     Merge(MergeArgs),
     /// Explain one pixel: its ray tree in the course's model, with every term of its colour.
     Explain(ExplainArgs),
+    /// Test a Tick 2 image (or program) against the reference, and name the mistake that made
+    /// it differ.
+    Check(CheckArgs),
     /// A local web viewer for an EXR: layers, tone maps, pixel probe, relighting, A/B.
     View(ViewArgs),
     /// Recombine an EXR's light layers with new gains (light groups), without re-rendering.

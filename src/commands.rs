@@ -1,5 +1,6 @@
 //! One file per subcommand: each turns parsed arguments into work and outputs.
 
+pub mod check;
 pub mod completions;
 pub mod diff;
 pub mod explain;

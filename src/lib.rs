@@ -30,6 +30,7 @@ pub mod accel;
 pub mod aov;
 pub mod camera;
 pub mod canvas;
+pub mod check;
 pub mod cli;
 pub mod commands;
 pub mod compare;

@@ -14,7 +14,9 @@ use crate::frame::{Acceleration, Frame};
 use crate::interrupt;
 use crate::sample::Sample;
 use crate::scene::Scene;
-use crate::trace::{trace_beauty, trace_into};
+use crate::model::Model;
+use crate::trace::observe::Silent;
+use crate::trace::{trace_beauty, trace_into, trace_observed};
 
 /// How a render went: what the summary line and the warnings report. Not part of the image.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -242,6 +244,46 @@ impl<'a> PixelRenderer<'a> {
         }
         (rays, non_finite)
     }
+}
+
+/// The beauty of the listed pixels (`(x, y)` of the frame's image), one sample at each
+/// pixel's centre, under `model`'s rules: how `whitted check` renders a student's mistakes
+/// only where it needs to look. `accel` must suit the model (`Model::hierarchy_exact`).
+/// Sequential: callers run many such lists side by side.
+pub fn render_pixels(
+    model: &impl Model,
+    scene: &Scene,
+    accel: &Accelerator,
+    frame: &Frame,
+    pixels: &[(u32, u32)],
+) -> Vec<DVec3> {
+    let mut sample = Sample::empty(scene.lights.len(), frame.trace.bounces);
+    pixels
+        .iter()
+        .map(|&(x, y)| {
+            let ray = frame.camera.pixel_centre_ray(x, y);
+            trace_observed::<false>(model, scene, accel, ray, frame.trace, &mut sample, &mut Silent);
+            sample.beauty
+        })
+        .collect()
+}
+
+/// The full sample (every layer's value) of the listed pixels, as `render_pixels` traces
+/// them under the course's model.
+pub fn sample_pixels(
+    scene: &Scene,
+    accel: &Accelerator,
+    frame: &Frame,
+    pixels: &[(u32, u32)],
+) -> Vec<Sample> {
+    let mut sample = Sample::empty(scene.lights.len(), frame.trace.bounces);
+    pixels
+        .iter()
+        .map(|&(x, y)| {
+            trace_into(scene, accel, frame.camera.pixel_centre_ray(x, y), frame.trace, &mut sample);
+            sample.clone()
+        })
+        .collect()
 }
 
 #[cfg(test)]

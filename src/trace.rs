@@ -65,7 +65,10 @@ pub fn trace_beauty(
 /// The trace itself under `model`'s rules, telling `observer` every vertex and light term on
 /// the way (`explain` watches; the render passes `Silent`). With `LAYERS` false the
 /// per-effect sums are left out at compile time. `accel` must be a brute-force one for a
-/// model the hierarchy is not exact for (`Model::hierarchy_exact`).
+/// model the hierarchy is not exact for (`Model::hierarchy_exact`). Inlined into the render
+/// loop, as it was before the model became a parameter (measured: the call costs ~2% of a
+/// tick2 render's instructions).
+#[inline(always)]
 pub fn trace_observed<const LAYERS: bool>(
     model: &impl Model,
     scene: &Scene,
@@ -219,6 +222,8 @@ struct Vertex<'a> {
 /// One light's terms at a vertex, in the course's order (docs/rendering.md, Shading), and its
 /// shadow test: a pure function of the vertex, the light and `V`. The occluder is found only
 /// for an observer that records it; otherwise the search stops at the first blocker.
+/// Inlined, so that the record's fields nobody reads are never computed for the render.
+#[inline(always)]
 fn light_terms<O: Observer>(
     model: &impl Model,
     accel: &Accelerator,

@@ -7,6 +7,7 @@ use clap::Args;
 use super::parse::*;
 use super::{FrameArgs, ToneArgs};
 use crate::frame::FrameSpec;
+use crate::mistakes::{Bug, Mistakes};
 
 #[derive(Debug, Clone, Args)]
 pub struct ExplainArgs {
@@ -24,15 +25,25 @@ pub struct ExplainArgs {
     /// Print JSON instead of the tree
     #[arg(long)]
     pub json: bool,
+
+    /// Trace the pixel as a program with this mistake would (an id of
+    /// `whitted check --list-bugs`; repeat it for several)
+    #[arg(long = "bug", value_name = "ID", value_parser = parse_bug)]
+    pub bugs: Vec<Bug>,
 }
 
 impl ExplainArgs {
-    /// The frame the pixel belongs to.
+    /// The mistakes asked for (none: the course's model).
+    pub fn mistakes(&self) -> Mistakes {
+        Mistakes::of(&self.bugs)
+    }
+
+    /// The frame the pixel belongs to, as a program with those mistakes renders it.
     pub fn frame(&self) -> FrameSpec {
-        FrameSpec {
+        self.mistakes().frame_spec(&FrameSpec {
             aovs: "beauty".into(),
             ..self.frame.spec()
-        }
+        })
     }
 }
 

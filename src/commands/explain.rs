@@ -7,6 +7,7 @@ use serde_json::{json, Value};
 use crate::cli::ExplainArgs;
 use crate::error::Result;
 use crate::explain::{explain, vector, Explanation};
+use crate::mistakes::Mistakes;
 use crate::model::Tick;
 use crate::output::stdout;
 use crate::scene::{self, Scene};
@@ -14,12 +15,17 @@ use crate::scene::{self, Scene};
 pub fn run(args: &ExplainArgs) -> Result<()> {
     let scene::Input { scene, name, .. } = scene::load_input(args.input.as_deref())?;
     let (x, y) = args.pixel;
-    let e = explain(&Tick, &scene, &args.frame(), x, y)?;
+    let mistakes = args.mistakes();
+    let e = if mistakes.is_empty() {
+        explain(&Tick, &scene, &args.frame(), x, y)?
+    } else {
+        explain(&mistakes, &scene, &args.frame(), x, y)?
+    };
     let text = if args.json {
         // serde_json cannot fail to print a Value it built itself.
-        serde_json::to_string_pretty(&to_json(&e, &scene)).unwrap_or_default()
+        serde_json::to_string_pretty(&to_json(&e, &scene, mistakes)).unwrap_or_default()
     } else {
-        tree(&e, &scene, &name)
+        tree(&e, &scene, &name, mistakes)
     };
     stdout::print_line(&text)
 }
@@ -31,9 +37,13 @@ fn kind(scene: &Scene, object: usize) -> &'static str {
     }
 }
 
-fn tree(e: &Explanation, scene: &Scene, name: &str) -> String {
+fn tree(e: &Explanation, scene: &Scene, name: &str, mistakes: Mistakes) -> String {
+    let model = match mistakes.ids().join(", ") {
+        ids if ids.is_empty() => String::new(),
+        ids => format!(" as a program with the mistake {ids} traces it"),
+    };
     let mut out = format!(
-        "pixel ({}, {}) of {name}\ncamera ray: origin {}, direction {}\n",
+        "pixel ({}, {}) of {name}{model}\ncamera ray: origin {}, direction {}\n",
         e.pixel.0,
         e.pixel.1,
         vector(e.camera_ray.origin),
@@ -140,7 +150,7 @@ fn array(v: DVec3) -> Value {
         .map(|c| if c.is_finite() { json!(c) } else { Value::Null }))
 }
 
-fn to_json(e: &Explanation, scene: &Scene) -> Value {
+fn to_json(e: &Explanation, scene: &Scene, mistakes: Mistakes) -> Value {
     let vertices: Vec<Value> = e
         .vertices
         .iter()
@@ -196,6 +206,7 @@ fn to_json(e: &Explanation, scene: &Scene) -> Value {
         .collect();
     json!({
         "pixel": [e.pixel.0, e.pixel.1],
+        "bugs": mistakes.ids(),
         "camera_ray": {"origin": array(e.camera_ray.origin), "direction": array(e.camera_ray.direction)},
         "vertices": vertices,
         "miss": e.miss.map(|(depth, ray)| json!({"depth": depth, "direction": array(ray.direction)})),

@@ -60,6 +60,16 @@ pub fn encode(pixels: &[DVec3], width: u32, height: u32, encoding: &PngEncoding)
     }
 }
 
+/// The course's PNG bytes (`tick`, 8 bits, three per pixel) of linear `pixels` in any order:
+/// the one tick quantisation, for code that compares bytes rather than writing a file.
+pub fn tick_bytes(pixels: &[DVec3]) -> Vec<u8> {
+    let width = u32::try_from(pixels.len()).unwrap_or(u32::MAX).max(1);
+    match encode_rows(pixels, width, 0, &PngEncoding::default()) {
+        PngPixels::Eight(bytes) => bytes,
+        PngPixels::Sixteen(_) => unreachable!("the default encoding has 8 bits"),
+    }
+}
+
 /// Tone-maps and quantises whole rows of `width` pixels, the first of them image row
 /// `first_row` (which the dither depends on).
 fn encode_rows(pixels: &[DVec3], width: u32, first_row: u32, encoding: &PngEncoding) -> PngPixels {

@@ -1,0 +1,355 @@
+//! `whitted check --program 'CMD ARGS'`: runs a student's Tick 2 program over the suite and
+//! checks every image it writes. The program is untrusted input like any file: it runs in a
+//! process group of its own that is killed when its case ends (so nothing it starts outlives
+//! it), with a timeout, its standard output discarded and only a bounded tail of its standard
+//! error kept; the PNG it writes is checked before it is decoded. Two cases run at a time;
+//! Ctrl-C kills every program and removes every temporary directory within a few polls.
+
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, ExitStatus, Stdio};
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+
+use crate::check::diagnose::{rank, Diagnosis};
+use crate::check::student_png::{self, Rgb8};
+use crate::check::suite::{cases, SuiteCase};
+use crate::check::{check_image, CaseReport};
+use crate::error::{Error, Result};
+use crate::interrupt;
+use crate::scene;
+
+/// The image size the course's program always writes.
+pub const WIDTH: u32 = 640;
+pub const HEIGHT: u32 = 480;
+
+/// Cases running at once.
+const AT_ONCE: usize = 2;
+
+/// How often running programs are looked at (and Ctrl-C noticed).
+const POLL: Duration = Duration::from_millis(20);
+
+/// Bytes of a program's standard error kept: its end, where the exception is.
+const STDERR_TAIL: usize = 4096;
+
+/// How one case ended.
+#[derive(Debug, Clone)]
+pub enum Status {
+    /// It wrote a 640x480 PNG, which was checked.
+    Ok(Box<CaseReport>),
+    /// It exited with a failure status or was killed by a signal.
+    Crashed(String),
+    /// It was still running after the timeout (in seconds).
+    Timeout(u64),
+    /// It exited successfully but wrote no readable PNG.
+    NoOutput(String),
+    /// It wrote a PNG of another size.
+    WrongSize { width: u32, height: u32 },
+}
+
+impl Status {
+    pub fn name(&self) -> &'static str {
+        match self {
+            Status::Ok(_) => "ok",
+            Status::Crashed(_) => "crashed",
+            Status::Timeout(_) => "timeout",
+            Status::NoOutput(_) => "no-output",
+            Status::WrongSize { .. } => "wrong-size",
+        }
+    }
+}
+
+/// One case's result.
+#[derive(Debug, Clone)]
+pub struct CaseOutcome {
+    pub name: String,
+    pub status: Status,
+    /// The last lines of what the program wrote to standard error.
+    pub stderr_tail: String,
+}
+
+impl CaseOutcome {
+    pub fn passed(&self) -> bool {
+        matches!(&self.status, Status::Ok(c) if c.difference.verdict.passes())
+    }
+}
+
+/// The whole suite's result.
+#[derive(Debug, Clone)]
+pub struct SuiteRun {
+    pub program: String,
+    pub cases: Vec<CaseOutcome>,
+    /// One diagnosis over every case that produced an image.
+    pub diagnosis: Vec<Diagnosis>,
+}
+
+impl SuiteRun {
+    pub fn passed(&self) -> bool {
+        self.cases.iter().all(CaseOutcome::passed)
+    }
+}
+
+/// The program's words: split as a POSIX shell would, without running one.
+pub fn words(program: &str) -> Result<Vec<String>> {
+    match shlex::split(program) {
+        Some(words) if !words.is_empty() => Ok(words),
+        Some(_) => Err(Error::Usage("--program is empty".into())),
+        None => Err(Error::Usage(format!(
+            "--program `{program}` has an unmatched quote or a trailing backslash"
+        ))),
+    }
+}
+
+/// Runs `program` over the suite and checks each image at `tolerance`.
+pub fn run_suite(program: &str, tolerance: u8, timeout: u64) -> Result<SuiteRun> {
+    let words = words(program)?;
+    let suite = cases();
+    let finished = run_programs(&words, &suite, Duration::from_secs(timeout))?;
+    let mut outcomes = Vec::new();
+    for (case, (result, stderr_tail)) in suite.iter().zip(finished) {
+        let status = match result {
+            Ran::Image(image) => {
+                let scene = scene::parse_str(case.file, case.xml)?;
+                let report = check_image(&scene, case.file, case.bounces, tolerance, image)?;
+                interrupt::check()?;
+                Status::Ok(Box::new(report))
+            }
+            Ran::Failed(status) => status,
+        };
+        outcomes.push(CaseOutcome {
+            name: case.name(),
+            status,
+            stderr_tail,
+        });
+    }
+    let analyses: Vec<_> = outcomes
+        .iter()
+        .filter_map(|o| match &o.status {
+            Status::Ok(report) => Some(&report.analysis),
+            _ => None,
+        })
+        .collect();
+    let any_differs = outcomes
+        .iter()
+        .any(|o| matches!(&o.status, Status::Ok(c) if c.difference.differing_pixels > 0));
+    let diagnosis = if any_differs {
+        rank(&analyses)
+    } else {
+        Vec::new()
+    };
+    Ok(SuiteRun {
+        program: program.to_string(),
+        cases: outcomes,
+        diagnosis,
+    })
+}
+
+/// What running one case gave.
+enum Ran {
+    Image(Rgb8),
+    Failed(Status),
+}
+
+/// A case whose program is running.
+struct Running {
+    index: usize,
+    child: Child,
+    stderr: Option<JoinHandle<Vec<u8>>>,
+    started: Instant,
+    /// Holds the scene and the output; removed when dropped.
+    dir: tempfile::TempDir,
+}
+
+/// Runs every case's program, `AT_ONCE` at a time, and returns each one's result and standard
+/// error tail in suite order.
+fn run_programs(
+    words: &[String],
+    suite: &[SuiteCase],
+    timeout: Duration,
+) -> Result<Vec<(Ran, String)>> {
+    let mut results: Vec<Option<(Ran, String)>> = suite.iter().map(|_| None).collect();
+    let mut running: Vec<Running> = Vec::new();
+    let mut next = 0;
+    loop {
+        if interrupt::requested() {
+            for mut r in running.drain(..) {
+                stop(&mut r);
+            }
+            interrupt::check()?;
+        }
+        while running.len() < AT_ONCE && next < suite.len() {
+            match start(words, &suite[next], next) {
+                Ok(r) => running.push(r),
+                Err(e) => {
+                    for mut r in running.drain(..) {
+                        stop(&mut r);
+                    }
+                    return Err(e);
+                }
+            }
+            next += 1;
+        }
+        if running.is_empty() {
+            break;
+        }
+        let mut still = Vec::new();
+        for mut r in running.drain(..) {
+            match r.child.try_wait() {
+                Ok(Some(status)) => {
+                    let index = r.index;
+                    results[index] = Some(finish(r, Some(status), timeout));
+                }
+                Ok(None) if r.started.elapsed() > timeout => {
+                    let index = r.index;
+                    results[index] = Some(finish(r, None, timeout));
+                }
+                Ok(None) => still.push(r),
+                Err(e) => {
+                    let index = r.index;
+                    let tail = stop(&mut r);
+                    let status = Status::Crashed(format!("cannot wait for the program: {e}"));
+                    results[index] = Some((Ran::Failed(status), tail));
+                }
+            }
+        }
+        running = still;
+        if !running.is_empty() {
+            std::thread::sleep(POLL);
+        }
+    }
+    Ok(results
+        .into_iter()
+        .map(|r| r.unwrap_or((Ran::Failed(Status::Crashed("not run".into())), String::new())))
+        .collect())
+}
+
+/// Starts case `index`'s program in a fresh temporary directory and process group.
+fn start(words: &[String], case: &SuiteCase, index: usize) -> Result<Running> {
+    let dir = tempfile::Builder::new()
+        .prefix("whitted-check-")
+        .tempdir()
+        .map_err(|e| Error::io(std::env::temp_dir(), "cannot create a temporary directory", e))?;
+    let scene = dir.path().join(case.file);
+    std::fs::write(&scene, case.xml).map_err(|e| Error::io(&scene, "cannot write", e))?;
+    let output = output_path(dir.path());
+    let mut command = Command::new(&words[0]);
+    command
+        .args(&words[1..])
+        .arg("--input")
+        .arg(&scene)
+        .arg("--output")
+        .arg(&output)
+        .arg("--bounces")
+        .arg(case.bounces.to_string())
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped());
+    #[cfg(unix)]
+    std::os::unix::process::CommandExt::process_group(&mut command, 0);
+    let mut child = command.spawn().map_err(|e| {
+        Error::Usage(format!(
+            "cannot start the program `{}`: {e}",
+            words[0]
+        ))
+    })?;
+    let stderr = child.stderr.take();
+    let reader = std::thread::spawn(move || stderr.map(keep_tail).unwrap_or_default());
+    Ok(Running {
+        index,
+        child,
+        stderr: Some(reader),
+        started: Instant::now(),
+        dir,
+    })
+}
+
+fn output_path(dir: &Path) -> PathBuf {
+    dir.join("output.png")
+}
+
+/// Reads `pipe` to its end, keeping only the last `STDERR_TAIL` bytes.
+fn keep_tail(mut pipe: impl Read) -> Vec<u8> {
+    let mut tail: Vec<u8> = Vec::with_capacity(2 * STDERR_TAIL);
+    let mut buffer = [0u8; 8192];
+    loop {
+        match pipe.read(&mut buffer) {
+            Ok(0) | Err(_) => break,
+            Ok(n) => {
+                tail.extend_from_slice(&buffer[..n]);
+                if tail.len() > STDERR_TAIL {
+                    tail.drain(..tail.len() - STDERR_TAIL);
+                }
+            }
+        }
+    }
+    tail
+}
+
+/// The last lines of a standard error tail, as text.
+fn tail_text(bytes: &[u8]) -> String {
+    let text = String::from_utf8_lossy(bytes);
+    let lines: Vec<&str> = text.lines().collect();
+    lines[lines.len().saturating_sub(12)..].join("\n")
+}
+
+/// Kills the case's whole process group, reaps the program and returns its stderr tail. The
+/// temporary directory stays until `r` is dropped.
+fn stop(r: &mut Running) -> String {
+    kill_group(&r.child);
+    let _ = r.child.kill();
+    let _ = r.child.wait();
+    let tail = r.stderr.take().and_then(|t| t.join().ok()).unwrap_or_default();
+    tail_text(&tail)
+}
+
+fn kill_group(child: &Child) {
+    #[cfg(unix)]
+    if let Some(pid) = rustix::process::Pid::from_child(child).into() {
+        // The group may be gone already (everything exited): nothing to do then.
+        let _ = rustix::process::kill_process_group(pid, rustix::process::Signal::KILL);
+    }
+}
+
+/// The result of a case whose program exited with `status` (`None`: timed out). Every
+/// process of the case is gone before its output is read.
+fn finish(mut r: Running, status: Option<ExitStatus>, timeout: Duration) -> (Ran, String) {
+    let tail = stop(&mut r);
+    let ran = match status {
+        None => Ran::Failed(Status::Timeout(timeout.as_secs())),
+        Some(s) if !s.success() => Ran::Failed(Status::Crashed(describe(s))),
+        Some(_) => match read_output(&output_path(r.dir.path())) {
+            Ok(image) if (image.width, image.height) == (WIDTH, HEIGHT) => Ran::Image(image),
+            Ok(image) => Ran::Failed(Status::WrongSize {
+                width: image.width,
+                height: image.height,
+            }),
+            Err(message) => Ran::Failed(Status::NoOutput(message)),
+        },
+    };
+    (ran, tail)
+}
+
+/// How a program that failed ended.
+fn describe(status: ExitStatus) -> String {
+    #[cfg(unix)]
+    if let Some(signal) = std::os::unix::process::ExitStatusExt::signal(&status) {
+        return format!("killed by signal {signal}");
+    }
+    match status.code() {
+        Some(code) => format!("exited with status {code}"),
+        None => "ended abnormally".into(),
+    }
+}
+
+/// The program's PNG, checked as any image is; the message says why there is none.
+fn read_output(path: &Path) -> Result<Rgb8, String> {
+    match std::fs::symlink_metadata(path) {
+        Err(_) => return Err("the program wrote no output file".into()),
+        Ok(m) if !m.is_file() => return Err("the output is not a regular file".into()),
+        Ok(_) => {}
+    }
+    student_png::read(path).map_err(|e| match e {
+        Error::Raster { msg, .. } => format!("the output {msg}"),
+        other => other.to_string(),
+    })
+}

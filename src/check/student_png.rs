@@ -1,0 +1,109 @@
+//! Reading the image a student's program wrote: an 8-bit RGB(A) PNG, checked (signature,
+//! header, size, memory) before a single pixel is decoded, since it comes from a program that
+//! may be wrong in any way.
+
+use std::io::Read;
+use std::path::Path;
+
+use crate::cli::MAX_SIDE;
+use crate::error::{Error, Result};
+use crate::memory;
+
+/// An 8-bit RGB image, three bytes a pixel, row-major, top row first.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Rgb8 {
+    pub width: u32,
+    pub height: u32,
+    pub bytes: Vec<u8>,
+}
+
+impl Rgb8 {
+    pub fn pixel(&self, x: u32, y: u32) -> [u8; 3] {
+        let i = 3 * (y as usize * self.width as usize + x as usize);
+        [self.bytes[i], self.bytes[i + 1], self.bytes[i + 2]]
+    }
+}
+
+const PNG_SIGNATURE: [u8; 8] = [0x89, b'P', b'N', b'G', b'\r', b'\n', 0x1a, b'\n'];
+const JPEG_SIGNATURE: [u8; 3] = [0xff, 0xd8, 0xff];
+
+/// Reads `path` as the tick PNG. Refuses, with one clear message: a JPEG (lossy, so no byte
+/// can be trusted), anything that is not a PNG, a PNG that is not 8-bit RGB or RGBA, and a size
+/// no render can have.
+pub fn read(path: &Path) -> Result<Rgb8> {
+    let fail = |msg: String| Error::Raster {
+        path: path.to_path_buf(),
+        msg,
+    };
+    let mut file = std::fs::File::open(path).map_err(|e| Error::io(path, "cannot read", e))?;
+    let mut head = [0u8; 8];
+    let got = read_up_to(&mut file, &mut head).map_err(|e| Error::io(path, "cannot read", e))?;
+    if got >= 3 && head[..3] == JPEG_SIGNATURE {
+        return Err(fail(
+            "is a JPEG: its compression is lossy, so its bytes cannot be compared with the \
+             reference; check the PNG your program wrote"
+                .into(),
+        ));
+    }
+    if got < 8 || head != PNG_SIGNATURE {
+        return Err(fail("is not a PNG (no PNG signature)".into()));
+    }
+    let bytes = std::fs::read(path).map_err(|e| Error::io(path, "cannot read", e))?;
+    decode(&bytes).map_err(fail)
+}
+
+/// Reads as much of `buf` as the file has.
+fn read_up_to(file: &mut std::fs::File, buf: &mut [u8]) -> std::io::Result<usize> {
+    let mut filled = 0;
+    while filled < buf.len() {
+        match file.read(&mut buf[filled..])? {
+            0 => break,
+            n => filled += n,
+        }
+    }
+    Ok(filled)
+}
+
+/// Decodes PNG bytes after checking the header; the message says what is wrong.
+pub fn decode(bytes: &[u8]) -> Result<Rgb8, String> {
+    let budget = memory::available_bytes().unwrap_or(u64::MAX);
+    let mut decoder = png::Decoder::new(std::io::Cursor::new(bytes));
+    decoder.set_limits(png::Limits {
+        bytes: usize::try_from(budget).unwrap_or(usize::MAX),
+    });
+    let mut reader = decoder.read_info().map_err(|e| format!("is not a readable PNG: {e}"))?;
+    let info = reader.info();
+    let (width, height) = (info.width, info.height);
+    if width == 0 || height == 0 || width > MAX_SIDE || height > MAX_SIDE {
+        return Err(format!(
+            "is {width}x{height}: no render has that size (1 to {MAX_SIDE} pixels a side)"
+        ));
+    }
+    let channels = match (info.color_type, info.bit_depth) {
+        (png::ColorType::Rgb, png::BitDepth::Eight) => 3,
+        (png::ColorType::Rgba, png::BitDepth::Eight) => 4,
+        (colour, depth) => {
+            return Err(format!(
+                "is a {colour:?} PNG of {} bits per sample; the tick image is 8-bit RGB",
+                depth as u8
+            ))
+        }
+    };
+    let size = u64::from(width) * u64::from(height) * channels;
+    memory::check(size.saturating_mul(2), Some(budget), "decoding the PNG").map_err(|e| e.to_string())?;
+    let mut data = vec![0; reader.output_buffer_size().ok_or("is too large to decode")?];
+    let frame = reader
+        .next_frame(&mut data)
+        .map_err(|e| format!("is not a readable PNG: {e}"))?;
+    data.truncate(frame.buffer_size());
+    let bytes = if channels == 4 {
+        data.chunks_exact(4).flat_map(|p| [p[0], p[1], p[2]]).collect()
+    } else {
+        data
+    };
+    Ok(Rgb8 {
+        width,
+        height,
+        bytes,
+    })
+}

@@ -1,0 +1,142 @@
+//! Beyond the catalogue: when no listed mistake explains a student's image, say which terms
+//! of the model the difference lives in. The reference's own layers (docs/aovs.md) split its
+//! beauty into ambient, diffuse and specular, per light with and without shadows, and per
+//! bounce; the student's image is fitted as the reference with one layer scaled
+//! (`beauty + (f - 1) * layer`), or with a light's shadows left out (its `light_` layer
+//! replaced by `f` times its `unshadowed_` layer), by least squares over the differing pixels.
+
+use glam::DVec3;
+
+use crate::aov::{self, Kind, Quantity};
+use crate::check::student_png::Rgb8;
+use crate::output::png::tick_bytes;
+use crate::sample::Sample;
+use crate::scene::Scene;
+
+/// Term fits reported at most.
+const LISTED: usize = 3;
+
+/// One fitted term.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TermFit {
+    /// The layer scaled, as the EXR names it.
+    pub layer: String,
+    /// The layer this one stands in for (a light's shadowed layer, for `unshadowed_`), if any.
+    pub replaces: Option<String>,
+    /// How strong the layer is in the student's image: 1 as in the reference, 0 missing, 2
+    /// doubled.
+    pub factor: f64,
+    /// Share of the differing pixels this fit reproduces within 1 LSB.
+    pub explained: f64,
+}
+
+impl TermFit {
+    /// The fit in words, for the text report.
+    pub fn sentence(&self) -> String {
+        match (&self.replaces, self.factor) {
+            (Some(shadowed), _) => format!(
+                "`{shadowed}` looks unshadowed (`{}`, x{:.2}): that light's shadows are missing",
+                self.layer, self.factor
+            ),
+            (None, f) if f.abs() < 0.05 => format!("`{}` is missing", self.layer),
+            (None, f) => format!("`{}` is {f:.2}x as strong as the reference's", self.layer),
+        }
+    }
+}
+
+/// One candidate term: the image is `base + f * term`.
+struct Term {
+    layer: String,
+    replaces: Option<String>,
+    /// Per sampled pixel: (base, term).
+    values: Vec<(DVec3, DVec3)>,
+}
+
+fn layer_value(sample: &Sample, quantity: Quantity) -> DVec3 {
+    let mut out = [0.0; 4];
+    quantity.values(sample, &mut out);
+    DVec3::new(out[0], out[1], out[2])
+}
+
+/// The fits that best reproduce `student` at the reference `samples` of `pixels` (the
+/// differing ones), best first.
+pub fn fit(
+    scene: &Scene,
+    bounces: u32,
+    samples: &[Sample],
+    pixels: &[(u32, u32)],
+    student: &Rgb8,
+) -> Vec<TermFit> {
+    let names: Vec<String> = scene.lights.iter().map(|l| l.name.clone()).collect();
+    let layers = aov::all_layers(&names, bounces);
+    let colour = |q: Quantity| q.kind() == Kind::Colour && q != Quantity::Beauty;
+    let mut terms: Vec<Term> = layers
+        .iter()
+        .filter(|l| colour(l.quantity))
+        .map(|l| Term {
+            layer: l.name.clone(),
+            replaces: None,
+            values: samples
+                .iter()
+                .map(|s| {
+                    let v = layer_value(s, l.quantity);
+                    (s.beauty - v, v)
+                })
+                .collect(),
+        })
+        .collect();
+    for (i, name) in names.iter().enumerate() {
+        terms.push(Term {
+            layer: format!("unshadowed_{name}"),
+            replaces: Some(format!("light_{name}")),
+            values: samples
+                .iter()
+                .map(|s| (s.beauty - s.lights[i].shadowed, s.lights[i].unshadowed))
+                .collect(),
+        });
+    }
+    let targets: Vec<[u8; 3]> = pixels.iter().map(|&(x, y)| student.pixel(x, y)).collect();
+    let mut fits: Vec<TermFit> = terms
+        .iter()
+        .filter_map(|term| fit_one(term, &targets))
+        .filter(|f| f.explained > 0.0 && (f.factor - 1.0).abs() > 1e-3)
+        .collect();
+    fits.sort_by(|a, b| b.explained.total_cmp(&a.explained));
+    fits.truncate(LISTED);
+    fits
+}
+
+/// Least squares for `f` over the channels the student's bytes do not clip, then the share
+/// of pixels the fit reproduces.
+fn fit_one(term: &Term, targets: &[[u8; 3]]) -> Option<TermFit> {
+    let (mut num, mut den) = (0.0, 0.0);
+    for (&(base, x), target) in term.values.iter().zip(targets) {
+        for c in 0..3 {
+            let byte = target[c];
+            if byte == 0 || byte == 255 || !base[c].is_finite() || !x[c].is_finite() {
+                continue;
+            }
+            // The middle of the byte's interval of values.
+            let t = (f64::from(byte) + 0.5) / 255.0;
+            num += x[c] * (t - base[c]);
+            den += x[c] * x[c];
+        }
+    }
+    if den <= 1e-12 {
+        return None;
+    }
+    let factor = num / den;
+    let predicted: Vec<DVec3> = term.values.iter().map(|&(b, x)| b + x * factor).collect();
+    let bytes = tick_bytes(&predicted);
+    let matched = targets
+        .iter()
+        .enumerate()
+        .filter(|(i, t)| (0..3).all(|c| bytes[3 * i + c].abs_diff(t[c]) <= 1))
+        .count();
+    Some(TermFit {
+        layer: term.layer.clone(),
+        replaces: term.replaces.clone(),
+        factor,
+        explained: matched as f64 / targets.len().max(1) as f64,
+    })
+}

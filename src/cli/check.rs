@@ -1,0 +1,54 @@
+//! Arguments of `whitted check` (docs/check.md).
+
+use std::path::PathBuf;
+
+use clap::Args;
+
+use super::parse::*;
+
+#[derive(Debug, Clone, Args)]
+pub struct CheckArgs {
+    /// The student's PNG (8-bit RGB): the size it has is the size rendered
+    #[arg(value_name = "IMAGE.png", required_unless_present_any = ["program", "list_bugs"],
+          conflicts_with = "program")]
+    pub image: Option<PathBuf>,
+
+    /// Scene XML file the image was rendered from [default: the embedded course tick2.xml]
+    #[arg(short, long, value_name = "SCENE", conflicts_with = "program")]
+    pub input: Option<PathBuf>,
+
+    /// Mirror reflection bounces the image was rendered with
+    #[arg(short, long, value_name = "N", default_value_t = 2,
+          value_parser = parse_bounces, allow_negative_numbers = true, conflicts_with = "program")]
+    pub bounces: u32,
+
+    /// Largest difference of a channel, in LSB, that still passes
+    #[arg(long, value_name = "LSB", default_value_t = 2)]
+    pub tolerance: u8,
+
+    /// Print one JSON object instead of the text report
+    #[arg(long)]
+    pub json: bool,
+
+    /// Write a PNG of where and by how much the image differs
+    #[arg(long, value_name = "H.png", conflicts_with = "program")]
+    pub heatmap: Option<PathBuf>,
+
+    /// Write a contact sheet: per failing case the student's image, the reference, a heat map
+    /// and the top diagnosis
+    #[arg(long, value_name = "REPORT.png")]
+    pub report: Option<PathBuf>,
+
+    /// Run this program (split into words as a shell would; no shell is run) over the suite:
+    /// each case as `CMD ARGS --input S --output O.png --bounces B`
+    #[arg(long, value_name = "CMD ARGS")]
+    pub program: Option<String>,
+
+    /// Seconds each case of `--program` may take
+    #[arg(long, value_name = "SECONDS", default_value_t = 60, value_parser = parse_timeout)]
+    pub timeout: u64,
+
+    /// Print the catalogue of mistakes and exit
+    #[arg(long, exclusive = true)]
+    pub list_bugs: bool,
+}

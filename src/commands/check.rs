@@ -1,0 +1,340 @@
+//! `whitted check IMAGE.png [-i SCENE] [-b N]` and `whitted check --program 'CMD ARGS'`: the
+//! verdict, where the image differs, and which mistake made it (docs/check.md). Exit 0 when
+//! every image passes, 1 when one differs, 2 when they cannot be compared.
+
+use serde_json::{json, Value};
+
+use crate::check::diagnose::Diagnosis;
+use crate::check::program::{run_suite, CaseOutcome, Status, SuiteRun};
+use crate::check::report::{contact_sheet, heat_map, ReportRow};
+use crate::check::terms::TermFit;
+use crate::check::{check_image, student_png, CaseReport};
+use crate::cli::CheckArgs;
+use crate::error::Result;
+use crate::mistakes::{Bug, Mistakes};
+use crate::output::destination::{refuse_clashes, Destination};
+use crate::output::stdout;
+use crate::scene;
+
+/// Returns whether every image passed.
+pub fn run(args: &CheckArgs) -> Result<bool> {
+    if args.list_bugs {
+        stdout::print_line(&catalogue())?;
+        return Ok(true);
+    }
+    match (&args.program, &args.image) {
+        (Some(program), _) => run_program(args, program),
+        (None, Some(image)) => run_image(args, image),
+        (None, None) => Err(crate::Error::Usage(
+            "give the PNG to check, or --program 'CMD ARGS'".into(),
+        )),
+    }
+}
+
+fn catalogue() -> String {
+    Bug::ALL
+        .iter()
+        .map(|b| format!("{:<24} {}", b.id(), b.description()))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+fn run_image(args: &CheckArgs, image: &std::path::Path) -> Result<bool> {
+    let outputs: Vec<&std::path::Path> = args
+        .heatmap
+        .iter()
+        .chain(&args.report)
+        .map(|p| p.as_path())
+        .collect();
+    let mut inputs = vec![image];
+    inputs.extend(args.input.as_deref());
+    refuse_clashes(&inputs, &outputs)?;
+    let mut heatmap = args.heatmap.as_deref().map(Destination::open).transpose()?;
+    let mut report = args.report.as_deref().map(Destination::open).transpose()?;
+    let input = scene::load_input(args.input.as_deref())?;
+    let student = student_png::read(image)?;
+    let case = check_image(
+        &input.scene,
+        &input.name,
+        args.bounces,
+        args.tolerance,
+        student,
+    )?;
+    if let Some(out) = heatmap.as_mut() {
+        out.write_png(&heat_map(&case.student, &case.reference, args.tolerance))?;
+    }
+    if let Some(out) = report.as_mut() {
+        let rows = [ReportRow::of(&image.display().to_string(), &case)];
+        out.write_png(&contact_sheet(&rows))?;
+    }
+    for out in [heatmap, report].into_iter().flatten() {
+        out.commit()?;
+    }
+    let text = if args.json {
+        pretty(&case_json(&case))
+    } else {
+        case_text(&case, args.input.as_deref())
+    };
+    stdout::print_line(&text)?;
+    Ok(case.difference.verdict.passes())
+}
+
+fn run_program(args: &CheckArgs, program: &str) -> Result<bool> {
+    if let Some(report) = &args.report {
+        refuse_clashes(&[], &[report])?;
+    }
+    let mut report = args.report.as_deref().map(Destination::open).transpose()?;
+    let run = run_suite(program, args.tolerance, args.timeout)?;
+    if let Some(out) = report.as_mut() {
+        let rows: Vec<ReportRow> = run
+            .cases
+            .iter()
+            .filter_map(|c| match &c.status {
+                Status::Ok(case) if !case.difference.verdict.passes() => {
+                    Some(ReportRow::of(&c.name, case))
+                }
+                _ => None,
+            })
+            .collect();
+        out.write_png(&contact_sheet(&rows))?;
+    }
+    if let Some(out) = report {
+        out.commit()?;
+    }
+    let text = if args.json {
+        pretty(&suite_json(&run))
+    } else {
+        suite_text(&run)
+    };
+    stdout::print_line(&text)?;
+    Ok(run.passed())
+}
+
+fn pretty(value: &Value) -> String {
+    // serde_json cannot fail to print a Value it built itself.
+    serde_json::to_string_pretty(value).unwrap_or_default()
+}
+
+/// `a+b` for a pair.
+fn name(m: Mistakes) -> String {
+    m.ids().join("+")
+}
+
+fn diagnosis_json(list: &[Diagnosis]) -> Value {
+    json!(list
+        .iter()
+        .map(|d| json!({
+            "bugs": d.mistakes.ids(),
+            "explained": (d.explained * 1000.0).round() / 1000.0,
+            "unexplained_pixels": d.unexplained_pixels,
+            "wrongly_changed_pixels": d.wrongly_changed_pixels,
+            "indistinguishable_from": d.indistinguishable_from.iter().map(|&m| name(m)).collect::<Vec<_>>(),
+            "exact": d.exact,
+        }))
+        .collect::<Vec<_>>())
+}
+
+fn terms_json(terms: &[TermFit]) -> Value {
+    json!(terms
+        .iter()
+        .map(|t| json!({
+            "layer": t.layer,
+            "replaces": t.replaces,
+            "factor": (t.factor * 1000.0).round() / 1000.0,
+            "explained": (t.explained * 1000.0).round() / 1000.0,
+        }))
+        .collect::<Vec<_>>())
+}
+
+fn case_json(case: &CaseReport) -> Value {
+    let d = &case.difference;
+    let mut object = json!({
+        "verdict": d.verdict.name(),
+        "width": d.width,
+        "height": d.height,
+        "bounces": case.bounces,
+        "scene": case.scene_name,
+        "tolerance": case.tolerance,
+        "differing_pixels": d.differing_pixels,
+        "pixels_beyond_tolerance": d.beyond_tolerance,
+        "max_difference": d.max_difference,
+        "worst_pixel": d.worst_pixel.map(|(x, y)| json!([x, y])),
+        "bounds": d.bounds.map(|(x0, y0, x1, y1)| json!([x0, y0, x1, y1])),
+        "diagnosis": diagnosis_json(&case.diagnosis),
+    });
+    if !case.terms.is_empty() {
+        object["terms"] = terms_json(&case.terms);
+    }
+    object
+}
+
+fn diagnosis_lines(list: &[Diagnosis]) -> String {
+    let mut out = String::new();
+    for (rank, d) in list.iter().enumerate() {
+        let bugs = d.mistakes.bugs();
+        let what: Vec<String> = bugs
+            .iter()
+            .map(|b| format!("{} ({})", b.id(), b.description()))
+            .collect();
+        out += &format!(
+            "  {}. {}\n     explains {:.1}% of the differing pixels ({} unexplained, {} right pixels changed{})\n",
+            rank + 1,
+            what.join("\n     and "),
+            100.0 * d.explained,
+            d.unexplained_pixels,
+            d.wrongly_changed_pixels,
+            if d.exact { "" } else { "; estimated" }
+        );
+        if !d.indistinguishable_from.is_empty() {
+            let twins: Vec<String> = d.indistinguishable_from.iter().map(|&m| name(m)).collect();
+            out += &format!(
+                "     indistinguishable on this image from: {}\n",
+                twins.join(", ")
+            );
+        }
+    }
+    out
+}
+
+fn case_text(case: &CaseReport, input: Option<&std::path::Path>) -> String {
+    let d = &case.difference;
+    let total = u64::from(d.width) * u64::from(d.height);
+    let mut out = format!(
+        "{}, {}x{}, {} bounces: {} (tolerance {} LSB)\n",
+        case.scene_name,
+        d.width,
+        d.height,
+        case.bounces,
+        d.verdict.name(),
+        case.tolerance
+    );
+    if d.differing_pixels == 0 {
+        out += "every byte of every pixel equals the reference";
+        return out;
+    }
+    out += &format!(
+        "{} of {total} pixels differ ({} by more than the tolerance); the largest difference is {} LSB\n",
+        d.differing_pixels, d.beyond_tolerance, d.max_difference
+    );
+    if let (Some((x0, y0, x1, y1)), Some((x, y))) = (d.bounds, d.worst_pixel) {
+        out += &format!(
+            "they lie in x {x0}..={x1}, y {y0}..={y1}; the worst pixel is ({x}, {y})\n"
+        );
+    }
+    if case.diagnosis.is_empty() {
+        out += "diagnosis: no catalogued mistake reproduces the image better than the reference does\n";
+    } else {
+        out += "diagnosis, best first:\n";
+        out += &diagnosis_lines(&case.diagnosis);
+    }
+    if !case.terms.is_empty() {
+        out += "where the difference lives in the model's terms:\n";
+        for t in &case.terms {
+            out += &format!(
+                "  {} (reproduces {:.1}% of the differing pixels)\n",
+                t.sentence(),
+                100.0 * t.explained
+            );
+        }
+    }
+    if let Some((x, y)) = d.worst_pixel {
+        let scene = input.map_or(String::new(), |p| format!(" -i {}", shell_word(&p.display().to_string())));
+        let base = format!(
+            "whitted explain{scene} -b {} --width {} --height {} --pixel {x},{y}",
+            case.bounces, d.width, d.height
+        );
+        out += &format!("the worst pixel, as the reference traces it:\n  {base}\n");
+        if let Some(top) = case.diagnosis.first() {
+            let bugs: Vec<String> = top.mistakes.ids().iter().map(|id| format!(" --bug {id}")).collect();
+            out += &format!("and as the top diagnosis traces it:\n  {base}{}\n", bugs.concat());
+        }
+    }
+    out.trim_end().to_string()
+}
+
+/// `s` quoted for a POSIX shell where it needs to be.
+fn shell_word(s: &str) -> String {
+    let plain = !s.is_empty()
+        && s.chars()
+            .all(|c| c.is_ascii_alphanumeric() || "-_./,=+:@".contains(c));
+    if plain {
+        s.to_string()
+    } else {
+        format!("'{}'", s.replace('\'', "'\\''"))
+    }
+}
+
+fn outcome_json(outcome: &CaseOutcome) -> Value {
+    let mut object = match &outcome.status {
+        Status::Ok(case) => case_json(case),
+        _ => json!({}),
+    };
+    object["case"] = json!(outcome.name);
+    object["status"] = json!(outcome.status.name());
+    object["stderr_tail"] = json!(outcome.stderr_tail);
+    if let Status::WrongSize { width, height } = outcome.status {
+        object["width"] = json!(width);
+        object["height"] = json!(height);
+    }
+    if let Status::Crashed(message) | Status::NoOutput(message) = &outcome.status {
+        object["message"] = json!(message);
+    }
+    object
+}
+
+fn suite_json(run: &SuiteRun) -> Value {
+    json!({
+        "program": run.program,
+        "passed": run.passed(),
+        "cases": run.cases.iter().map(outcome_json).collect::<Vec<_>>(),
+        "diagnosis": diagnosis_json(&run.diagnosis),
+    })
+}
+
+fn suite_text(run: &SuiteRun) -> String {
+    let mut out = format!("{} over {} cases:\n", run.program, run.cases.len());
+    for c in &run.cases {
+        let detail = match &c.status {
+            Status::Ok(case) => {
+                let d = &case.difference;
+                let top = case
+                    .diagnosis
+                    .first()
+                    .map_or(String::new(), |t| format!("; looks like {}", name(t.mistakes)));
+                match d.verdict.passes() {
+                    true => d.verdict.name().to_string(),
+                    false => format!(
+                        "{}: {} pixels, up to {} LSB{top}",
+                        d.verdict.name(),
+                        d.differing_pixels,
+                        d.max_difference
+                    ),
+                }
+            }
+            Status::WrongSize { width, height } => {
+                format!("wrong-size: wrote {width}x{height}, expected 640x480")
+            }
+            Status::Crashed(message) | Status::NoOutput(message) => {
+                format!("{}: {message}", c.status.name())
+            }
+            Status::Timeout(seconds) => format!("timeout: still running after {seconds} s"),
+        };
+        out += &format!("  {:<28} {detail}\n", c.name);
+        if !c.stderr_tail.is_empty() && !matches!(c.status, Status::Ok(_)) {
+            for line in c.stderr_tail.lines() {
+                out += &format!("      | {line}\n");
+            }
+        }
+    }
+    let passed = run.cases.iter().filter(|c| c.passed()).count();
+    out += &format!("{passed} of {} cases pass\n", run.cases.len());
+    if !run.passed() {
+        if run.diagnosis.is_empty() {
+            out += "diagnosis: no catalogued mistake reproduces the failing images better than the reference does\n";
+        } else {
+            out += "diagnosis over every case, best first:\n";
+            out += &diagnosis_lines(&run.diagnosis);
+        }
+    }
+    out.trim_end().to_string()
+}
