@@ -99,3 +99,108 @@ fn fit_terms(scene: &Scene, bounces: u32, student: &Rgb8, reference: &Rgb8) -> R
     let samples = sample_pixels(scene, &accel, &frame, &pixels);
     Ok(terms::fit(scene, bounces, &samples, &pixels, student))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::check::diagnose::Renderer;
+    use crate::check::suite::{cases, SuiteCase};
+    use crate::mistakes::{Bug, Mistakes};
+
+    /// The first suite case on which `mistakes` fails, each of its mistakes showing, with its
+    /// image.
+    fn failing_case(mistakes: Mistakes) -> (SuiteCase, Scene, Rgb8) {
+        for case in cases() {
+            let scene = crate::scene::parse_str(case.file, case.xml).expect("scene");
+            let r = Renderer::new(&scene, 640, 480, case.bounces).expect("renderer");
+            let image = r.image(mistakes).expect("image");
+            let fails = difference(&image, &r.reference().expect("reference"), 2).beyond_tolerance > 0;
+            let members = mistakes.bugs();
+            let each_shows = members.len() == 1
+                || members.iter().all(|&b| r.image(Mistakes::of(&[b])).expect("image") != image);
+            if fails && each_shows {
+                return (case, scene, image);
+            }
+        }
+        panic!("{mistakes:?} fails no case");
+    }
+
+    /// Whether `wanted` is the top diagnosis or indistinguishable from it.
+    fn named_first(report: &CaseReport, wanted: Mistakes) -> bool {
+        report
+            .diagnosis
+            .first()
+            .is_some_and(|d| d.mistakes == wanted || d.indistinguishable_from.contains(&wanted))
+    }
+
+    #[test]
+    fn every_mistake_is_named_first_on_its_own_render() {
+        for bug in Bug::ALL {
+            let wanted = Mistakes::of(&[bug]);
+            let (case, scene, image) = failing_case(wanted);
+            let report = check_image(&scene, case.file, case.bounces, 2, image).expect("check");
+            assert!(named_first(&report, wanted), "{}: {:?}", bug.id(), report.diagnosis.first());
+            let top = &report.diagnosis[0];
+            assert_eq!((top.explained, top.wrongly_changed_pixels), (1.0, 0), "{}", bug.id());
+        }
+    }
+
+    #[test]
+    fn pairs_are_found_in_the_top_three() {
+        let pairs = [
+            [Bug::NoAmbient, Bug::ReflectUnclamped],
+            [Bug::NoShadowBias, Bug::ViewFlipped],
+            [Bug::FirstLightOnly, Bug::BouncesPlusOne],
+            [Bug::SpecularObjectColour, Bug::NoReflectionBias],
+        ];
+        for pair in pairs {
+            let wanted = Mistakes::of(&pair);
+            let (case, scene, image) = failing_case(wanted);
+            let report = check_image(&scene, case.file, case.bounces, 2, image).expect("check");
+            let top3: Vec<Mistakes> = report.diagnosis.iter().take(3).map(|d| d.mistakes).collect();
+            assert!(top3.contains(&wanted), "{pair:?}: {top3:?}");
+        }
+    }
+
+    #[test]
+    fn rounding_noise_is_not_a_mistake() {
+        let scene = crate::scene::parse_str("tick2.xml", crate::scene::EMBEDDED_TICK2).expect("scene");
+        let r = Renderer::new(&scene, 640, 480, 2).expect("renderer");
+        let mut image = r.reference().expect("reference");
+        // A student's pow rounding the other way in a few pixels.
+        for i in (0..image.bytes.len()).step_by(9973) {
+            image.bytes[i] = image.bytes[i].saturating_add(1);
+        }
+        let report = check_image(&scene, "tick2.xml", 2, 2, image).expect("check");
+        assert_eq!(report.difference.verdict, difference::Verdict::WithinTolerance);
+        assert!(report.diagnosis.is_empty(), "{:?}", report.diagnosis.first());
+    }
+
+    #[test]
+    fn mistakes_beyond_the_catalogue_are_located_in_the_terms() {
+        let scene = crate::scene::parse_str("tick2.xml", crate::scene::EMBEDDED_TICK2).expect("scene");
+        let spec = FrameSpec {
+            bounces: 0,
+            ..FrameSpec::default()
+        };
+        let frame = Frame::new(&scene, &spec).expect("frame");
+        let accel = Accelerator::build(&scene.objects);
+        let every: Vec<(u32, u32)> = (0..480).flat_map(|y| (0..640).map(move |x| (x, y))).collect();
+        let samples = sample_pixels(&scene, &accel, &frame, &every);
+        let render = |f: &dyn Fn(&crate::sample::Sample) -> glam::DVec3| Rgb8 {
+            width: 640,
+            height: 480,
+            bytes: crate::output::png::tick_bytes(&samples.iter().map(f).collect::<Vec<_>>()),
+        };
+        let half_ambient = render(&|s| s.beauty - s.ambient * 0.5);
+        let report = check_image(&scene, "tick2.xml", 0, 2, half_ambient).expect("check");
+        let top = report.terms.first().expect("a term");
+        assert_eq!(top.layer, "ambient");
+        assert!((top.factor - 0.5).abs() < 0.05, "{top:?}");
+        let unshadowed = render(&|s| s.beauty - s.lights[1].shadowed + s.lights[1].unshadowed);
+        let report = check_image(&scene, "tick2.xml", 0, 2, unshadowed).expect("check");
+        let top = report.terms.first().expect("a term");
+        assert_eq!((top.layer.as_str(), top.replaces.as_deref()), ("unshadowed_1", Some("light_1")));
+        assert!(top.explained > 0.9, "{top:?}");
+    }
+}

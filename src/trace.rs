@@ -65,10 +65,7 @@ pub fn trace_beauty(
 /// The trace itself under `model`'s rules, telling `observer` every vertex and light term on
 /// the way (`explain` watches; the render passes `Silent`). With `LAYERS` false the
 /// per-effect sums are left out at compile time. `accel` must be a brute-force one for a
-/// model the hierarchy is not exact for (`Model::hierarchy_exact`). Inlined into the render
-/// loop, as it was before the model became a parameter (measured: the call costs ~2% of a
-/// tick2 render's instructions).
-#[inline(always)]
+/// model the hierarchy is not exact for (`Model::hierarchy_exact`).
 pub fn trace_observed<const LAYERS: bool>(
     model: &impl Model,
     scene: &Scene,

@@ -39,3 +39,79 @@ pub fn cases() -> Vec<SuiteCase> {
         case("mirrors.xml", MIRRORS, 3),
     ]
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::check::diagnose::Renderer;
+    use crate::check::difference::difference;
+    use crate::check::student_png::Rgb8;
+    use crate::mistakes::{Bug, Mistakes};
+
+    /// Every case's reference and every mistake's image, at the course's size.
+    fn images() -> Vec<(Rgb8, Vec<Rgb8>)> {
+        cases()
+            .iter()
+            .map(|case| {
+                let scene = crate::scene::parse_str(case.file, case.xml).expect("scene");
+                let r = Renderer::new(&scene, 640, 480, case.bounces).expect("renderer");
+                let each = Bug::ALL
+                    .iter()
+                    .map(|&b| r.image(Mistakes::of(&[b])).expect("image"))
+                    .collect();
+                (r.reference().expect("reference"), each)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_suite_separates_every_mistake() {
+        let images = images();
+        for (i, bug) in Bug::ALL.iter().enumerate() {
+            let fails = images
+                .iter()
+                .any(|(reference, each)| !difference(&each[i], reference, 2).verdict.passes());
+            assert!(fails, "{} passes every case of the suite", bug.id());
+            for (j, other) in Bug::ALL.iter().enumerate().skip(i + 1) {
+                let apart = images.iter().any(|(_, each)| each[i] != each[j]);
+                assert!(apart, "{} and {} render the suite alike", bug.id(), other.id());
+            }
+        }
+    }
+
+    #[test]
+    fn the_suite_uses_only_what_the_course_loader_reads() {
+        let allowed = [
+            ("sphere", &["x", "y", "z", "radius", "colour"][..]),
+            ("plane", &["x", "y", "z", "nx", "ny", "nz", "colour"][..]),
+            ("point-light", &["x", "y", "z", "colour", "intensity"][..]),
+            ("ambient-light", &["colour"][..]),
+        ];
+        for case in cases() {
+            for line in case.xml.lines().map(str::trim) {
+                let Some(tag) = line.strip_prefix('<').filter(|l| !l.starts_with('/')) else {
+                    continue;
+                };
+                let name = tag.split_whitespace().next().unwrap_or("").trim_end_matches(['>', '/']);
+                if name == "scene" {
+                    continue;
+                }
+                let attributes = allowed
+                    .iter()
+                    .find(|(element, _)| *element == name)
+                    .unwrap_or_else(|| panic!("{}: <{name}>", case.file))
+                    .1;
+                for word in tag.split_whitespace().skip(1) {
+                    let attribute = word.split('=').next().unwrap_or("");
+                    assert!(attributes.contains(&attribute), "{}: {name} {attribute}", case.file);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_course_scenes_are_the_course_s() {
+        assert_eq!(TICK2, crate::scene::EMBEDDED_TICK2);
+        assert_eq!(SPECULAR_TEST, include_str!("../../scenes/specular_test.xml"));
+    }
+}

@@ -99,9 +99,14 @@ pub fn fit(
     let mut fits: Vec<TermFit> = terms
         .iter()
         .filter_map(|term| fit_one(term, &targets))
-        .filter(|f| f.explained > 0.0 && (f.factor - 1.0).abs() > 1e-3)
+        .filter(|f| f.explained > 0.0 && (f.replaces.is_some() || (f.factor - 1.0).abs() > 1e-3))
         .collect();
-    fits.sort_by(|a, b| b.explained.total_cmp(&a.explained));
+    // On a tie the replacement reads better: "shadows missing", not "twice as strong".
+    fits.sort_by(|a, b| {
+        (b.explained, b.replaces.is_some())
+            .partial_cmp(&(a.explained, a.replaces.is_some()))
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
     fits.truncate(LISTED);
     fits
 }
