@@ -224,13 +224,13 @@ impl Model for Mistakes {
         }
     }
 
-    fn view(&self, p: DVec3, ray: &Ray) -> DVec3 {
+    fn view(&self, p: DVec3, ray_origin: DVec3) -> DVec3 {
         if self.has(Bug::ViewFlipped) {
             normalise(p)
         } else if self.has(Bug::ViewFromRayOrigin) {
-            normalise(ray.origin - p)
+            normalise(ray_origin - p)
         } else {
-            Tick.view(p, ray)
+            Tick.view(p, ray_origin)
         }
     }
 

@@ -55,9 +55,9 @@ pub trait Model: Sync {
         divide_by_length(to_light, d)
     }
 
-    /// `V` at `p` for a ray along `ray`: towards the camera at the origin, even for reflected
-    /// rays (the reference does this).
-    fn view(&self, p: DVec3, _ray: &Ray) -> DVec3 {
+    /// `V` at `p`, hit by a ray from `_ray_origin`: towards the camera at the origin, even for
+    /// reflected rays (the reference does this).
+    fn view(&self, p: DVec3, _ray_origin: DVec3) -> DVec3 {
         normalise(-p)
     }
 

@@ -66,6 +66,7 @@ pub fn trace_beauty(
 /// the way (`explain` watches; the render passes `Silent`). With `LAYERS` false the
 /// per-effect sums are left out at compile time. `accel` must be a brute-force one for a
 /// model the hierarchy is not exact for (`Model::hierarchy_exact`).
+#[inline]
 pub fn trace_observed<const LAYERS: bool>(
     model: &impl Model,
     scene: &Scene,
@@ -109,7 +110,7 @@ pub fn trace_observed<const LAYERS: bool>(
             throughput
         };
         let vertex = Vertex {
-            ray,
+            ray_origin: ray.origin,
             point,
             normal,
             material,
@@ -205,8 +206,8 @@ fn phong_power(x: f64, n: f64) -> f64 {
 
 /// A surface point being shaded and how much it counts towards the pixel.
 struct Vertex<'a> {
-    /// The ray that found the point.
-    ray: Ray,
+    /// Where the ray that found the point started.
+    ray_origin: DVec3,
     point: DVec3,
     normal: DVec3,
     material: &'a Material,
@@ -292,7 +293,7 @@ fn shade<const LAYERS: bool, O: Observer>(
         sample.ambient += ambient * weight;
     }
     let mut colour = ambient;
-    let v = model.view(vertex.point, &vertex.ray);
+    let v = model.view(vertex.point, vertex.ray_origin);
     let lights = model.lights(&scene.lights).iter().enumerate();
     for (light, out) in lights.zip(sample.lights.iter_mut()) {
         let record = light_terms::<O>(model, accel, vertex, light, v, shadows);

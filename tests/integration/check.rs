@@ -1,0 +1,320 @@
+//! `whitted check` against a real Java Tick 2 (`tests/java`, written from docs/rendering.md),
+//! whose mistakes are switched on with `-Dbug=ID`: the correct build passes the suite, each
+//! catalogued mistake is named first on the suite case that shows it, pairs land in the top
+//! three, and the program runner survives programs that crash, hang or cannot start.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::OnceLock;
+
+use whitted::check::diagnose::Renderer;
+use whitted::check::difference::difference;
+use whitted::check::suite::{cases, SuiteCase};
+use whitted::mistakes::{Bug, Mistakes};
+
+use crate::common::*;
+
+/// The compiled Java program's class directory, built once for every test here.
+fn classes() -> &'static Path {
+    static CLASSES: OnceLock<PathBuf> = OnceLock::new();
+    CLASSES.get_or_init(|| {
+        let dir = std::env::temp_dir().join(format!("whitted-java-{}", std::process::id()));
+        let source = root().join("tests/java/gfx/tick2/Tick2.java");
+        let javac = Command::new("javac")
+            .arg("-d")
+            .arg(&dir)
+            .arg(&source)
+            .output()
+            .expect("javac runs (tools/test installs default-jdk-headless)");
+        assert!(javac.status.success(), "{}", stderr(&javac));
+        dir
+    })
+}
+
+/// `java -Dbug=... -cp CLASSES gfx.tick2.Tick2` as one --program string.
+fn program(bugs: &[&str]) -> String {
+    let flag = if bugs.is_empty() {
+        String::new()
+    } else {
+        format!("-Dbug={} ", bugs.join(","))
+    };
+    format!(
+        "java {flag}-cp '{}' gfx.tick2.Tick2",
+        classes().to_str().expect("utf-8")
+    )
+}
+
+/// Runs the Java program on one case, returning the PNG it wrote.
+fn java_render(dir: &Path, case: &SuiteCase, bugs: &[&str], name: &str) -> PathBuf {
+    let scene = dir.join(case.file);
+    std::fs::write(&scene, case.xml).expect("scene");
+    let out = dir.join(name);
+    let mut java = Command::new("java");
+    if !bugs.is_empty() {
+        java.arg(format!("-Dbug={}", bugs.join(",")));
+    }
+    let run = java
+        .arg("-cp")
+        .arg(classes())
+        .arg("gfx.tick2.Tick2")
+        .args(["--input", scene.to_str().expect("utf-8")])
+        .args(["--output", out.to_str().expect("utf-8")])
+        .args(["--bounces", &case.bounces.to_string()])
+        .output()
+        .expect("java runs");
+    assert!(run.status.success(), "{}", stderr(&run));
+    out
+}
+
+/// The first suite case on which whitted's own rendering of `mistakes` fails and shows each
+/// of them: the case that separates them.
+fn separating_case(mistakes: Mistakes) -> SuiteCase {
+    for case in cases() {
+        let scene = whitted::scene::parse_str(case.file, case.xml).expect("scene");
+        let r = Renderer::new(&scene, 640, 480, case.bounces).expect("renderer");
+        let image = r.image(mistakes).expect("image");
+        let fails = difference(&image, &r.reference().expect("reference"), 2).beyond_tolerance > 0;
+        let shows = mistakes
+            .bugs()
+            .iter()
+            .all(|&b| mistakes.bugs().len() == 1 || r.image(Mistakes::of(&[b])).expect("image") != image);
+        if fails && shows {
+            return case;
+        }
+    }
+    panic!("no case separates {:?}", mistakes.ids());
+}
+
+/// `whitted check PNG -i SCENE -b B --json` on `case`.
+fn check_json(dir: &Path, png: &Path, case: &SuiteCase) -> serde_json::Value {
+    let scene = dir.join(case.file);
+    let run = whitted(
+        dir,
+        &[
+            "check",
+            png.to_str().expect("utf-8"),
+            "-i",
+            scene.to_str().expect("utf-8"),
+            "-b",
+            &case.bounces.to_string(),
+            "--json",
+        ],
+    );
+    assert!(run.status.code() == Some(0) || run.status.code() == Some(1), "{}", stderr(&run));
+    serde_json::from_slice(&run.stdout).expect("json")
+}
+
+/// The ids of a diagnosis entry, and of its indistinguishable twins.
+fn names(entry: &serde_json::Value) -> Vec<String> {
+    let bugs: Vec<&str> = entry["bugs"]
+        .as_array()
+        .expect("bugs")
+        .iter()
+        .filter_map(|b| b.as_str())
+        .collect();
+    let mut all = vec![bugs.join("+")];
+    for twin in entry["indistinguishable_from"].as_array().into_iter().flatten() {
+        all.extend(twin.as_str().map(str::to_string));
+    }
+    all
+}
+
+#[test]
+fn every_mistake_of_the_java_program_is_named_first() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let ids: Vec<&str> = Bug::ALL.iter().map(|b| b.id()).collect();
+    // Two Java programs at a time, as the tester runs them.
+    let results: Vec<(String, Vec<String>)> = std::thread::scope(|scope| {
+        let chunks: Vec<_> = ids
+            .chunks(ids.len().div_ceil(2))
+            .map(|chunk| {
+                let d = dir.path();
+                scope.spawn(move || {
+                    chunk
+                        .iter()
+                        .map(|&id| {
+                            let bug = Bug::from_id(id).expect("id");
+                            let case = separating_case(Mistakes::of(&[bug]));
+                            let png = java_render(d, &case, &[id], &format!("{id}.png"));
+                            let json = check_json(d, &png, &case);
+                            assert_eq!(json["verdict"], "differs", "{id} on {}", case.name());
+                            let top = names(&json["diagnosis"][0]);
+                            (id.to_string(), top)
+                        })
+                        .collect::<Vec<_>>()
+                })
+            })
+            .collect();
+        chunks
+            .into_iter()
+            .flat_map(|c| c.join().expect("thread"))
+            .collect()
+    });
+    for (id, top) in &results {
+        assert!(top.contains(id), "{id}: the top diagnosis is {top:?}");
+    }
+    assert_eq!(results.len(), 21);
+}
+
+#[test]
+fn pairs_of_mistakes_are_in_the_top_three() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    for pair in [
+        ["no-ambient", "reflect-unclamped"],
+        ["view-flipped", "no-shadow-bias"],
+        ["first-light-only", "bounces-plus-one"],
+    ] {
+        let bugs: Vec<Bug> = pair.iter().map(|id| Bug::from_id(id).expect("id")).collect();
+        let case = separating_case(Mistakes::of(&bugs));
+        let png = java_render(dir.path(), &case, &pair, "pair.png");
+        let json = check_json(dir.path(), &png, &case);
+        let wanted = Mistakes::of(&bugs).ids().join("+");
+        let top3: Vec<String> = json["diagnosis"]
+            .as_array()
+            .expect("diagnosis")
+            .iter()
+            .take(3)
+            .flat_map(names)
+            .collect();
+        assert!(top3.contains(&wanted), "{wanted}: {top3:?}");
+    }
+}
+
+#[test]
+fn the_suite_passes_a_correct_program_and_names_a_wrong_one() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let run = whitted(dir.path(), &["check", "--program", &program(&[]), "--json"]);
+    assert_eq!(run.status.code(), Some(0), "{}", stderr(&run));
+    let json: serde_json::Value = serde_json::from_slice(&run.stdout).expect("json");
+    let cases = json["cases"].as_array().expect("cases");
+    assert_eq!(cases.len(), 7);
+    for case in cases {
+        assert_eq!((case["status"].as_str(), case["verdict"].as_str()), (Some("ok"), Some("identical")), "{case}");
+    }
+
+    let report = dir.path().join("report.png");
+    let wrong = program(&["specular-object-colour"]);
+    let run = whitted(
+        dir.path(),
+        &["check", "--program", &wrong, "--report", report.to_str().expect("utf-8")],
+    );
+    assert_eq!(run.status.code(), Some(1), "{}", stderr(&run));
+    let text = String::from_utf8_lossy(&run.stdout);
+    let first = text
+        .lines()
+        .skip_while(|l| !l.starts_with("diagnosis over every case"))
+        .nth(1)
+        .unwrap_or_default();
+    assert!(first.contains("1. specular-object-colour"), "{text}");
+    let sheet = read_png(&report);
+    assert!(sheet.width > 640 && sheet.height > 240, "{}x{}", sheet.width, sheet.height);
+}
+
+/// A shell script standing in for a student's program.
+fn script(dir: &Path, name: &str, body: &str) -> String {
+    let path = dir.join(name);
+    std::fs::write(&path, format!("#!/bin/sh\n{body}\n")).expect("script");
+    let mut permissions = std::fs::metadata(&path).expect("meta").permissions();
+    std::os::unix::fs::PermissionsExt::set_mode(&mut permissions, 0o755);
+    std::fs::set_permissions(&path, permissions).expect("chmod");
+    path.to_str().expect("utf-8").to_string()
+}
+
+#[test]
+fn programs_that_crash_hang_or_write_nonsense_get_a_status_each() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let cases_of = |program: &str, extra: &[&str]| -> Vec<serde_json::Value> {
+        let mut args = vec!["check", "--program", program, "--json"];
+        args.extend_from_slice(extra);
+        let run = whitted(d, &args);
+        assert_eq!(run.status.code(), Some(1), "{program}: {}", stderr(&run));
+        let json: serde_json::Value = serde_json::from_slice(&run.stdout).expect("json");
+        json["cases"].as_array().expect("cases").clone()
+    };
+    let crash = script(d, "crash.sh", "echo 'Exception in thread \"main\" java.lang.NullPointerException' >&2; exit 1");
+    for case in cases_of(&crash, &[]) {
+        assert_eq!(case["status"], "crashed");
+        assert!(case["stderr_tail"].as_str().unwrap_or("").contains("NullPointerException"));
+    }
+    let silent = script(d, "silent.sh", "exit 0");
+    assert!(cases_of(&silent, &[]).iter().all(|c| c["status"] == "no-output"));
+    // Writes a 64x48 PNG wherever --output says (the 4th argument).
+    let run = whitted(d, &["render", "-q", "-o", "small.png", "--width", "64", "--height", "48"]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let small = script(d, "small.sh", &format!("cp '{}' \"$4\"", d.join("small.png").display()));
+    let wrong = cases_of(&small, &[]);
+    assert!(wrong.iter().all(|c| c["status"] == "wrong-size" && c["width"] == 64), "{wrong:?}");
+    // A program that starts a child and hangs: killed with its child at the timeout.
+    let marker = d.join("survivor");
+    let hang = script(
+        d,
+        "hang.sh",
+        &format!("(sleep 3; touch '{}') & sleep 30", marker.display()),
+    );
+    let started = std::time::Instant::now();
+    let statuses = cases_of(&hang, &["--timeout", "1"]);
+    assert!(statuses.iter().all(|c| c["status"] == "timeout"));
+    // Seven cases, two at a time, one second each.
+    assert!(started.elapsed().as_secs() < 20, "{:?}", started.elapsed());
+    std::thread::sleep(std::time::Duration::from_secs(4));
+    assert!(!marker.exists(), "a child of the program outlived its case");
+
+    let run = whitted(d, &["check", "--program", "no-such-program-anywhere"]);
+    assert_eq!(run.status.code(), Some(2));
+    let message = stderr(&run);
+    assert_eq!(message.lines().count(), 1, "{message}");
+    assert!(message.contains("cannot start the program"), "{message}");
+    let run = whitted(d, &["check", "--program", "java 'unclosed"]);
+    assert_eq!(run.status.code(), Some(2));
+}
+
+#[test]
+fn images_that_cannot_be_compared_are_refused_with_one_line() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let jpeg = root().join("reference/specular_test_correct_solution.jpg");
+    let run = whitted(d, &["check", jpeg.to_str().expect("utf-8")]);
+    assert_eq!(run.status.code(), Some(2));
+    assert!(stderr(&run).contains("is a JPEG") && stderr(&run).contains("PNG"), "{}", stderr(&run));
+    let sixteen = d.join("16.png");
+    let run = whitted(d, &["render", "-q", "--png-depth", "16", "-o", "16.png", "--width", "64", "--height", "48"]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let run = whitted(d, &["check", sixteen.to_str().expect("utf-8")]);
+    assert_eq!(run.status.code(), Some(2));
+    assert!(stderr(&run).contains("8-bit RGB"), "{}", stderr(&run));
+    std::fs::write(d.join("junk.png"), b"not a png at all").expect("junk");
+    let run = whitted(d, &["check", "junk.png"]);
+    assert_eq!((run.status.code(), stderr(&run).lines().count()), (Some(2), 1));
+
+    let run = whitted(d, &["check", "--list-bugs"]);
+    assert!(run.status.success());
+    let listed = String::from_utf8_lossy(&run.stdout);
+    assert_eq!(listed.lines().count(), 21);
+    assert!(listed.lines().all(|l| Bug::from_id(l.split_whitespace().next().unwrap_or("")).is_some()));
+}
+
+#[test]
+fn a_whitted_render_is_identical_and_explains_its_worst_pixel() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let run = whitted(d, &["render", "-q", "-o", "mine.png", "-b", "1", "--width", "320", "--height", "240"]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let run = whitted(d, &["check", "mine.png", "-b", "1"]);
+    assert_eq!(run.status.code(), Some(0), "{}", stderr(&run));
+    assert!(String::from_utf8_lossy(&run.stdout).contains("identical"));
+    // Checked against the wrong bounce count: it differs, and says where.
+    let run = whitted(d, &["check", "mine.png", "-b", "2", "--heatmap", "heat.png"]);
+    assert_eq!(run.status.code(), Some(1), "{}", stderr(&run));
+    let text = String::from_utf8_lossy(&run.stdout);
+    assert!(text.contains("1. bounces-minus-one"), "{text}");
+    let last = text.lines().last().unwrap_or_default().trim();
+    assert!(last.starts_with("whitted explain") && last.contains("--bug bounces-minus-one"), "{text}");
+    let heat = read_png(&d.join("heat.png"));
+    assert_eq!((heat.width, heat.height), (320, 240));
+    // The explain command it prints runs, and traces the mistake.
+    let words: Vec<&str> = last.split_whitespace().skip(1).collect();
+    let run = whitted(d, &words);
+    assert!(run.status.success(), "{}", stderr(&run));
+    assert!(String::from_utf8_lossy(&run.stdout).contains("bounces-minus-one"));
+}
