@@ -81,7 +81,12 @@ pub fn check_image(
 }
 
 /// The term fit over a sample of the differing pixels.
-fn fit_terms(scene: &Scene, bounces: u32, student: &Rgb8, reference: &Rgb8) -> Result<Vec<TermFit>> {
+fn fit_terms(
+    scene: &Scene,
+    bounces: u32,
+    student: &Rgb8,
+    reference: &Rgb8,
+) -> Result<Vec<TermFit>> {
     let width = student.width as usize;
     let wrong: Vec<(u32, u32)> = (0..student.bytes.len() / 3)
         .filter(|&i| pixel_difference(&student.bytes, &reference.bytes, i) > 0)
@@ -114,10 +119,13 @@ mod tests {
             let scene = crate::scene::parse_str(case.file, case.xml).expect("scene");
             let r = Renderer::new(&scene, 640, 480, case.bounces).expect("renderer");
             let image = r.image(mistakes).expect("image");
-            let fails = difference(&image, &r.reference().expect("reference"), 2).beyond_tolerance > 0;
+            let fails =
+                difference(&image, &r.reference().expect("reference"), 2).beyond_tolerance > 0;
             let members = mistakes.bugs();
             let each_shows = members.len() == 1
-                || members.iter().all(|&b| r.image(Mistakes::of(&[b])).expect("image") != image);
+                || members
+                    .iter()
+                    .all(|&b| r.image(Mistakes::of(&[b])).expect("image") != image);
             if fails && each_shows {
                 return (case, scene, image);
             }
@@ -139,9 +147,19 @@ mod tests {
             let wanted = Mistakes::of(&[bug]);
             let (case, scene, image) = failing_case(wanted);
             let report = check_image(&scene, case.file, case.bounces, 2, image).expect("check");
-            assert!(named_first(&report, wanted), "{}: {:?}", bug.id(), report.diagnosis.first());
+            assert!(
+                named_first(&report, wanted),
+                "{}: {:?}",
+                bug.id(),
+                report.diagnosis.first()
+            );
             let top = &report.diagnosis[0];
-            assert_eq!((top.explained, top.wrongly_changed_pixels), (1.0, 0), "{}", bug.id());
+            assert_eq!(
+                (top.explained, top.wrongly_changed_pixels),
+                (1.0, 0),
+                "{}",
+                bug.id()
+            );
         }
     }
 
@@ -157,14 +175,20 @@ mod tests {
             let wanted = Mistakes::of(&pair);
             let (case, scene, image) = failing_case(wanted);
             let report = check_image(&scene, case.file, case.bounces, 2, image).expect("check");
-            let top3: Vec<Mistakes> = report.diagnosis.iter().take(3).map(|d| d.mistakes).collect();
+            let top3: Vec<Mistakes> = report
+                .diagnosis
+                .iter()
+                .take(3)
+                .map(|d| d.mistakes)
+                .collect();
             assert!(top3.contains(&wanted), "{pair:?}: {top3:?}");
         }
     }
 
     #[test]
     fn rounding_noise_is_not_a_mistake() {
-        let scene = crate::scene::parse_str("tick2.xml", crate::scene::EMBEDDED_TICK2).expect("scene");
+        let scene =
+            crate::scene::parse_str("tick2.xml", crate::scene::EMBEDDED_TICK2).expect("scene");
         let r = Renderer::new(&scene, 640, 480, 2).expect("renderer");
         let mut image = r.reference().expect("reference");
         // A student's pow rounding the other way in a few pixels.
@@ -172,20 +196,30 @@ mod tests {
             image.bytes[i] = image.bytes[i].saturating_add(1);
         }
         let report = check_image(&scene, "tick2.xml", 2, 2, image).expect("check");
-        assert_eq!(report.difference.verdict, difference::Verdict::WithinTolerance);
-        assert!(report.diagnosis.is_empty(), "{:?}", report.diagnosis.first());
+        assert_eq!(
+            report.difference.verdict,
+            difference::Verdict::WithinTolerance
+        );
+        assert!(
+            report.diagnosis.is_empty(),
+            "{:?}",
+            report.diagnosis.first()
+        );
     }
 
     #[test]
     fn mistakes_beyond_the_catalogue_are_located_in_the_terms() {
-        let scene = crate::scene::parse_str("tick2.xml", crate::scene::EMBEDDED_TICK2).expect("scene");
+        let scene =
+            crate::scene::parse_str("tick2.xml", crate::scene::EMBEDDED_TICK2).expect("scene");
         let spec = FrameSpec {
             bounces: 0,
             ..FrameSpec::default()
         };
         let frame = Frame::new(&scene, &spec).expect("frame");
         let accel = Accelerator::build(&scene.objects);
-        let every: Vec<(u32, u32)> = (0..480).flat_map(|y| (0..640).map(move |x| (x, y))).collect();
+        let every: Vec<(u32, u32)> = (0..480)
+            .flat_map(|y| (0..640).map(move |x| (x, y)))
+            .collect();
         let samples = sample_pixels(&scene, &accel, &frame, &every);
         let render = |f: &dyn Fn(&crate::sample::Sample) -> glam::DVec3| Rgb8 {
             width: 640,
@@ -200,7 +234,10 @@ mod tests {
         let unshadowed = render(&|s| s.beauty - s.lights[1].shadowed + s.lights[1].unshadowed);
         let report = check_image(&scene, "tick2.xml", 0, 2, unshadowed).expect("check");
         let top = report.terms.first().expect("a term");
-        assert_eq!((top.layer.as_str(), top.replaces.as_deref()), ("unshadowed_1", Some("light_1")));
+        assert_eq!(
+            (top.layer.as_str(), top.replaces.as_deref()),
+            ("unshadowed_1", Some("light_1"))
+        );
         assert!(top.explained > 0.9, "{top:?}");
     }
 }

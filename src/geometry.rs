@@ -160,7 +160,10 @@ mod tests {
             intersect(&Tick, &s, &Ray::new(DVec3::new(0.0, 1.5, 0.0), DVec3::Z)),
             None
         );
-        assert_eq!(intersect(&Tick, &s, &Ray::new(DVec3::ZERO, -DVec3::Z)), None);
+        assert_eq!(
+            intersect(&Tick, &s, &Ray::new(DVec3::ZERO, -DVec3::Z)),
+            None
+        );
     }
 
     #[test]
@@ -187,11 +190,21 @@ mod tests {
         let down = Ray::new(DVec3::ZERO, DVec3::new(0.0, -1.0, 0.0));
         assert_eq!(intersect(&Tick, &floor, &down), Some(1.0));
         // Behind the ray.
-        assert_eq!(intersect(&Tick, &floor, &Ray::new(DVec3::ZERO, DVec3::Y)), None);
-        // Parallel: D.N = 0 gives an infinite or NaN parameter, never a hit.
-        assert_eq!(intersect(&Tick, &floor, &Ray::new(DVec3::ZERO, DVec3::X)), None);
         assert_eq!(
-            intersect(&Tick, &floor, &Ray::new(DVec3::new(0.0, -1.0, 0.0), DVec3::X)),
+            intersect(&Tick, &floor, &Ray::new(DVec3::ZERO, DVec3::Y)),
+            None
+        );
+        // Parallel: D.N = 0 gives an infinite or NaN parameter, never a hit.
+        assert_eq!(
+            intersect(&Tick, &floor, &Ray::new(DVec3::ZERO, DVec3::X)),
+            None
+        );
+        assert_eq!(
+            intersect(
+                &Tick,
+                &floor,
+                &Ray::new(DVec3::new(0.0, -1.0, 0.0), DVec3::X)
+            ),
             None
         );
         // Seen from behind: still hit, and the normal is not flipped.
@@ -207,8 +220,12 @@ mod tests {
             sphere(DVec3::new(0.0, 0.0, 5.0), 1.0),
             plane(DVec3::new(0.0, 0.0, 4.0), DVec3::Z),
         ];
-        let hit =
-            closest_hit(&Tick, shapes.iter().enumerate(), &Ray::new(DVec3::ZERO, DVec3::Z)).expect("hits");
+        let hit = closest_hit(
+            &Tick,
+            shapes.iter().enumerate(),
+            &Ray::new(DVec3::ZERO, DVec3::Z),
+        )
+        .expect("hits");
         assert_eq!(
             hit,
             Hit {

@@ -258,9 +258,17 @@ impl Model for Mistakes {
         }
     }
 
-    fn specular(&self, illumination: DVec3, ks: f64, phong: f64, colour: DVec3, n_dot_l: f64) -> DVec3 {
-        // NaN > 0 is false: a NaN N.L adds no specular either.
-        let gated = self.has(Bug::SpecularGated) && !(n_dot_l > 0.0);
+    fn specular(
+        &self,
+        illumination: DVec3,
+        ks: f64,
+        phong: f64,
+        colour: DVec3,
+        n_dot_l: f64,
+    ) -> DVec3 {
+        // The clamped N.L is 0 where the raw one is <= 0; a NaN one adds no specular either.
+        let lit = n_dot_l.partial_cmp(&0.0) == Some(std::cmp::Ordering::Greater);
+        let gated = self.has(Bug::SpecularGated) && !lit;
         let specular = if gated {
             DVec3::ZERO
         } else {
@@ -353,7 +361,12 @@ mod tests {
             bounces: 0,
             ..FrameSpec::default()
         };
-        assert_eq!(Mistakes::of(&[Bug::BouncesMinusOne]).frame_spec(&zero).bounces, 0);
+        assert_eq!(
+            Mistakes::of(&[Bug::BouncesMinusOne])
+                .frame_spec(&zero)
+                .bounces,
+            0
+        );
         let far = Mistakes::of(&[Bug::SphereFarRoot]).frame_spec(&spec);
         assert_eq!(far.acceleration, Acceleration::BruteForce);
     }

@@ -78,7 +78,14 @@ pub trait Model: Sync {
 
     /// `(I * kS) * max(0, R.V)^n`, white; `colour` and `n_dot_l` are there for the rules that
     /// get it wrong.
-    fn specular(&self, illumination: DVec3, ks: f64, phong: f64, _colour: DVec3, _n_dot_l: f64) -> DVec3 {
+    fn specular(
+        &self,
+        illumination: DVec3,
+        ks: f64,
+        phong: f64,
+        _colour: DVec3,
+        _n_dot_l: f64,
+    ) -> DVec3 {
         illumination * ks * phong
     }
 

@@ -12,9 +12,9 @@ use crate::error::Result;
 use crate::film::{Film, PixelAccumulator};
 use crate::frame::{Acceleration, Frame};
 use crate::interrupt;
+use crate::model::Model;
 use crate::sample::Sample;
 use crate::scene::Scene;
-use crate::model::Model;
 use crate::trace::observe::Silent;
 use crate::trace::{trace_beauty, trace_into, trace_observed};
 
@@ -262,7 +262,15 @@ pub fn render_pixels(
         .iter()
         .map(|&(x, y)| {
             let ray = frame.camera.pixel_centre_ray(x, y);
-            trace_observed::<false>(model, scene, accel, ray, frame.trace, &mut sample, &mut Silent);
+            trace_observed::<false>(
+                model,
+                scene,
+                accel,
+                ray,
+                frame.trace,
+                &mut sample,
+                &mut Silent,
+            );
             sample.beauty
         })
         .collect()
@@ -280,7 +288,13 @@ pub fn sample_pixels(
     pixels
         .iter()
         .map(|&(x, y)| {
-            trace_into(scene, accel, frame.camera.pixel_centre_ray(x, y), frame.trace, &mut sample);
+            trace_into(
+                scene,
+                accel,
+                frame.camera.pixel_centre_ray(x, y),
+                frame.trace,
+                &mut sample,
+            );
             sample.clone()
         })
         .collect()

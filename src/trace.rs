@@ -117,8 +117,15 @@ pub fn trace_observed<const LAYERS: bool>(
             weight,
             depth: k,
         };
-        let (ambient, colour) =
-            shade::<LAYERS, _>(model, scene, accel, &vertex, options.shadows, sample, observer);
+        let (ambient, colour) = shade::<LAYERS, _>(
+            model,
+            scene,
+            accel,
+            &vertex,
+            options.shadows,
+            sample,
+            observer,
+        );
         let spawned = continues.then(|| model.mirror_ray(point, ray.direction, normal));
         observer.vertex(VertexRecord {
             depth: k,

@@ -205,7 +205,10 @@ fn a_single_leaf_hierarchy_keeps_brute_force_ties() {
     let ray = Ray::new(DVec3::new(centre.x, centre.y, -20.0), DVec3::Z);
     assert_eq!(accel.closest_hit(&Tick, &ray), closest_hit(&objects, &ray));
     assert_eq!(accel.closest_hit(&Tick, &ray).expect("hits").object, 0);
-    assert_eq!(accel.occluded(&Tick, &ray, 100.0), occluded(&objects, &ray, 100.0));
+    assert_eq!(
+        accel.occluded(&Tick, &ray, 100.0),
+        occluded(&objects, &ray, 100.0)
+    );
 }
 
 #[test]

@@ -193,8 +193,8 @@ pub(crate) fn spread<T: Copy>(items: &[T], n: usize) -> Vec<T> {
 pub fn analyse(renderer: &Renderer, student: &Rgb8, reference: &Rgb8) -> Result<CaseAnalysis> {
     let width = student.width as usize;
     let pixels = student.bytes.len() / 3;
-    let (wrong, right): (Vec<usize>, Vec<usize>) = (0..pixels)
-        .partition(|&i| pixel_difference(&student.bytes, &reference.bytes, i) > 0);
+    let (wrong, right): (Vec<usize>, Vec<usize>) =
+        (0..pixels).partition(|&i| pixel_difference(&student.bytes, &reference.bytes, i) > 0);
     let null_cost = wrong
         .iter()
         .map(|&i| cost(pixel_difference(&student.bytes, &reference.bytes, i)))
@@ -260,7 +260,12 @@ pub fn analyse(renderer: &Renderer, student: &Rgb8, reference: &Rgb8) -> Result<
         let best = order.first().map_or(0.0, |&i| scored[i].cost);
         let margin = 0.01 * wrong.len() as f64 + 1.0;
         let close = |i: &&usize| scored[**i].cost <= best * CLOSE + margin;
-        let finalists: Vec<usize> = order.iter().take(FINALISTS).take_while(close).copied().collect();
+        let finalists: Vec<usize> = order
+            .iter()
+            .take(FINALISTS)
+            .take_while(close)
+            .copied()
+            .collect();
         for i in finalists {
             let image = renderer.image_with(&scored[i].mistakes, &frames[i]);
             scored[i] = exact(&scored[i], &image, student, reference);
@@ -348,12 +353,23 @@ pub fn rank(cases: &[&CaseAnalysis]) -> Vec<Diagnosis> {
                 && total(i, &|s| s.cost) < null
         })
         .collect();
-    let costs: Vec<f64> = (0..first.scored.len()).map(|i| total(i, &|s| s.cost)).collect();
+    let costs: Vec<f64> = (0..first.scored.len())
+        .map(|i| total(i, &|s| s.cost))
+        .collect();
     order.sort_by(|&a, &b| {
         let (sa, sb) = (&first.scored[a], &first.scored[b]);
-        costs[a]
-            .total_cmp(&costs[b])
-            .then_with(|| ranking(&Scored { cost: 0.0, ..sa.clone() }, &Scored { cost: 0.0, ..sb.clone() }))
+        costs[a].total_cmp(&costs[b]).then_with(|| {
+            ranking(
+                &Scored {
+                    cost: 0.0,
+                    ..sa.clone()
+                },
+                &Scored {
+                    cost: 0.0,
+                    ..sb.clone()
+                },
+            )
+        })
     });
     // Twins only where whole images were compared at least once: a sample alone can agree by
     // chance.
@@ -390,7 +406,9 @@ pub fn rank(cases: &[&CaseAnalysis]) -> Vec<Diagnosis> {
                 unexplained_pixels: (differing as f64 - explained).max(0.0).round() as u64,
                 wrongly_changed_pixels: total(i, &|s| s.wrongly_changed).round() as u64,
                 indistinguishable_from: Vec::new(),
-                exact: cases.iter().all(|c| c.scored[i].exact() || c.differing == 0),
+                exact: cases
+                    .iter()
+                    .all(|c| c.scored[i].exact() || c.differing == 0),
             },
         ));
     }

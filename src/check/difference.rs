@@ -110,13 +110,22 @@ mod tests {
     fn counts_where_and_by_how_much() {
         let reference = image(vec![10; 12]);
         let mut student = reference.clone();
-        assert_eq!(difference(&student, &reference, 2).verdict, Verdict::Identical);
+        assert_eq!(
+            difference(&student, &reference, 2).verdict,
+            Verdict::Identical
+        );
         student.bytes[4] = 12; // pixel (1, 0), 2 LSB
         let d = difference(&student, &reference, 2);
-        assert_eq!((d.verdict, d.differing_pixels, d.beyond_tolerance), (Verdict::WithinTolerance, 1, 0));
+        assert_eq!(
+            (d.verdict, d.differing_pixels, d.beyond_tolerance),
+            (Verdict::WithinTolerance, 1, 0)
+        );
         student.bytes[9] = 0; // pixel (1, 1), 10 LSB
         let d = difference(&student, &reference, 2);
         assert_eq!(d.verdict, Verdict::Differs);
-        assert_eq!((d.max_difference, d.worst_pixel, d.bounds), (10, Some((1, 1)), Some((1, 0, 1, 1))));
+        assert_eq!(
+            (d.max_difference, d.worst_pixel, d.bounds),
+            (10, Some((1, 1)), Some((1, 0, 1, 1)))
+        );
     }
 }

@@ -219,7 +219,12 @@ fn run_programs(
     }
     Ok(results
         .into_iter()
-        .map(|r| r.unwrap_or((Ran::Failed(Status::Crashed("not run".into())), String::new())))
+        .map(|r| {
+            r.unwrap_or((
+                Ran::Failed(Status::Crashed("not run".into())),
+                String::new(),
+            ))
+        })
         .collect())
 }
 
@@ -228,7 +233,13 @@ fn start(words: &[String], case: &SuiteCase, index: usize) -> Result<Running> {
     let dir = tempfile::Builder::new()
         .prefix("whitted-check-")
         .tempdir()
-        .map_err(|e| Error::io(std::env::temp_dir(), "cannot create a temporary directory", e))?;
+        .map_err(|e| {
+            Error::io(
+                std::env::temp_dir(),
+                "cannot create a temporary directory",
+                e,
+            )
+        })?;
     let scene = dir.path().join(case.file);
     std::fs::write(&scene, case.xml).map_err(|e| Error::io(&scene, "cannot write", e))?;
     let output = output_path(dir.path());
@@ -246,12 +257,9 @@ fn start(words: &[String], case: &SuiteCase, index: usize) -> Result<Running> {
         .stderr(Stdio::piped());
     #[cfg(unix)]
     std::os::unix::process::CommandExt::process_group(&mut command, 0);
-    let mut child = command.spawn().map_err(|e| {
-        Error::Usage(format!(
-            "cannot start the program `{}`: {e}",
-            words[0]
-        ))
-    })?;
+    let mut child = command
+        .spawn()
+        .map_err(|e| Error::Usage(format!("cannot start the program `{}`: {e}", words[0])))?;
     let stderr = child.stderr.take();
     let reader = std::thread::spawn(move || stderr.map(keep_tail).unwrap_or_default());
     Ok(Running {
@@ -298,7 +306,11 @@ fn stop(r: &mut Running) -> String {
     kill_group(&r.child);
     let _ = r.child.kill();
     let _ = r.child.wait();
-    let tail = r.stderr.take().and_then(|t| t.join().ok()).unwrap_or_default();
+    let tail = r
+        .stderr
+        .take()
+        .and_then(|t| t.join().ok())
+        .unwrap_or_default();
     tail_text(&tail)
 }
 

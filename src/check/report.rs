@@ -23,7 +23,12 @@ fn heat(d: u8, tolerance: u8) -> [u8; 3] {
 
 fn heat_pixels(student: &Rgb8, reference: &Rgb8, tolerance: u8) -> Vec<[u8; 3]> {
     (0..student.bytes.len() / 3)
-        .map(|i| heat(pixel_difference(&student.bytes, &reference.bytes, i), tolerance))
+        .map(|i| {
+            heat(
+                pixel_difference(&student.bytes, &reference.bytes, i),
+                tolerance,
+            )
+        })
         .collect()
 }
 
@@ -70,14 +75,19 @@ impl ReportRow {
         let width = case.student.width;
         let tiles = [
             tile(width, case.student.height, |x, y| case.student.pixel(x, y)),
-            tile(width, case.student.height, |x, y| case.reference.pixel(x, y)),
+            tile(width, case.student.height, |x, y| {
+                case.reference.pixel(x, y)
+            }),
             tile(width, case.student.height, |x, y| {
                 heat[y as usize * width as usize + x as usize]
             }),
         ];
         let mut caption = vec![
             format!("{case_name}: {}", d.verdict.name()),
-            format!("{} pixels differ, up to {} LSB", d.differing_pixels, d.max_difference),
+            format!(
+                "{} pixels differ, up to {} LSB",
+                d.differing_pixels, d.max_difference
+            ),
         ];
         match case.diagnosis.first() {
             Some(top) => caption.push(format!(
@@ -104,10 +114,15 @@ pub fn contact_sheet(rows: &[ReportRow]) -> PngImage {
         .unwrap_or(TILE_WIDTH);
     let width = 3 * tile_width + 4 * GAP;
     let heading = ["your image", "reference", "difference"];
-    let row_height = |r: &ReportRow| {
-        r.tiles[0].height + (r.caption.len() + 1) * LINE_HEIGHT + 2 * GAP
-    };
-    let height = GAP + LINE_HEIGHT + rows.iter().map(row_height).sum::<usize>().max(LINE_HEIGHT * 2);
+    let row_height =
+        |r: &ReportRow| r.tiles[0].height + (r.caption.len() + 1) * LINE_HEIGHT + 2 * GAP;
+    let height = GAP
+        + LINE_HEIGHT
+        + rows
+            .iter()
+            .map(row_height)
+            .sum::<usize>()
+            .max(LINE_HEIGHT * 2);
     let mut sheet = Canvas::new(width, height, [24, 24, 24]);
     for (i, h) in heading.iter().enumerate() {
         sheet.text(GAP + i * (tile_width + GAP), GAP, h, [200, 200, 200]);

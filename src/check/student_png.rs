@@ -71,7 +71,9 @@ pub fn decode(bytes: &[u8]) -> Result<Rgb8, String> {
     decoder.set_limits(png::Limits {
         bytes: usize::try_from(budget).unwrap_or(usize::MAX),
     });
-    let mut reader = decoder.read_info().map_err(|e| format!("is not a readable PNG: {e}"))?;
+    let mut reader = decoder
+        .read_info()
+        .map_err(|e| format!("is not a readable PNG: {e}"))?;
     let info = reader.info();
     let (width, height) = (info.width, info.height);
     if width == 0 || height == 0 || width > MAX_SIDE || height > MAX_SIDE {
@@ -90,14 +92,22 @@ pub fn decode(bytes: &[u8]) -> Result<Rgb8, String> {
         }
     };
     let size = u64::from(width) * u64::from(height) * channels;
-    memory::check(size.saturating_mul(2), Some(budget), "decoding the PNG").map_err(|e| e.to_string())?;
-    let mut data = vec![0; reader.output_buffer_size().ok_or("is too large to decode")?];
+    memory::check(size.saturating_mul(2), Some(budget), "decoding the PNG")
+        .map_err(|e| e.to_string())?;
+    let mut data = vec![
+        0;
+        reader
+            .output_buffer_size()
+            .ok_or("is too large to decode")?
+    ];
     let frame = reader
         .next_frame(&mut data)
         .map_err(|e| format!("is not a readable PNG: {e}"))?;
     data.truncate(frame.buffer_size());
     let bytes = if channels == 4 {
-        data.chunks_exact(4).flat_map(|p| [p[0], p[1], p[2]]).collect()
+        data.chunks_exact(4)
+            .flat_map(|p| [p[0], p[1], p[2]])
+            .collect()
     } else {
         data
     };

@@ -74,7 +74,12 @@ mod tests {
             assert!(fails, "{} passes every case of the suite", bug.id());
             for (j, other) in Bug::ALL.iter().enumerate().skip(i + 1) {
                 let apart = images.iter().any(|(_, each)| each[i] != each[j]);
-                assert!(apart, "{} and {} render the suite alike", bug.id(), other.id());
+                assert!(
+                    apart,
+                    "{} and {} render the suite alike",
+                    bug.id(),
+                    other.id()
+                );
             }
         }
     }
@@ -92,7 +97,11 @@ mod tests {
                 let Some(tag) = line.strip_prefix('<').filter(|l| !l.starts_with('/')) else {
                     continue;
                 };
-                let name = tag.split_whitespace().next().unwrap_or("").trim_end_matches(['>', '/']);
+                let name = tag
+                    .split_whitespace()
+                    .next()
+                    .unwrap_or("")
+                    .trim_end_matches(['>', '/']);
                 if name == "scene" {
                     continue;
                 }
@@ -103,7 +112,11 @@ mod tests {
                     .1;
                 for word in tag.split_whitespace().skip(1) {
                     let attribute = word.split('=').next().unwrap_or("");
-                    assert!(attributes.contains(&attribute), "{}: {name} {attribute}", case.file);
+                    assert!(
+                        attributes.contains(&attribute),
+                        "{}: {name} {attribute}",
+                        case.file
+                    );
                 }
             }
         }
@@ -112,6 +125,9 @@ mod tests {
     #[test]
     fn the_course_scenes_are_the_course_s() {
         assert_eq!(TICK2, crate::scene::EMBEDDED_TICK2);
-        assert_eq!(SPECULAR_TEST, include_str!("../../scenes/specular_test.xml"));
+        assert_eq!(
+            SPECULAR_TEST,
+            include_str!("../../scenes/specular_test.xml")
+        );
     }
 }

@@ -128,6 +128,24 @@ pub(super) fn parse_threads(s: &str) -> Result<usize, String> {
     }
 }
 
+pub(super) fn parse_timeout(s: &str) -> Result<u64, String> {
+    match s.trim().parse::<u64>() {
+        Ok(n) if (1..=86_400).contains(&n) => Ok(n),
+        _ => Err(format!(
+            "expected a whole number of seconds from 1 to 86400, got `{s}`"
+        )),
+    }
+}
+
+pub(super) fn parse_bug(s: &str) -> Result<crate::mistakes::Bug, String> {
+    crate::mistakes::Bug::from_id(s.trim()).ok_or_else(|| {
+        let ids: Vec<&str> = crate::mistakes::Bug::ALL.iter().map(|b| b.id()).collect();
+        let hint = crate::suggest::nearest(s.trim(), &ids)
+            .map_or(String::new(), |n| format!("did you mean `{n}`? "));
+        format!("unknown mistake `{s}`; {hint}`whitted check --list-bugs` lists them")
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -148,20 +166,4 @@ mod tests {
         assert!(parse_exposure("nan").is_err());
         assert!(parse_depth("12").is_err());
     }
-}
-
-pub(super) fn parse_timeout(s: &str) -> Result<u64, String> {
-    match s.trim().parse::<u64>() {
-        Ok(n) if (1..=86_400).contains(&n) => Ok(n),
-        _ => Err(format!("expected a whole number of seconds from 1 to 86400, got `{s}`")),
-    }
-}
-
-pub(super) fn parse_bug(s: &str) -> Result<crate::mistakes::Bug, String> {
-    crate::mistakes::Bug::from_id(s.trim()).ok_or_else(|| {
-        let ids: Vec<&str> = crate::mistakes::Bug::ALL.iter().map(|b| b.id()).collect();
-        let hint = crate::suggest::nearest(s.trim(), &ids)
-            .map_or(String::new(), |n| format!("did you mean `{n}`? "));
-        format!("unknown mistake `{s}`; {hint}`whitted check --list-bugs` lists them")
-    })
 }

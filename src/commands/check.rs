@@ -187,10 +187,7 @@ fn diagnosis_lines(list: &[Diagnosis]) -> String {
         );
         if !d.indistinguishable_from.is_empty() {
             let twins: Vec<String> = d.indistinguishable_from.iter().map(|&m| name(m)).collect();
-            out += &format!(
-                "     indistinguishable on this image from: {}\n",
-                twins.join(", ")
-            );
+            out += &format!("     indistinguishable here from: {}\n", twins.join(", "));
         }
     }
     out
@@ -217,9 +214,8 @@ fn case_text(case: &CaseReport, input: Option<&std::path::Path>) -> String {
         d.differing_pixels, d.beyond_tolerance, d.max_difference
     );
     if let (Some((x0, y0, x1, y1)), Some((x, y))) = (d.bounds, d.worst_pixel) {
-        out += &format!(
-            "they lie in x {x0}..={x1}, y {y0}..={y1}; the worst pixel is ({x}, {y})\n"
-        );
+        out +=
+            &format!("they lie in x {x0}..={x1}, y {y0}..={y1}; the worst pixel is ({x}, {y})\n");
     }
     if case.diagnosis.is_empty() {
         out += "diagnosis: no catalogued mistake reproduces the image better than the reference does\n";
@@ -238,15 +234,25 @@ fn case_text(case: &CaseReport, input: Option<&std::path::Path>) -> String {
         }
     }
     if let Some((x, y)) = d.worst_pixel {
-        let scene = input.map_or(String::new(), |p| format!(" -i {}", shell_word(&p.display().to_string())));
+        let scene = input.map_or(String::new(), |p| {
+            format!(" -i {}", shell_word(&p.display().to_string()))
+        });
         let base = format!(
             "whitted explain{scene} -b {} --width {} --height {} --pixel {x},{y}",
             case.bounces, d.width, d.height
         );
         out += &format!("the worst pixel, as the reference traces it:\n  {base}\n");
         if let Some(top) = case.diagnosis.first() {
-            let bugs: Vec<String> = top.mistakes.ids().iter().map(|id| format!(" --bug {id}")).collect();
-            out += &format!("and as the top diagnosis traces it:\n  {base}{}\n", bugs.concat());
+            let bugs: Vec<String> = top
+                .mistakes
+                .ids()
+                .iter()
+                .map(|id| format!(" --bug {id}"))
+                .collect();
+            out += &format!(
+                "and as the top diagnosis traces it:\n  {base}{}\n",
+                bugs.concat()
+            );
         }
     }
     out.trim_end().to_string()
@@ -297,10 +303,9 @@ fn suite_text(run: &SuiteRun) -> String {
         let detail = match &c.status {
             Status::Ok(case) => {
                 let d = &case.difference;
-                let top = case
-                    .diagnosis
-                    .first()
-                    .map_or(String::new(), |t| format!("; looks like {}", name(t.mistakes)));
+                let top = case.diagnosis.first().map_or(String::new(), |t| {
+                    format!("; looks like {}", name(t.mistakes))
+                });
                 match d.verdict.passes() {
                     true => d.verdict.name().to_string(),
                     false => format!(

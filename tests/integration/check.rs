@@ -74,10 +74,9 @@ fn separating_case(mistakes: Mistakes) -> SuiteCase {
         let r = Renderer::new(&scene, 640, 480, case.bounces).expect("renderer");
         let image = r.image(mistakes).expect("image");
         let fails = difference(&image, &r.reference().expect("reference"), 2).beyond_tolerance > 0;
-        let shows = mistakes
-            .bugs()
-            .iter()
-            .all(|&b| mistakes.bugs().len() == 1 || r.image(Mistakes::of(&[b])).expect("image") != image);
+        let shows = mistakes.bugs().iter().all(|&b| {
+            mistakes.bugs().len() == 1 || r.image(Mistakes::of(&[b])).expect("image") != image
+        });
         if fails && shows {
             return case;
         }
@@ -100,7 +99,11 @@ fn check_json(dir: &Path, png: &Path, case: &SuiteCase) -> serde_json::Value {
             "--json",
         ],
     );
-    assert!(run.status.code() == Some(0) || run.status.code() == Some(1), "{}", stderr(&run));
+    assert!(
+        run.status.code() == Some(0) || run.status.code() == Some(1),
+        "{}",
+        stderr(&run)
+    );
     serde_json::from_slice(&run.stdout).expect("json")
 }
 
@@ -113,7 +116,11 @@ fn names(entry: &serde_json::Value) -> Vec<String> {
         .filter_map(|b| b.as_str())
         .collect();
     let mut all = vec![bugs.join("+")];
-    for twin in entry["indistinguishable_from"].as_array().into_iter().flatten() {
+    for twin in entry["indistinguishable_from"]
+        .as_array()
+        .into_iter()
+        .flatten()
+    {
         all.extend(twin.as_str().map(str::to_string));
     }
     all
@@ -164,7 +171,10 @@ fn pairs_of_mistakes_are_in_the_top_three() {
         ["view-flipped", "no-shadow-bias"],
         ["first-light-only", "bounces-plus-one"],
     ] {
-        let bugs: Vec<Bug> = pair.iter().map(|id| Bug::from_id(id).expect("id")).collect();
+        let bugs: Vec<Bug> = pair
+            .iter()
+            .map(|id| Bug::from_id(id).expect("id"))
+            .collect();
         let case = separating_case(Mistakes::of(&bugs));
         let png = java_render(dir.path(), &case, &pair, "pair.png");
         let json = check_json(dir.path(), &png, &case);
@@ -189,14 +199,24 @@ fn the_suite_passes_a_correct_program_and_names_a_wrong_one() {
     let cases = json["cases"].as_array().expect("cases");
     assert_eq!(cases.len(), 7);
     for case in cases {
-        assert_eq!((case["status"].as_str(), case["verdict"].as_str()), (Some("ok"), Some("identical")), "{case}");
+        assert_eq!(
+            (case["status"].as_str(), case["verdict"].as_str()),
+            (Some("ok"), Some("identical")),
+            "{case}"
+        );
     }
 
     let report = dir.path().join("report.png");
     let wrong = program(&["specular-object-colour"]);
     let run = whitted(
         dir.path(),
-        &["check", "--program", &wrong, "--report", report.to_str().expect("utf-8")],
+        &[
+            "check",
+            "--program",
+            &wrong,
+            "--report",
+            report.to_str().expect("utf-8"),
+        ],
     );
     assert_eq!(run.status.code(), Some(1), "{}", stderr(&run));
     let text = String::from_utf8_lossy(&run.stdout);
@@ -207,7 +227,12 @@ fn the_suite_passes_a_correct_program_and_names_a_wrong_one() {
         .unwrap_or_default();
     assert!(first.contains("1. specular-object-colour"), "{text}");
     let sheet = read_png(&report);
-    assert!(sheet.width > 640 && sheet.height > 240, "{}x{}", sheet.width, sheet.height);
+    assert!(
+        sheet.width > 640 && sheet.height > 240,
+        "{}x{}",
+        sheet.width,
+        sheet.height
+    );
 }
 
 /// A shell script standing in for a student's program.
@@ -232,19 +257,49 @@ fn programs_that_crash_hang_or_write_nonsense_get_a_status_each() {
         let json: serde_json::Value = serde_json::from_slice(&run.stdout).expect("json");
         json["cases"].as_array().expect("cases").clone()
     };
-    let crash = script(d, "crash.sh", "echo 'Exception in thread \"main\" java.lang.NullPointerException' >&2; exit 1");
+    let crash = script(
+        d,
+        "crash.sh",
+        "echo 'Exception in thread \"main\" java.lang.NullPointerException' >&2; exit 1",
+    );
     for case in cases_of(&crash, &[]) {
         assert_eq!(case["status"], "crashed");
-        assert!(case["stderr_tail"].as_str().unwrap_or("").contains("NullPointerException"));
+        assert!(case["stderr_tail"]
+            .as_str()
+            .unwrap_or("")
+            .contains("NullPointerException"));
     }
     let silent = script(d, "silent.sh", "exit 0");
-    assert!(cases_of(&silent, &[]).iter().all(|c| c["status"] == "no-output"));
+    assert!(cases_of(&silent, &[])
+        .iter()
+        .all(|c| c["status"] == "no-output"));
     // Writes a 64x48 PNG wherever --output says (the 4th argument).
-    let run = whitted(d, &["render", "-q", "-o", "small.png", "--width", "64", "--height", "48"]);
+    let run = whitted(
+        d,
+        &[
+            "render",
+            "-q",
+            "-o",
+            "small.png",
+            "--width",
+            "64",
+            "--height",
+            "48",
+        ],
+    );
     assert!(run.status.success(), "{}", stderr(&run));
-    let small = script(d, "small.sh", &format!("cp '{}' \"$4\"", d.join("small.png").display()));
+    let small = script(
+        d,
+        "small.sh",
+        &format!("cp '{}' \"$4\"", d.join("small.png").display()),
+    );
     let wrong = cases_of(&small, &[]);
-    assert!(wrong.iter().all(|c| c["status"] == "wrong-size" && c["width"] == 64), "{wrong:?}");
+    assert!(
+        wrong
+            .iter()
+            .all(|c| c["status"] == "wrong-size" && c["width"] == 64),
+        "{wrong:?}"
+    );
     // A program that starts a child and hangs: killed with its child at the timeout.
     let marker = d.join("survivor");
     let hang = script(
@@ -276,40 +331,74 @@ fn images_that_cannot_be_compared_are_refused_with_one_line() {
     let jpeg = root().join("reference/specular_test_correct_solution.jpg");
     let run = whitted(d, &["check", jpeg.to_str().expect("utf-8")]);
     assert_eq!(run.status.code(), Some(2));
-    assert!(stderr(&run).contains("is a JPEG") && stderr(&run).contains("PNG"), "{}", stderr(&run));
+    assert!(
+        stderr(&run).contains("is a JPEG") && stderr(&run).contains("PNG"),
+        "{}",
+        stderr(&run)
+    );
     let sixteen = d.join("16.png");
-    let run = whitted(d, &["render", "-q", "--png-depth", "16", "-o", "16.png", "--width", "64", "--height", "48"]);
+    let run = whitted(
+        d,
+        &[
+            "render",
+            "-q",
+            "--png-depth",
+            "16",
+            "-o",
+            "16.png",
+            "--width",
+            "64",
+            "--height",
+            "48",
+        ],
+    );
     assert!(run.status.success(), "{}", stderr(&run));
     let run = whitted(d, &["check", sixteen.to_str().expect("utf-8")]);
     assert_eq!(run.status.code(), Some(2));
     assert!(stderr(&run).contains("8-bit RGB"), "{}", stderr(&run));
     std::fs::write(d.join("junk.png"), b"not a png at all").expect("junk");
     let run = whitted(d, &["check", "junk.png"]);
-    assert_eq!((run.status.code(), stderr(&run).lines().count()), (Some(2), 1));
+    assert_eq!(
+        (run.status.code(), stderr(&run).lines().count()),
+        (Some(2), 1)
+    );
 
     let run = whitted(d, &["check", "--list-bugs"]);
     assert!(run.status.success());
     let listed = String::from_utf8_lossy(&run.stdout);
     assert_eq!(listed.lines().count(), 21);
-    assert!(listed.lines().all(|l| Bug::from_id(l.split_whitespace().next().unwrap_or("")).is_some()));
+    assert!(listed
+        .lines()
+        .all(|l| Bug::from_id(l.split_whitespace().next().unwrap_or("")).is_some()));
 }
 
 #[test]
 fn a_whitted_render_is_identical_and_explains_its_worst_pixel() {
     let dir = tempfile::tempdir().expect("tempdir");
     let d = dir.path();
-    let run = whitted(d, &["render", "-q", "-o", "mine.png", "-b", "1", "--width", "320", "--height", "240"]);
+    let run = whitted(
+        d,
+        &[
+            "render", "-q", "-o", "mine.png", "-b", "1", "--width", "320", "--height", "240",
+        ],
+    );
     assert!(run.status.success(), "{}", stderr(&run));
     let run = whitted(d, &["check", "mine.png", "-b", "1"]);
     assert_eq!(run.status.code(), Some(0), "{}", stderr(&run));
     assert!(String::from_utf8_lossy(&run.stdout).contains("identical"));
     // Checked against the wrong bounce count: it differs, and says where.
-    let run = whitted(d, &["check", "mine.png", "-b", "2", "--heatmap", "heat.png"]);
+    let run = whitted(
+        d,
+        &["check", "mine.png", "-b", "2", "--heatmap", "heat.png"],
+    );
     assert_eq!(run.status.code(), Some(1), "{}", stderr(&run));
     let text = String::from_utf8_lossy(&run.stdout);
     assert!(text.contains("1. bounces-minus-one"), "{text}");
     let last = text.lines().last().unwrap_or_default().trim();
-    assert!(last.starts_with("whitted explain") && last.contains("--bug bounces-minus-one"), "{text}");
+    assert!(
+        last.starts_with("whitted explain") && last.contains("--bug bounces-minus-one"),
+        "{text}"
+    );
     let heat = read_png(&d.join("heat.png"));
     assert_eq!((heat.width, heat.height), (320, 240));
     // The explain command it prints runs, and traces the mistake.

@@ -61,3 +61,38 @@ fn explained_beauty_is_what_render_stores() {
     let run = whitted(d, &["explain", "--pixel", "640,0"]);
     assert_eq!(run.status.code(), Some(2));
 }
+
+#[test]
+fn explain_traces_a_mistake_as_the_program_with_it_would() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let json = |args: &[&str]| -> serde_json::Value {
+        let mut all = vec!["explain", "--pixel", "250,300", "--json"];
+        all.extend_from_slice(args);
+        let run = whitted(d, &all);
+        assert!(run.status.success(), "{}", stderr(&run));
+        serde_json::from_slice(&run.stdout).expect("json")
+    };
+    let course = json(&[]);
+    let flawed = json(&["--bug", "no-ambient", "--bug", "no-shadow-bias"]);
+    assert_eq!(
+        flawed["bugs"],
+        serde_json::json!(["no-ambient", "no-shadow-bias"])
+    );
+    let (c, f) = (&course["vertices"][0], &flawed["vertices"][0]);
+    assert_ne!(c["ambient"], serde_json::json!([0.0, 0.0, 0.0]));
+    assert_eq!(f["ambient"], serde_json::json!([0.0, 0.0, 0.0]));
+    // The shadow ray as spawned: P + EPSILON L for the course, P itself without the bias.
+    assert_ne!(c["lights"][0]["shadow_origin"], c["P"]);
+    assert_eq!(f["lights"][0]["shadow_origin"], f["P"]);
+    // One bounce fewer: the chain stops a vertex earlier.
+    let short = json(&["--bug", "bounces-minus-one", "-b", "1"]);
+    assert_eq!(short["vertices"].as_array().map(Vec::len), Some(1));
+    let run = whitted(d, &["explain", "--pixel", "1,1", "--bug", "no-ambeint"]);
+    assert_eq!(run.status.code(), Some(2));
+    assert!(
+        stderr(&run).contains("did you mean `no-ambient`"),
+        "{}",
+        stderr(&run)
+    );
+}
