@@ -219,8 +219,11 @@ fn case_text(case: &CaseReport, input: Option<&std::path::Path>) -> String {
     }
     if case.diagnosis.is_empty() {
         out += "diagnosis: no catalogued mistake reproduces the image better than the reference does\n";
-    } else {
+    } else if case.terms.is_empty() {
         out += "diagnosis, best first:\n";
+        out += &diagnosis_lines(&case.diagnosis);
+    } else {
+        out += "no catalogued mistake explains the image well; the closest, best first:\n";
         out += &diagnosis_lines(&case.diagnosis);
     }
     if !case.terms.is_empty() {

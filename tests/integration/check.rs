@@ -407,3 +407,65 @@ fn a_whitted_render_is_identical_and_explains_its_worst_pixel() {
     assert!(run.status.success(), "{}", stderr(&run));
     assert!(String::from_utf8_lossy(&run.stdout).contains("bounces-minus-one"));
 }
+
+#[test]
+fn ctrl_c_stops_the_suite_and_leaves_nothing_behind() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let marker = d.join("survivor");
+    let hang = script(
+        d,
+        "hang.sh",
+        &format!("(sleep 2; touch '{}') & sleep 30", marker.display()),
+    );
+    let tmp = d.join("tmp");
+    std::fs::create_dir(&tmp).expect("tmp");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_whitted"))
+        .args(["check", "--program", &hang])
+        .env("TMPDIR", &tmp)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("whitted runs");
+    std::thread::sleep(std::time::Duration::from_millis(700));
+    let running = std::fs::read_dir(&tmp).expect("tmp").count();
+    assert_eq!(running, 2, "two cases at a time");
+    let sent = std::time::Instant::now();
+    let kill = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .expect("kill");
+    assert!(kill.success());
+    let status = child.wait().expect("wait");
+    assert!(
+        sent.elapsed() < std::time::Duration::from_millis(500),
+        "{:?}",
+        sent.elapsed()
+    );
+    assert_eq!(status.code(), Some(130));
+    assert_eq!(
+        std::fs::read_dir(&tmp).expect("tmp").count(),
+        0,
+        "temporary directories left"
+    );
+    std::thread::sleep(std::time::Duration::from_secs(3));
+    assert!(!marker.exists(), "a program's child outlived the suite");
+}
+
+#[test]
+fn a_mistake_nobody_listed_is_located_in_the_terms() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let tick2 = cases()
+        .into_iter()
+        .find(|c| c.file == "tick2.xml" && c.bounces == 0)
+        .expect("case");
+    let png = java_render(dir.path(), &tick2, &["exponent-doubled"], "exponent.png");
+    let json = check_json(dir.path(), &png, &tick2);
+    assert!(
+        json["diagnosis"][0]["explained"].as_f64().unwrap_or(1.0) < 0.9,
+        "{json}"
+    );
+    let top = &json["terms"][0];
+    assert_eq!(top["layer"], "specular", "{json}");
+    assert!(top["factor"].as_f64().is_some_and(|f| f < 1.0), "{top}");
+}

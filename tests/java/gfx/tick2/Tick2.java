@@ -171,7 +171,9 @@ public final class Tick2 {
             Vec3 r = bug("reflect-unclamped") ? n.scale(2 * nDotL).sub(l) : n.scale(2 * max0(nDotL)).sub(l);
             Vec3 diffuse = bug("diffuse-no-colour") ? intensity.scale(shape.kD).scale(max0(nDotL))
                     : shape.colour.mul(intensity).scale(shape.kD).scale(max0(nDotL));
-            Vec3 specular = intensity.scale(shape.kS).scale(Math.pow(max0(r.dot(v)), shape.n));
+            // Not in the catalogue: for the tests of the term fit.
+            double exponent = bug("exponent-doubled") ? 2 * shape.n : shape.n;
+            Vec3 specular = intensity.scale(shape.kS).scale(Math.pow(max0(r.dot(v)), exponent));
             if (bug("specular-gated") && !(nDotL > 0)) specular = new Vec3(0, 0, 0);
             if (bug("specular-object-colour")) specular = specular.mul(shape.colour);
             boolean inShadow = false;
