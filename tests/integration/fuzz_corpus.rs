@@ -12,10 +12,15 @@ use whitted::frame::FrameSpec;
 fn inputs() -> Vec<PathBuf> {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let mut files = Vec::new();
-    for dir in ["fuzz/corpus/scene_loader", "tests/bad_scenes", "scenes"] {
+    for dir in [
+        "fuzz/corpus/scene_loader",
+        "tests/bad_scenes",
+        "scenes",
+        "scenes/check",
+    ] {
         for entry in std::fs::read_dir(root.join(dir)).unwrap_or_else(|e| panic!("{dir}: {e}")) {
             let path = entry.expect("entry").path();
-            if path.extension().is_none_or(|e| e != "expected") {
+            if path.is_file() && path.extension().is_none_or(|e| e != "expected") {
                 files.push(path);
             }
         }
