@@ -301,9 +301,9 @@ fn shade<const LAYERS: bool, O: Observer>(
     }
     let mut colour = ambient;
     let v = model.view(vertex.point, vertex.ray_origin);
-    for (index, light) in model.lights(&scene.lights).iter().enumerate() {
+    let lights = model.lights(&scene.lights).iter();
+    for (index, (light, out)) in lights.zip(sample.lights.iter_mut()).enumerate() {
         let record = light_terms::<O>(model, accel, vertex, (index, light), v, shadows);
-        let out = &mut sample.lights[index];
         sample.rays += u64::from(shadows);
         let (diffuse, specular) = (record.diffuse, record.specular);
         if LAYERS {
