@@ -19,7 +19,9 @@ use crate::check::student_png::Rgb8;
 use crate::check::terms::TermFit;
 use crate::error::Result;
 use crate::frame::{Frame, FrameSpec};
-use crate::render::sample_pixels;
+use crate::model::Tick;
+use crate::render::trace_pixels;
+use crate::sample::Sample;
 use crate::scene::Scene;
 
 /// Below this share of differing pixels explained, the best catalogued candidate is not a
@@ -101,7 +103,8 @@ fn fit_terms(
     };
     let frame = Frame::new(scene, &spec)?;
     let accel = Accelerator::build(&scene.objects);
-    let samples = sample_pixels(scene, &accel, &frame, &pixels);
+    let samples = trace_pixels::<true, _>(&Tick, scene, &accel, &frame, &pixels, Sample::clone);
+    crate::interrupt::check()?;
     Ok(terms::fit(scene, bounces, &samples, &pixels, student))
 }
 
@@ -220,7 +223,7 @@ mod tests {
         let every: Vec<(u32, u32)> = (0..480)
             .flat_map(|y| (0..640).map(move |x| (x, y)))
             .collect();
-        let samples = sample_pixels(&scene, &accel, &frame, &every);
+        let samples = trace_pixels::<true, _>(&Tick, &scene, &accel, &frame, &every, Sample::clone);
         let render = |f: &dyn Fn(&crate::sample::Sample) -> glam::DVec3| Rgb8 {
             width: 640,
             height: 480,

@@ -87,14 +87,15 @@ impl SphereTerms {
     }
 }
 
-/// The course's ray-sphere test (docs/rendering.md), in its operation order: the near root
-/// of `a s^2 + b s + c`, if positive. `radius_squared` is `radius * radius`.
-pub fn sphere_hit(
+/// `-b` and `sqrt(disc)` of the sphere quadratic `a s^2 + b s + c` in the course's operation
+/// order (docs/rendering.md), or `None` when `disc < 0`. `radius_squared` is `radius * radius`.
+#[inline(always)]
+fn sphere_quadratic(
     ray: &Ray,
     terms: &SphereTerms,
     centre: DVec3,
     radius_squared: f64,
-) -> Option<f64> {
+) -> Option<(f64, f64)> {
     let to_origin = ray.origin - centre;
     let b = 2.0 * ray.direction.dot(to_origin);
     let c = to_origin.dot(to_origin) - radius_squared;
@@ -103,7 +104,31 @@ pub fn sphere_hit(
     if disc < 0.0 {
         return None;
     }
-    let s = (-b - disc.sqrt()) / terms.two_a;
+    Some((-b, disc.sqrt()))
+}
+
+/// The course's ray-sphere test: the near root `(-b - sqrt(disc)) / 2a`, if positive.
+pub fn sphere_hit(
+    ray: &Ray,
+    terms: &SphereTerms,
+    centre: DVec3,
+    radius_squared: f64,
+) -> Option<f64> {
+    let (minus_b, root) = sphere_quadratic(ray, terms, centre, radius_squared)?;
+    let s = (minus_b - root) / terms.two_a;
+    (s > 0.0).then_some(s)
+}
+
+/// The far root `(-b + sqrt(disc)) / 2a`, if positive: not the course's rule, but what the
+/// handout's literal reading adds (the `sphere-far-root` mistake of docs/check.md).
+pub fn sphere_far_hit(
+    ray: &Ray,
+    terms: &SphereTerms,
+    centre: DVec3,
+    radius_squared: f64,
+) -> Option<f64> {
+    let (minus_b, root) = sphere_quadratic(ray, terms, centre, radius_squared)?;
+    let s = (minus_b + root) / terms.two_a;
     (s > 0.0).then_some(s)
 }
 

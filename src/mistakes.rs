@@ -7,7 +7,7 @@
 use glam::DVec3;
 
 use crate::frame::{Acceleration, FrameSpec};
-use crate::geometry::{normalise, Ray, SphereTerms};
+use crate::geometry::{normalise, sphere_far_hit, Ray, SphereTerms};
 use crate::model::{mirror_direction, Model, Tick};
 use crate::scene::PointLight;
 
@@ -175,21 +175,13 @@ impl Model for Mistakes {
         centre: DVec3,
         radius_squared: f64,
     ) -> Option<f64> {
-        if !self.has(Bug::SphereFarRoot) {
-            return Tick.sphere_root(ray, terms, centre, radius_squared);
-        }
         // The handout read literally: the near root if positive, else the far one.
-        let a = ray.direction.dot(ray.direction);
-        let to_origin = ray.origin - centre;
-        let b = 2.0 * ray.direction.dot(to_origin);
-        let c = to_origin.dot(to_origin) - radius_squared;
-        let disc = b * b - 4.0 * a * c;
-        if disc < 0.0 {
-            return None;
+        let near = Tick.sphere_root(ray, terms, centre, radius_squared);
+        if self.has(Bug::SphereFarRoot) {
+            near.or_else(|| sphere_far_hit(ray, terms, centre, radius_squared))
+        } else {
+            near
         }
-        let near = (-b - disc.sqrt()) / (2.0 * a);
-        let far = (-b + disc.sqrt()) / (2.0 * a);
-        [near, far].into_iter().find(|&s| s > 0.0)
     }
 
     fn plane_accepts(&self, s: f64) -> bool {

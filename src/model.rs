@@ -11,7 +11,7 @@ pub mod search;
 
 use glam::DVec3;
 
-use crate::geometry::{divide_by_length, normalise, plane_parameter, sphere_hit, Ray, SphereTerms};
+use crate::geometry::{divide_by_length, normalise, sphere_hit, Ray, SphereTerms};
 use crate::scene::PointLight;
 
 /// The course's rules, one method each. Each default is the rule of docs/rendering.md in its
@@ -128,10 +128,4 @@ impl Model for Tick {}
 pub fn mirror_direction(d: DVec3, n: DVec3) -> DVec3 {
     let to_eye = -d;
     normalise(n * (2.0 * n.dot(to_eye)) - to_eye)
-}
-
-/// The plane rule's raw parameter, for the search's plane test.
-pub(crate) fn plane_hit(model: &impl Model, point: DVec3, normal: DVec3, ray: &Ray) -> Option<f64> {
-    let s = plane_parameter(point, normal, ray);
-    model.plane_accepts(s).then_some(s)
 }

@@ -246,23 +246,26 @@ impl<'a> PixelRenderer<'a> {
     }
 }
 
-/// The beauty of the listed pixels (`(x, y)` of the frame's image), one sample at each
-/// pixel's centre, under `model`'s rules: how `whitted check` renders a student's mistakes
-/// only where it needs to look. `accel` must suit the model (`Model::hierarchy_exact`).
-/// Sequential: callers run many such lists side by side.
-pub fn render_pixels(
+/// What `keep` takes from each listed pixel's sample (`(x, y)` of the frame's image), one
+/// sample at each pixel's centre, traced under `model`'s rules (with every layer if
+/// `LAYERS`): how `whitted check` renders a student's mistakes only where it needs to look.
+/// `accel` must suit the model (`Model::hierarchy_exact`). Sequential: callers run many such
+/// lists side by side. Stops early (a shorter list) when the user presses Ctrl-C.
+pub fn trace_pixels<const LAYERS: bool, T>(
     model: &impl Model,
     scene: &Scene,
     accel: &Accelerator,
     frame: &Frame,
     pixels: &[(u32, u32)],
-) -> Vec<DVec3> {
+    keep: impl Fn(&Sample) -> T,
+) -> Vec<T> {
     let mut sample = Sample::empty(scene.lights.len(), frame.trace.bounces);
     pixels
         .iter()
+        .take_while(|_| !interrupt::requested())
         .map(|&(x, y)| {
             let ray = frame.camera.pixel_centre_ray(x, y);
-            trace_observed::<false>(
+            trace_observed::<LAYERS>(
                 model,
                 scene,
                 accel,
@@ -271,31 +274,7 @@ pub fn render_pixels(
                 &mut sample,
                 &mut Silent,
             );
-            sample.beauty
-        })
-        .collect()
-}
-
-/// The full sample (every layer's value) of the listed pixels, as `render_pixels` traces
-/// them under the course's model.
-pub fn sample_pixels(
-    scene: &Scene,
-    accel: &Accelerator,
-    frame: &Frame,
-    pixels: &[(u32, u32)],
-) -> Vec<Sample> {
-    let mut sample = Sample::empty(scene.lights.len(), frame.trace.bounces);
-    pixels
-        .iter()
-        .map(|&(x, y)| {
-            trace_into(
-                scene,
-                accel,
-                frame.camera.pixel_centre_ray(x, y),
-                frame.trace,
-                &mut sample,
-            );
-            sample.clone()
+            keep(&sample)
         })
         .collect()
 }

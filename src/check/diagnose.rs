@@ -22,10 +22,11 @@ use crate::check::difference::pixel_difference;
 use crate::check::student_png::Rgb8;
 use crate::error::Result;
 use crate::frame::{Acceleration, Frame, FrameSpec};
+use crate::interrupt;
 use crate::mistakes::{Bug, Mistakes};
 use crate::model::{Model, Tick};
 use crate::output::png::tick_bytes;
-use crate::render::render_pixels;
+use crate::render::trace_pixels;
 use crate::scene::Scene;
 
 /// Pixels of each kind (wrong, right) the first stage renders at most.
@@ -79,46 +80,51 @@ impl<'a> Renderer<'a> {
         })
     }
 
-    pub fn scene(&self) -> &Scene {
-        self.scene
-    }
-
     /// The frame a program with `mistakes` renders.
     pub fn frame(&self, mistakes: Mistakes) -> Result<Frame> {
         Frame::new(self.scene, &mistakes.frame_spec(&self.spec))
     }
 
-    /// The tick bytes of `pixels` under `model` in `frame` (sequential).
-    fn bytes_at(&self, model: &impl Model, frame: &Frame, pixels: &[(u32, u32)]) -> Vec<u8> {
+    /// The tick bytes of `pixels` under `model` in `frame` (sequential); an error when the
+    /// user stopped the run half-way.
+    fn bytes_at(
+        &self,
+        model: &impl Model,
+        frame: &Frame,
+        pixels: &[(u32, u32)],
+    ) -> Result<Vec<u8>> {
         let accel = match frame.acceleration {
             Acceleration::Bvh if model.hierarchy_exact() => &self.bvh,
             _ => &self.brute,
         };
-        tick_bytes(&render_pixels(model, self.scene, accel, frame, pixels))
+        let beauty =
+            trace_pixels::<false, _>(model, self.scene, accel, frame, pixels, |s| s.beauty);
+        interrupt::check()?;
+        Ok(tick_bytes(&beauty))
     }
 
     /// The whole image under `model` in `frame`, on every core.
-    fn image_with(&self, model: &impl Model, frame: &Frame) -> Rgb8 {
-        let bytes = self
+    fn image_with(&self, model: &impl Model, frame: &Frame) -> Result<Rgb8> {
+        let chunks: Vec<Vec<u8>> = self
             .every_pixel
             .par_chunks(1024)
-            .flat_map_iter(|chunk| self.bytes_at(model, frame, chunk))
-            .collect();
-        Rgb8 {
+            .map(|chunk| self.bytes_at(model, frame, chunk))
+            .collect::<Result<_>>()?;
+        Ok(Rgb8 {
             width: self.spec.width,
             height: self.spec.height,
-            bytes,
-        }
+            bytes: chunks.concat(),
+        })
     }
 
     /// The reference: the course's model.
     pub fn reference(&self) -> Result<Rgb8> {
-        Ok(self.image_with(&Tick, &self.frame(Mistakes::NONE)?))
+        self.image_with(&Tick, &self.frame(Mistakes::NONE)?)
     }
 
     /// The whole image a program with `mistakes` renders.
     pub fn image(&self, mistakes: Mistakes) -> Result<Rgb8> {
-        Ok(self.image_with(&mistakes, &self.frame(mistakes)?))
+        self.image_with(&mistakes, &self.frame(mistakes)?)
     }
 }
 
@@ -153,6 +159,17 @@ pub struct Scored {
 }
 
 impl Scored {
+    /// Counts one pixel standing for `weight` pixels, which the student got wrong or not, and
+    /// which this candidate renders `d` LSB away from the student's.
+    fn tally(&mut self, weight: f64, was_wrong: bool, d: u8) {
+        self.cost += weight * cost(d);
+        match (was_wrong, d <= 1) {
+            (true, true) => self.explained += weight,
+            (false, false) => self.wrongly_changed += weight,
+            _ => {}
+        }
+    }
+
     pub fn exact(&self) -> bool {
         self.image_print.is_some()
     }
@@ -223,7 +240,7 @@ pub fn analyse(renderer: &Renderer, student: &Rgb8, reference: &Rgb8) -> Result<
         .par_iter()
         .zip(&frames)
         .map(|(&mistakes, frame)| {
-            let bytes = renderer.bytes_at(&mistakes, frame, &positions);
+            let bytes = renderer.bytes_at(&mistakes, frame, &positions)?;
             let mut s = Scored {
                 mistakes,
                 cost: 0.0,
@@ -235,22 +252,17 @@ pub fn analyse(renderer: &Renderer, student: &Rgb8, reference: &Rgb8) -> Result<
                 image_print: None,
             };
             for j in 0..looked.len() {
-                let d = pixel_difference(&bytes, &student_here, j);
-                let (weight, was_wrong) = if j < wrong_sample.len() {
-                    (weights.0, true)
-                } else {
-                    (weights.1, false)
-                };
-                s.cost += weight * cost(d);
-                match (was_wrong, d <= 1) {
-                    (true, true) => s.explained += weight,
-                    (false, false) => s.wrongly_changed += weight,
-                    _ => {}
-                }
+                let was_wrong = j < wrong_sample.len();
+                let weight = if was_wrong { weights.0 } else { weights.1 };
+                s.tally(
+                    weight,
+                    was_wrong,
+                    pixel_difference(&bytes, &student_here, j),
+                );
             }
-            s
+            Ok(s)
         })
-        .collect();
+        .collect::<Result<_>>()?;
     mark_pairs_like_a_member(&mut scored);
     if !wrong.is_empty() {
         let mut order: Vec<usize> = (0..scored.len())
@@ -267,7 +279,7 @@ pub fn analyse(renderer: &Renderer, student: &Rgb8, reference: &Rgb8) -> Result<
             .copied()
             .collect();
         for i in finalists {
-            let image = renderer.image_with(&scored[i].mistakes, &frames[i]);
+            let image = renderer.image_with(&scored[i].mistakes, &frames[i])?;
             scored[i] = exact(&scored[i], &image, student, reference);
         }
         mark_pairs_like_a_member(&mut scored);
@@ -290,14 +302,12 @@ fn exact(scored: &Scored, image: &Rgb8, student: &Rgb8, reference: &Rgb8) -> Sco
         ..scored.clone()
     };
     for i in 0..image.bytes.len() / 3 {
-        let d = pixel_difference(&image.bytes, &student.bytes, i);
-        s.cost += cost(d);
         let was_wrong = pixel_difference(&student.bytes, &reference.bytes, i) > 0;
-        match (was_wrong, d <= 1) {
-            (true, true) => s.explained += 1.0,
-            (false, false) => s.wrongly_changed += 1.0,
-            _ => {}
-        }
+        s.tally(
+            1.0,
+            was_wrong,
+            pixel_difference(&image.bytes, &student.bytes, i),
+        );
     }
     s
 }
@@ -312,12 +322,17 @@ fn mark_pairs_like_a_member(scored: &mut [Scored]) {
     }
 }
 
-/// Lower cost first; then fewer mistakes; then catalogue order.
+/// Lower cost first; then `simpler`.
 fn ranking(a: &Scored, b: &Scored) -> std::cmp::Ordering {
     a.cost
         .total_cmp(&b.cost)
-        .then(a.mistakes.bugs().len().cmp(&b.mistakes.bugs().len()))
-        .then(a.mistakes.bugs().cmp(&b.mistakes.bugs()))
+        .then_with(|| simpler(a.mistakes, b.mistakes))
+}
+
+/// Fewer mistakes first, then catalogue order.
+fn simpler(a: Mistakes, b: Mistakes) -> std::cmp::Ordering {
+    let (a, b) = (a.bugs(), b.bugs());
+    a.len().cmp(&b.len()).then(a.cmp(&b))
 }
 
 /// One diagnosis: a candidate and how well it reproduces the student's images.
@@ -346,30 +361,21 @@ pub fn rank(cases: &[&CaseAnalysis]) -> Vec<Diagnosis> {
     };
     let null: f64 = cases.iter().map(|c| c.null_cost).sum();
     let differing: usize = cases.iter().map(|c| c.differing).sum();
+    let costs: Vec<f64> = (0..first.scored.len())
+        .map(|i| total(i, &|s| s.cost))
+        .collect();
     let mut order: Vec<usize> = (0..first.scored.len())
         .filter(|&i| {
             cases.iter().any(|c| c.scored[i].changes_image)
                 && !cases.iter().all(|c| c.scored[i].same_as_member)
-                && total(i, &|s| s.cost) < null
+                && costs[i] < null
         })
-        .collect();
-    let costs: Vec<f64> = (0..first.scored.len())
-        .map(|i| total(i, &|s| s.cost))
         .collect();
     order.sort_by(|&a, &b| {
-        let (sa, sb) = (&first.scored[a], &first.scored[b]);
-        costs[a].total_cmp(&costs[b]).then_with(|| {
-            ranking(
-                &Scored {
-                    cost: 0.0,
-                    ..sa.clone()
-                },
-                &Scored {
-                    cost: 0.0,
-                    ..sb.clone()
-                },
-            )
-        })
+        let mistakes = |i: usize| first.scored[i].mistakes;
+        costs[a]
+            .total_cmp(&costs[b])
+            .then_with(|| simpler(mistakes(a), mistakes(b)))
     });
     // Twins only where whole images were compared at least once: a sample alone can agree by
     // chance.

@@ -2,7 +2,6 @@
 //! header, size, memory) before a single pixel is decoded, since it comes from a program that
 //! may be wrong in any way.
 
-use std::io::Read;
 use std::path::Path;
 
 use crate::cli::MAX_SIDE;
@@ -35,33 +34,26 @@ pub fn read(path: &Path) -> Result<Rgb8> {
         path: path.to_path_buf(),
         msg,
     };
-    let mut file = std::fs::File::open(path).map_err(|e| Error::io(path, "cannot read", e))?;
-    let mut head = [0u8; 8];
-    let got = read_up_to(&mut file, &mut head).map_err(|e| Error::io(path, "cannot read", e))?;
-    if got >= 3 && head[..3] == JPEG_SIGNATURE {
+    let length = std::fs::metadata(path)
+        .map_err(|e| Error::io(path, "cannot read", e))?
+        .len();
+    memory::check(
+        length,
+        memory::available_bytes(),
+        &format!("reading {}", path.display()),
+    )?;
+    let bytes = std::fs::read(path).map_err(|e| Error::io(path, "cannot read", e))?;
+    if bytes.starts_with(&JPEG_SIGNATURE) {
         return Err(fail(
             "is a JPEG: its compression is lossy, so its bytes cannot be compared with the \
              reference; check the PNG your program wrote"
                 .into(),
         ));
     }
-    if got < 8 || head != PNG_SIGNATURE {
+    if !bytes.starts_with(&PNG_SIGNATURE) {
         return Err(fail("is not a PNG (no PNG signature)".into()));
     }
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, "cannot read", e))?;
     decode(&bytes).map_err(fail)
-}
-
-/// Reads as much of `buf` as the file has.
-fn read_up_to(file: &mut std::fs::File, buf: &mut [u8]) -> std::io::Result<usize> {
-    let mut filled = 0;
-    while filled < buf.len() {
-        match file.read(&mut buf[filled..])? {
-            0 => break,
-            n => filled += n,
-        }
-    }
-    Ok(filled)
 }
 
 /// Decodes PNG bytes after checking the header; the message says what is wrong.

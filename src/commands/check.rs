@@ -5,7 +5,7 @@
 use serde_json::{json, Value};
 
 use crate::check::diagnose::Diagnosis;
-use crate::check::program::{run_suite, CaseOutcome, Status, SuiteRun};
+use crate::check::program::{run_suite, CaseOutcome, Status, SuiteRun, HEIGHT, WIDTH};
 use crate::check::report::{contact_sheet, heat_map, ReportRow};
 use crate::check::terms::TermFit;
 use crate::check::{check_image, student_png, CaseReport};
@@ -261,16 +261,10 @@ fn case_text(case: &CaseReport, input: Option<&std::path::Path>) -> String {
     out.trim_end().to_string()
 }
 
-/// `s` quoted for a POSIX shell where it needs to be.
+/// `s` quoted for a POSIX shell where it needs to be (a path with a NUL byte cannot be
+/// quoted, and is shown as it is).
 fn shell_word(s: &str) -> String {
-    let plain = !s.is_empty()
-        && s.chars()
-            .all(|c| c.is_ascii_alphanumeric() || "-_./,=+:@".contains(c));
-    if plain {
-        s.to_string()
-    } else {
-        format!("'{}'", s.replace('\'', "'\\''"))
-    }
+    shlex::try_quote(s).map_or_else(|_| s.to_string(), |q| q.into_owned())
 }
 
 fn outcome_json(outcome: &CaseOutcome) -> Value {
@@ -320,7 +314,7 @@ fn suite_text(run: &SuiteRun) -> String {
                 }
             }
             Status::WrongSize { width, height } => {
-                format!("wrong-size: wrote {width}x{height}, expected 640x480")
+                format!("wrong-size: wrote {width}x{height}, expected {WIDTH}x{HEIGHT}")
             }
             Status::Crashed(message) | Status::NoOutput(message) => {
                 format!("{}: {message}", c.status.name())
