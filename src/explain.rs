@@ -95,9 +95,10 @@ pub fn explain(
             frame.camera.width, frame.camera.height
         )));
     }
-    let accel = match (frame.acceleration, model.hierarchy_exact()) {
-        (Acceleration::Bvh, true) => Accelerator::build(&scene.objects),
-        _ => Accelerator::brute_force(&scene.objects),
+    // `Mistakes::frame_spec` asks for brute force where the model needs it.
+    let accel = match frame.acceleration {
+        Acceleration::Bvh => Accelerator::build(&scene.objects),
+        Acceleration::BruteForce => Accelerator::brute_force(&scene.objects),
     };
     let camera_ray = frame.camera.pixel_centre_ray(x, y);
     let mut sample = Sample::empty(scene.lights.len(), frame.trace.bounces);

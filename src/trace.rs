@@ -66,7 +66,11 @@ pub fn trace_beauty(
 /// the way (`explain` watches; the render passes `Silent`). With `LAYERS` false the
 /// per-effect sums are left out at compile time. `accel` must be a brute-force one for a
 /// model the hierarchy is not exact for (`Model::hierarchy_exact`).
-#[inline]
+///
+/// The trace, `shade` and `light_terms` are inlined into one loop body, as the compiler chose
+/// before the model was a parameter: left to itself it now splits them, and the calls and the
+/// light loop's set-up cost tick2 2-13% more instructions (bench/README.md).
+#[inline(always)]
 pub fn trace_observed<const LAYERS: bool>(
     model: &impl Model,
     scene: &Scene,
@@ -227,7 +231,7 @@ struct Vertex<'a> {
 /// One light's terms at a vertex, in the course's order (docs/rendering.md, Shading), and its
 /// shadow test: a pure function of the vertex, the light and `V`. The occluder is found only
 /// for an observer that records it; otherwise the search stops at the first blocker.
-/// Inlined, so that the record's fields nobody reads are never computed for the render.
+/// Inlined (see `trace_observed`), so the record's fields nobody reads are never computed.
 #[inline(always)]
 fn light_terms<O: Observer>(
     model: &impl Model,
@@ -284,7 +288,8 @@ fn light_terms<O: Observer>(
 
 /// Phong shading at a vertex: the ambient term, then each light's terms added where it is not
 /// in shadow. Returns the (unweighted) ambient term and shaded colour, and adds the weighted
-/// per-effect terms to `sample`.
+/// per-effect terms to `sample`. Inlined: see `trace_observed`.
+#[inline(always)]
 fn shade<const LAYERS: bool, O: Observer>(
     model: &impl Model,
     scene: &Scene,

@@ -93,9 +93,10 @@ impl<'a> Renderer<'a> {
         frame: &Frame,
         pixels: &[(u32, u32)],
     ) -> Result<Vec<u8>> {
+        // `Mistakes::frame_spec` asks for brute force where the model needs it.
         let accel = match frame.acceleration {
-            Acceleration::Bvh if model.hierarchy_exact() => &self.bvh,
-            _ => &self.brute,
+            Acceleration::Bvh => &self.bvh,
+            Acceleration::BruteForce => &self.brute,
         };
         let beauty =
             trace_pixels::<false, _>(model, self.scene, accel, frame, pixels, |s| s.beauty);
