@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use clap::{Args, Parser, Subcommand};
+use clap::{Args, CommandFactory, FromArgMatches, Parser, Subcommand};
 
 mod check;
 mod look;
@@ -20,17 +20,8 @@ pub use look::{ExplainArgs, RelightArgs, ViewArgs};
 use parse::*;
 pub use values::{CompressionArg, ToneMapArg};
 
-/// Most reflection bounces accepted: each bounce is a layer in the EXR, and past this depth a
-/// mirror chain's contribution is far below what a float image can show.
-pub const MAX_BOUNCES: u32 = 100;
-
-/// Largest image side accepted.
-pub const MAX_SIDE: u32 = 65_535;
-
+pub use crate::frame::limits::{MAX_BOUNCES, MAX_SIDE, MAX_SPP};
 pub use crate::plan::MAX_THREADS;
-
-/// Most samples per pixel accepted (a 32x32 grid).
-pub const MAX_SPP: u32 = 1024;
 
 #[derive(Debug, Parser)]
 #[command(
@@ -45,6 +36,31 @@ pub struct Cli {
     /// With no subcommand, whitted renders (the course's Tick2 command line).
     #[command(flatten)]
     pub render: RenderArgs,
+}
+
+impl Cli {
+    /// The command line as clap builds it from these types, with every option that takes a
+    /// value accepting a negative number as that value: `--ambient -1` then reaches its parser
+    /// and gets its range error, instead of clap's "unexpected argument" and a tip to write
+    /// `-- -1`, which would not work. The one place that builds the command (parsing, the
+    /// manual page, completions).
+    pub fn command_line() -> clap::Command {
+        fn negatives(command: clap::Command) -> clap::Command {
+            command
+                .mut_args(|arg| {
+                    let takes_values = arg.get_action().takes_values();
+                    arg.allow_negative_numbers(takes_values)
+                })
+                .mut_subcommands(negatives)
+        }
+        negatives(<Cli as CommandFactory>::command())
+    }
+
+    /// Parses the process's arguments with `command_line`.
+    pub fn parse_args() -> Result<Cli, clap::Error> {
+        let mut matches = Self::command_line().try_get_matches()?;
+        Cli::from_arg_matches_mut(&mut matches).map_err(|e| e.format(&mut Self::command_line()))
+    }
 }
 
 #[derive(Debug, Subcommand)]
@@ -309,7 +325,7 @@ pub struct RenderArgs {
 
     /// Render only the pixels [X0, X1) x [Y0, Y1) of the image; the EXR's data window is
     /// that crop, so parts from several machines merge into the full frame (`whitted merge`)
-    #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = parse_region)]
+    #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = parse_region, allow_hyphen_values = true)]
     pub region: Option<Region>,
 
     /// Also write the multi-layer linear HDR OpenEXR (beauty and AOVs)
@@ -399,10 +415,46 @@ impl SheetArgs {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use clap::CommandFactory;
 
     #[test]
     fn clap_definition_is_consistent() {
-        Cli::command().debug_assert();
+        Cli::command_line().debug_assert();
+    }
+
+    #[test]
+    fn negative_numbers_reach_their_parsers() {
+        for args in [
+            &["whitted", "explain", "--pixel", "-1,0"][..],
+            &["whitted", "render", "--region", "-1,0,4,4"],
+            &["whitted", "check", "x.png", "--tolerance", "-1"],
+            &["whitted", "diff", "a", "b", "--fail-percent", "-1"],
+            &["whitted", "render", "--width", "-5"],
+        ] {
+            let matches = Cli::command_line().try_get_matches_from(args);
+            let e = matches.expect_err("refused");
+            assert_eq!(
+                e.kind(),
+                clap::error::ErrorKind::ValueValidation,
+                "{args:?}: {e}"
+            );
+            assert!(!e.to_string().contains("-- -"), "{e}");
+        }
+        let ok = Cli::command_line().try_get_matches_from(["whitted", "render", "-o", "-"]);
+        assert!(ok.is_ok());
+        // A gain may be negative (a light taken away): it reaches relight as -1.
+        let args = [
+            "whitted",
+            "relight",
+            "a.exr",
+            "-o",
+            "b.png",
+            "--ambient",
+            "-1",
+        ];
+        let matches = Cli::command_line()
+            .try_get_matches_from(args)
+            .expect("parses");
+        let (_, relight) = matches.subcommand().expect("relight");
+        assert_eq!(relight.get_one::<f64>("ambient"), Some(&-1.0));
     }
 }

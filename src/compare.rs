@@ -12,7 +12,7 @@ mod align;
 mod parts;
 
 pub use align::{align, Alignment};
-pub use parts::{compare_files, PartReport};
+pub use parts::{compare_files, matching_part, PartReport};
 
 use std::collections::HashMap;
 

@@ -2,6 +2,8 @@
 //! render, the samples, the trace options and the layers to fill. The layers are derived from
 //! the same bounce count the trace uses, so the two cannot disagree.
 
+pub mod limits;
+
 use crate::aov::{self, Layer};
 use crate::camera::Camera;
 use crate::error::{Error, Result};
@@ -122,25 +124,21 @@ pub struct Frame {
 }
 
 impl Frame {
-    /// Checks `spec` against `scene`: the region lies inside the image, the sample count is a
-    /// square, and every named layer exists for this scene and bounce count.
+    /// Checks `spec` against `scene`: the sides, bounces and samples are within `limits`, the
+    /// region lies inside the image, and every named layer exists for this scene and bounce
+    /// count.
     pub fn new(scene: &Scene, spec: &FrameSpec) -> Result<Self> {
         let (width, height) = (spec.width, spec.height);
-        if width == 0 || height == 0 {
-            return Err(Error::Usage(format!("the image {width}x{height} is empty")));
-        }
+        let usage = |what: &str, e: String| Error::Usage(format!("{what}: {e}"));
+        limits::side(i64::from(width)).map_err(|e| usage("the image width", e))?;
+        limits::side(i64::from(height)).map_err(|e| usage("the image height", e))?;
+        limits::bounces(i64::from(spec.bounces)).map_err(Error::Usage)?;
+        limits::samples(i64::from(spec.spp)).map_err(Error::Usage)?;
         let region = spec.region.unwrap_or(Region::full(width, height));
         if !region.fits(width, height) {
             return Err(Error::Usage(format!(
                 "the region {},{},{},{} is not a non-empty part of the {width}x{height} image",
                 region.x0, region.y0, region.x1, region.y1
-            )));
-        }
-        let k = spec.spp.isqrt();
-        if spec.spp == 0 || k * k != spec.spp {
-            return Err(Error::Usage(format!(
-                "samples per pixel must be a square k*k, got {}",
-                spec.spp
             )));
         }
         let light_names: Vec<String> = scene.lights.iter().map(|l| l.name.clone()).collect();
@@ -225,6 +223,30 @@ mod tests {
         assert_eq!(frame.trace.bounces, 3);
         assert!(frame.layers.iter().any(|l| l.name == "reflected_3"));
         assert!(!frame.layers.iter().any(|l| l.name == "reflected_4"));
+    }
+
+    #[test]
+    fn the_limits_hold_for_library_callers_too() {
+        for spec in [
+            FrameSpec {
+                bounces: u32::MAX,
+                ..FrameSpec::default()
+            },
+            FrameSpec {
+                width: 0,
+                ..FrameSpec::default()
+            },
+            FrameSpec {
+                height: 70_000,
+                ..FrameSpec::default()
+            },
+            FrameSpec {
+                spp: 4096,
+                ..FrameSpec::default()
+            },
+        ] {
+            assert!(frame(spec.clone()).is_err(), "{spec:?}");
+        }
     }
 
     #[test]

@@ -4,14 +4,13 @@
 use std::process::ExitCode;
 
 use clap::error::ErrorKind;
-use clap::Parser;
 
 use whitted::cli::{Cli, Command};
 use whitted::commands;
 
 fn main() -> ExitCode {
     whitted::output::stdout::probe();
-    let cli = match Cli::try_parse() {
+    let cli = match Cli::parse_args() {
         Ok(cli) => cli,
         Err(e) => return usage_error(&e),
     };

@@ -25,7 +25,9 @@ pub fn merge(parts: &[FlatImage], names: &[PathBuf]) -> Result<FlatImage> {
 /// frame, and cover every pixel exactly once.
 fn check_parts(parts: &[FlatImage], names: &[PathBuf]) -> Result<()> {
     let usage = |msg: String| Error::Usage(msg);
-    let first = &parts[0];
+    let Some(first) = parts.first() else {
+        return Err(usage("there are no parts to merge".into()));
+    };
     let display = first.attributes.display_window;
     let (width, height) = (display.size.0, display.size.1);
     let signature = |p: &FlatImage| -> Vec<(String, &'static str)> {
@@ -101,7 +103,9 @@ fn check_parts(parts: &[FlatImage], names: &[PathBuf]) -> Result<()> {
 /// Copies every part's rows into a full-frame image with the first part's header.
 fn assemble(parts: &[FlatImage]) -> Result<FlatImage> {
     let usage = |msg: String| Error::Usage(msg);
-    let first = &parts[0];
+    let Some(first) = parts.first() else {
+        return Err(usage("there are no parts to merge".into()));
+    };
     let display = first.attributes.display_window;
     let (width, height) = (display.size.0, display.size.1);
     let mut list = x::SmallVec::new();
@@ -209,4 +213,13 @@ fn text_attribute(part: &FlatImage, name: &str) -> Option<String> {
             x::AttributeValue::Text(t) => Some(t.to_string()),
             _ => None,
         })
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn no_parts_is_an_error_not_a_panic() {
+        let err = super::merge(&[], &[]).expect_err("nothing to merge");
+        assert!(err.to_string().contains("no parts"), "{err}");
+    }
 }

@@ -6,6 +6,7 @@
 
 use glam::DVec3;
 
+use crate::frame::limits::MAX_BOUNCES;
 use crate::frame::{Acceleration, FrameSpec};
 use crate::geometry::{normalise, sphere_far_hit, Ray, SphereTerms};
 use crate::model::{mirror_direction, Model, Tick};
@@ -145,7 +146,8 @@ impl Mistakes {
     pub fn frame_spec(self, spec: &FrameSpec) -> FrameSpec {
         let mut bounces = spec.bounces;
         if self.has(Bug::BouncesPlusOne) {
-            bounces += 1;
+            // At the limit a program cannot be asked for more: there it is the same as asked.
+            bounces = (bounces + 1).min(MAX_BOUNCES);
         }
         if self.has(Bug::BouncesMinusOne) {
             bounces = bounces.saturating_sub(1);

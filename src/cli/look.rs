@@ -16,7 +16,7 @@ pub struct ExplainArgs {
     pub input: Option<PathBuf>,
 
     /// The pixel, X,Y from the top left
-    #[arg(long, value_name = "X,Y", value_parser = parse_pixel)]
+    #[arg(long, value_name = "X,Y", value_parser = parse_pixel, allow_hyphen_values = true)]
     pub pixel: (u32, u32),
 
     #[command(flatten)]

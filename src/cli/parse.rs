@@ -1,46 +1,26 @@
 //! Parsers for option values: syntax and plain ranges, with messages that say what was
 //! expected. Checks that depend on other options or on the scene are the plan's.
 
-use super::{MAX_BOUNCES, MAX_SIDE, MAX_SPP, MAX_THREADS};
-use crate::frame::Region;
+use super::MAX_THREADS;
+use crate::frame::{limits, Region};
+
+/// A whole number, or the message saying that `what` was expected.
+fn whole(s: &str, what: &str) -> Result<i64, String> {
+    s.trim()
+        .parse()
+        .map_err(|_| format!("expected a whole number of {what}, got `{s}`"))
+}
 
 pub(super) fn parse_bounces(s: &str) -> Result<u32, String> {
-    let n: i64 = s
-        .trim()
-        .parse()
-        .map_err(|_| format!("expected a whole number of bounces, got `{s}`"))?;
-    if n < 0 {
-        return Err(format!("bounces must be >= 0, got {n}"));
-    }
-    u32::try_from(n)
-        .ok()
-        .filter(|&n| n <= MAX_BOUNCES)
-        .ok_or_else(|| format!("at most {MAX_BOUNCES} bounces are supported, got {n}"))
+    limits::bounces(whole(s, "bounces")?)
 }
 
 pub(super) fn parse_side(s: &str) -> Result<u32, String> {
-    let n: u64 = s
-        .trim()
-        .parse()
-        .map_err(|_| format!("expected a whole number of pixels, got `{s}`"))?;
-    u32::try_from(n)
-        .ok()
-        .filter(|&n| (1..=MAX_SIDE).contains(&n))
-        .ok_or_else(|| format!("must be between 1 and {MAX_SIDE} pixels, got {n}"))
+    limits::side(whole(s, "pixels")?)
 }
 
 pub(super) fn parse_spp(s: &str) -> Result<u32, String> {
-    let n: u32 = s
-        .trim()
-        .parse()
-        .map_err(|_| format!("expected a whole number of samples, got `{s}`"))?;
-    let k = n.isqrt();
-    if n == 0 || k * k != n || n > MAX_SPP {
-        return Err(format!(
-            "samples per pixel must be a square k*k (1, 4, 9, 16, ...) up to {MAX_SPP}, got {n}"
-        ));
-    }
-    Ok(n)
+    limits::samples(whole(s, "samples")?)
 }
 
 pub(super) fn parse_exposure(s: &str) -> Result<f64, String> {

@@ -6,7 +6,7 @@
 use serde_json::json;
 
 use crate::cli::DiffArgs;
-use crate::compare::{align, compare_files, excess_map, PartReport};
+use crate::compare::{align, compare_files, excess_map, matching_part, PartReport};
 use crate::error::{Error, Result};
 use crate::input;
 use crate::numbers::compact as number;
@@ -33,8 +33,13 @@ pub fn run(args: &DiffArgs) -> Result<bool> {
     let reports = compare_files(&actual, &reference, &args.layers, criteria).map_err(cannot)?;
     let passed = reports.iter().all(PartReport::passed);
     if let Some(out) = heatmap.as_mut() {
-        // The first part's, on the grid both share.
-        let aligned = align(&actual[0], &reference[0]).map_err(cannot)?;
+        // The reference's first part and the part it was compared with, on the grid both
+        // share.
+        let b = reference
+            .first()
+            .ok_or_else(|| cannot("the reference has no parts".into()))?;
+        let a = matching_part(&actual, 0, b).map_err(cannot)?;
+        let aligned = align(a, b).map_err(cannot)?;
         let (a, b) = (&aligned.actual, &aligned.reference);
         let map = excess_map(a, b, &args.layers, criteria.tolerance);
         out.write_png(&heat_png(&map, b.width, b.height))?;

@@ -8,10 +8,16 @@ use crate::input::exr::read_flat;
 use crate::merge::merge;
 use crate::openexr::FlatImage;
 use crate::output::atomic::AtomicFile;
-use crate::output::destination::refuse_clashes;
+use crate::output::destination::{refuse_clashes, STDOUT};
 use crate::output::exr::write_image;
 
 pub fn run(args: &MergeArgs) -> Result<()> {
+    if args.output.as_os_str() == STDOUT {
+        return Err(Error::Usage(
+            "merge writes an EXR file; `-o -` (standard output) is not supported, give a file name"
+                .into(),
+        ));
+    }
     let inputs: Vec<&Path> = args.parts.iter().map(PathBuf::as_path).collect();
     refuse_clashes(&inputs, &[&args.output])?;
     let mut output = AtomicFile::create(&args.output)?;

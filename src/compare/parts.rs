@@ -54,13 +54,7 @@ pub fn compare_files(
         .iter()
         .enumerate()
         .map(|(index, b)| {
-            let a = match &b.part {
-                Some(name) => actual
-                    .iter()
-                    .find(|p| p.part.as_ref() == Some(name))
-                    .ok_or_else(|| format!("part `{name}` is missing from the first file"))?,
-                None => &actual[index],
-            };
+            let a = matching_part(actual, index, b)?;
             let label = b.part.clone().unwrap_or_else(|| index.to_string());
             let aligned = align(a, b).map_err(|e| format!("part {label}: {e}"))?;
             let reports = compare(&aligned.actual, &aligned.reference, layers, criteria)?;
@@ -73,4 +67,22 @@ pub fn compare_files(
             })
         })
         .collect()
+}
+
+/// The part of `actual` that part `index` of the reference, `b`, is compared with: the one of
+/// the same name, or the one at the same position when unnamed.
+pub fn matching_part<'a>(
+    actual: &'a [Image],
+    index: usize,
+    b: &Image,
+) -> Result<&'a Image, String> {
+    match &b.part {
+        Some(name) => actual
+            .iter()
+            .find(|p| p.part.as_ref() == Some(name))
+            .ok_or_else(|| format!("part `{name}` is missing from the first file")),
+        None => actual
+            .get(index)
+            .ok_or_else(|| format!("part {index} is missing from the first file")),
+    }
 }

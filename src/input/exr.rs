@@ -11,8 +11,8 @@ use crate::input::image::{Channel, Format, Image, Window};
 use crate::memory;
 use crate::openexr::{self, FlatImage};
 
-/// Reads the first part of the OpenEXR file at `path` as the `exr` crate's flat image (what
-/// `merge` works on), with the same checks as `input::read`.
+/// Reads the single-part OpenEXR file at `path` as the `exr` crate's flat image (what `merge`
+/// works on), with the same checks as `input::read`; a multi-part file is refused.
 pub fn read_flat(path: &Path) -> Result<FlatImage> {
     let bytes = crate::input::read_recognised(path)?;
     if !bytes.starts_with(&openexr::MAGIC) {
@@ -21,7 +21,14 @@ pub fn read_flat(path: &Path) -> Result<FlatImage> {
             path.display()
         )));
     }
-    check_memory(path, &bytes)?;
+    let parts = check_memory(path, &bytes)?;
+    if parts > 1 {
+        // Its other parts would be dropped without a word.
+        return Err(Error::Usage(format!(
+            "{}: has {parts} parts; this command reads single-part EXRs (as `whitted render` writes)",
+            path.display()
+        )));
+    }
     openexr::read_first_part(std::io::Cursor::new(bytes)).map_err(|e| unreadable(path, e))
 }
 
@@ -47,14 +54,16 @@ pub fn decode(path: &Path, bytes: Vec<u8>) -> Result<Vec<Image>> {
 
 /// Checks, from the headers alone, that the pixels they declare fit in the memory this process
 /// may use: a tiny file declaring 100000x100000 floats is an error with numbers, not an abort.
-fn check_memory(path: &Path, bytes: &[u8]) -> Result<()> {
+/// Checks that decoding the file fits in memory; returns its number of parts.
+fn check_memory(path: &Path, bytes: &[u8]) -> Result<usize> {
     let meta =
         exr::meta::MetaData::read_from_buffered(bytes, false).map_err(|e| unreadable(path, e))?;
     memory::check(
         openexr::decoded_bytes(&meta).saturating_add(bytes.len() as u64),
         memory::available_bytes(),
         &format!("decoding {}", path.display()),
-    )
+    )?;
+    Ok(meta.headers.len())
 }
 
 fn unreadable(path: &Path, e: x::Error) -> Error {

@@ -178,3 +178,64 @@ fn regions_lists_a_balanced_split_that_merges_into_the_frame() {
     let run = whitted(dir.path(), &["regions", "--parts", "60", "--height", "50"]);
     assert_eq!(run.status.code(), Some(2));
 }
+
+/// Writes a 4x4 multi-part EXR, one part per (name, value of its R channel).
+fn multi_part_exr(path: &std::path::Path, parts: &[(&str, f32)]) {
+    use exr::prelude::*;
+    let layers = parts
+        .iter()
+        .map(|&(name, value)| {
+            let channel = AnyChannel::new("R", FlatSamples::F32(vec![value; 16]));
+            Layer::new(
+                (4, 4),
+                LayerAttributes::named(name),
+                Encoding::FAST_LOSSLESS,
+                AnyChannels::sort(smallvec::smallvec![channel]),
+            )
+        })
+        .collect::<Vec<_>>();
+    let image = Image::from_layers(
+        ImageAttributes::new(IntegerBounds::from_dimensions((4, 4))),
+        layers,
+    );
+    image.write().to_file(path).expect("multi-part EXR");
+}
+
+#[test]
+fn merge_refuses_standard_output_and_multi_part_inputs() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    multi_part_exr(&d.join("two.exr"), &[("a", 0.5), ("b", 0.5)]);
+    let run = whitted(d, &["merge", "two.exr", "-o", "out.exr"]);
+    assert_eq!(run.status.code(), Some(2));
+    assert!(stderr(&run).contains("has 2 parts"), "{}", stderr(&run));
+    assert!(!d.join("out.exr").exists());
+    let run = whitted(d, &["merge", "two.exr", "-o", "-"]);
+    assert_eq!(run.status.code(), Some(2));
+    assert!(stderr(&run).contains("standard output"), "{}", stderr(&run));
+}
+
+#[test]
+fn the_diff_heat_map_is_of_the_parts_the_comparison_pairs() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    // The same part names in another order; part `a` differs.
+    multi_part_exr(&d.join("actual.exr"), &[("b", 0.5), ("a", 0.9)]);
+    multi_part_exr(&d.join("reference.exr"), &[("a", 0.5), ("b", 0.5)]);
+    let run = whitted(
+        d,
+        &[
+            "diff",
+            "actual.exr",
+            "reference.exr",
+            "--heatmap",
+            "heat.png",
+        ],
+    );
+    assert_eq!(run.status.code(), Some(1), "{}", stderr(&run));
+    let heat = read_png(&d.join("heat.png"));
+    assert!(
+        heat.data.iter().any(|&b| b != 0),
+        "the heat map shows no difference"
+    );
+}
