@@ -243,6 +243,25 @@ pub fn all_layers(light_names: &[String], bounces: u32) -> Vec<Layer> {
     layers
 }
 
+/// The canonical `--aovs` of `selected` (as `select` returns them from `available`): `all`
+/// for every layer, `beauty` for the beauty alone, else the other layers' names in file
+/// order, whatever order and spelling they were asked in.
+pub fn selection_spec(selected: &[Layer], available: &[Layer]) -> String {
+    if selected == available {
+        return "all".into();
+    }
+    let names: Vec<&str> = selected
+        .iter()
+        .filter(|l| l.quantity != Quantity::Beauty)
+        .map(Layer::selection_name)
+        .collect();
+    if names.is_empty() {
+        BEAUTY.into()
+    } else {
+        names.join(",")
+    }
+}
+
 /// The layers `--aovs` asks for: `all`, `beauty`, or a comma-separated list of layer names
 /// (the beauty is always written). Keeps file order; an unknown name is an error that lists
 /// the valid names for this scene.
@@ -278,6 +297,17 @@ mod tests {
 
     fn names(layers: &[Layer]) -> Vec<String> {
         layers.iter().flat_map(Layer::channel_names).collect()
+    }
+
+    #[test]
+    fn a_selection_has_one_canonical_spelling() {
+        let available = all_layers(&["key".into()], 2);
+        let spec = |s: &str| selection_spec(&select(s, &available).expect("select"), &available);
+        assert_eq!(spec("Z,direct"), "direct,Z");
+        assert_eq!(spec(" direct , Z,,"), "direct,Z");
+        assert_eq!(spec("all"), "all");
+        assert_eq!(spec("beauty"), "beauty");
+        assert_eq!(spec("beauty,"), "beauty");
     }
 
     #[test]

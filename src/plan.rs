@@ -76,8 +76,6 @@ pub struct RenderPlan {
     pub frame: Frame,
     /// Whether the scene is the embedded tick2 (no `--input`).
     pub embedded_scene: bool,
-    /// The layer selection as given (`--aovs`), for the recorded command.
-    pub aovs: String,
     pub png: Option<PathBuf>,
     pub exr: Option<PathBuf>,
     pub encoding: PngEncoding,
@@ -123,7 +121,6 @@ impl RenderPlan {
         Ok(RenderPlan {
             frame,
             embedded_scene: request.input.is_none(),
-            aovs: request.frame.aovs.clone(),
             png: request.png.clone(),
             exr: request.exr.clone(),
             encoding,

@@ -3,6 +3,7 @@
 
 use std::time::SystemTime;
 
+use crate::aov;
 use crate::fingerprint::fingerprint;
 use crate::output::exr::ExrMetadata;
 use crate::plan::RenderPlan;
@@ -15,10 +16,12 @@ pub fn metadata(
     scene_bytes: &[u8],
     light_names: Vec<String>,
 ) -> ExrMetadata {
-    let command = render_command(plan, Some(scene_name));
+    let catalogue = aov::all_layers(&light_names, plan.frame.trace.bounces);
+    let aovs = aov::selection_spec(&plan.frame.layers, &catalogue);
+    let command = render_command(plan, &aovs, Some(scene_name));
     // The scene's content, not its path: parts rendered on machines that mount the scene in
     // different places are still one render.
-    let options = render_command(plan, None);
+    let options = render_command(plan, &aovs, None);
     let scene = fingerprint(&[scene_bytes]);
     ExrMetadata {
         software: format!("whitted {}", env!("CARGO_PKG_VERSION")),
@@ -37,8 +40,9 @@ pub fn metadata(
 /// form. Output paths, threads and verbosity are left out, so that the same render written
 /// elsewhere, or with another thread count, has the same bytes. The region is left out too:
 /// a region's header is the full render's, which is what lets `merge` reproduce it. With no
-/// `scene_name`, the scene is left out too.
-fn render_command(plan: &RenderPlan, scene_name: Option<&str>) -> String {
+/// `scene_name`, the scene is left out too. `aovs` is the canonical `--aovs` of the layers
+/// (`aov::selection_spec`), so that `direct,Z` and `Z,direct` are one render.
+fn render_command(plan: &RenderPlan, aovs: &str, scene_name: Option<&str>) -> String {
     let quote = |a: &str| {
         if a.contains(char::is_whitespace) {
             format!("'{a}'")
@@ -64,7 +68,7 @@ fn render_command(plan: &RenderPlan, scene_name: Option<&str>) -> String {
     if !frame.trace.shadows {
         parts.push("--no-shadows".into());
     }
-    parts.push(format!("--aovs {}", quote(&plan.aovs)));
+    parts.push(format!("--aovs {}", quote(aovs)));
     if plan.exr_options.half {
         parts.push("--half".into());
     }

@@ -239,3 +239,21 @@ fn the_diff_heat_map_is_of_the_parts_the_comparison_pairs() {
         "the heat map shows no difference"
     );
 }
+
+#[test]
+fn parts_asked_for_the_same_layers_in_any_order_merge() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let tick2 = scene("tick2.xml");
+    let size = ["--width", "32", "--height", "20"];
+    let top = [&size[..], &["--region", "0,0,32,10", "--aovs", "direct,Z"]].concat();
+    let bottom = [
+        &size[..],
+        &["--region", "0,10,32,20", "--aovs", "Z, direct"],
+    ]
+    .concat();
+    render_exr(d, &tick2, "top.exr", &top);
+    render_exr(d, &tick2, "bottom.exr", &bottom);
+    let run = whitted(d, &["merge", "top.exr", "bottom.exr", "-o", "full.exr"]);
+    assert!(run.status.success(), "{}", stderr(&run));
+}
