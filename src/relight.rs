@@ -19,24 +19,20 @@ pub struct RelightSpec {
     pub background: DVec3,
 }
 
-impl RelightSpec {
-    /// Every gain 1, every shadow kept: the beauty.
-    pub fn identity() -> Self {
-        RelightSpec {
-            lights: Vec::new(),
-            no_shadow: Vec::new(),
-            ambient: DVec3::ONE,
-            background: DVec3::ONE,
-        }
-    }
+/// Bytes `relight` holds at its peak for an image of `pixels` pixels: the sum and one layer
+/// being added, as f64 RGB.
+pub fn working_bytes(pixels: usize) -> u64 {
+    (pixels as u64).saturating_mul(2 * std::mem::size_of::<DVec3>() as u64)
 }
 
-/// The relit image, row-major, or why it cannot be made from `image`'s layers.
+/// The relit image, row-major, or why it cannot be made from `image`'s layers. Every light
+/// layer of the file counts: one that is not a full colour layer is an error, not a term
+/// left out of the sum.
 pub fn relight(image: &Image, spec: &RelightSpec) -> Result<Vec<DVec3>, String> {
     let lights: Vec<String> = image
-        .colour_layers()
+        .layers()
         .into_iter()
-        .filter_map(|l| l.strip_prefix("light_").map(str::to_string))
+        .filter_map(|l| l.name.strip_prefix("light_").map(str::to_string))
         .collect();
     for name in spec.lights.iter().map(|(n, _)| n).chain(&spec.no_shadow) {
         if !lights.contains(name) {
@@ -50,10 +46,8 @@ pub fn relight(image: &Image, spec: &RelightSpec) -> Result<Vec<DVec3>, String> 
             ));
         }
     }
-    let mut terms = vec![
-        (image.colour_layer("ambient")?, spec.ambient),
-        (image.colour_layer("background")?, spec.background),
-    ];
+    // ambient + lights in file order + background: the order of invariant 3.
+    let mut terms = vec![("ambient".to_string(), spec.ambient)];
     for name in &lights {
         let gain = spec
             .lights
@@ -66,12 +60,14 @@ pub fn relight(image: &Image, spec: &RelightSpec) -> Result<Vec<DVec3>, String> 
         } else {
             format!("light_{name}")
         };
-        terms.insert(terms.len() - 1, (image.colour_layer(&layer)?, gain));
+        terms.push((layer, gain));
     }
-    // ambient + lights in file order + background: the order of invariant 3.
+    terms.push(("background".to_string(), spec.background));
     let mut out = vec![DVec3::ZERO; image.width * image.height];
-    for (values, gain) in &terms {
-        for (o, v) in out.iter_mut().zip(values) {
+    for (layer, gain) in &terms {
+        // One layer at a time: the sum and one layer are all that is held.
+        let values = image.colour_layer(layer)?;
+        for (o, v) in out.iter_mut().zip(&values) {
             *o += *v * *gain;
         }
     }

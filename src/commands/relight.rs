@@ -5,11 +5,12 @@ use glam::DVec3;
 use crate::cli::RelightArgs;
 use crate::error::{Error, Result};
 use crate::input;
+use crate::memory;
 use crate::output::atomic::AtomicFile;
 use crate::output::destination::{refuse_clashes, Destination};
 use crate::output::exr::{write_rgba, Placement};
 use crate::output::png::encode;
-use crate::relight::{relight, RelightSpec};
+use crate::relight::{relight, working_bytes, RelightSpec};
 
 pub fn run(args: &RelightArgs) -> Result<()> {
     let encoding = args.tone.request().encoding()?;
@@ -18,7 +19,15 @@ pub fn run(args: &RelightArgs) -> Result<()> {
         .output
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("exr"));
+    if to_exr {
+        refuse_png_options(args)?;
+    }
     let image = input::read_exr(&args.input)?;
+    memory::check(
+        working_bytes(image.width * image.height),
+        memory::available_bytes(),
+        &format!("relighting a {}x{} image", image.width, image.height),
+    )?;
     let spec = RelightSpec {
         lights: args
             .lights
@@ -34,6 +43,7 @@ pub fn run(args: &RelightArgs) -> Result<()> {
         msg,
     })?;
     if to_exr {
+        refuse_overflow(&pixels)?;
         let mut file = AtomicFile::create(&args.output)?;
         let (data, display) = (image.data_window, image.display_window);
         let placement = Placement {
@@ -63,4 +73,40 @@ pub fn run(args: &RelightArgs) -> Result<()> {
         &encoding,
     ))?;
     output.commit()
+}
+
+/// The options that only shape a PNG, refused for an EXR output (which is linear and float):
+/// silently ignoring them would hand back another image than the one asked for.
+fn refuse_png_options(args: &RelightArgs) -> Result<()> {
+    let tone = &args.tone;
+    let given = [
+        (tone.tonemap != crate::cli::ToneMapArg::Tick, "--tonemap"),
+        (tone.exposure != 0.0, "--exposure"),
+        (tone.png_depth != 8, "--png-depth"),
+        (tone.dither, "--dither"),
+    ];
+    match given.iter().find(|(on, _)| *on) {
+        Some((_, option)) => Err(Error::Usage(format!(
+            "{option} shapes a PNG; the EXR output {} is linear float (write a .png, or leave {option} out)",
+            args.output.display()
+        ))),
+        None => Ok(()),
+    }
+}
+
+/// Refuses relit values an EXR cannot hold: a finite gain can still overflow float32, and
+/// the file would then hold infinities (as `render`, whitted never writes Inf or NaN).
+fn refuse_overflow(pixels: &[DVec3]) -> Result<()> {
+    let limit = f64::from(f32::MAX);
+    let bad = pixels
+        .iter()
+        .flat_map(|p| p.to_array())
+        .find(|v| !v.is_finite() || v.abs() > limit);
+    match bad {
+        Some(v) => Err(Error::Usage(format!(
+            "the gains make a value ({v:e}) that a float EXR cannot hold (at most {limit:e}); \
+             use smaller gains"
+        ))),
+        None => Ok(()),
+    }
 }

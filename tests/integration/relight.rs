@@ -112,3 +112,57 @@ fn relight_writes_pngs_and_refuses_unknown_lights() {
     let run = whitted(d, &["relight", s(&exr), "-o", "in.exr"]);
     assert_eq!(run.status.code(), Some(2), "its own input");
 }
+
+#[test]
+fn relight_refuses_png_options_for_an_exr_overflow_and_incomplete_light_layers() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let exr = render_exr(
+        d,
+        &scene("tick2.xml"),
+        "in.exr",
+        &["--width", "16", "--height", "12"],
+    );
+    for option in [
+        &["--exposure", "1"][..],
+        &["--tonemap", "aces"],
+        &["--png-depth", "16"],
+        &["--dither", "--tonemap", "clamp"],
+    ] {
+        let mut args = vec!["relight", s(&exr), "-o", "out.exr"];
+        args.extend_from_slice(option);
+        let run = whitted(d, &args);
+        assert_eq!(run.status.code(), Some(2), "{option:?}");
+        assert!(stderr(&run).contains("shapes a PNG"), "{}", stderr(&run));
+        assert!(!d.join("out.exr").exists());
+    }
+    // A finite gain whose product overflows float32: refused, no file with infinities.
+    let run = whitted(
+        d,
+        &["relight", s(&exr), "-o", "out.exr", "--light", "0=1e300"],
+    );
+    assert_eq!(run.status.code(), Some(2), "{}", stderr(&run));
+    assert!(stderr(&run).contains("cannot hold"), "{}", stderr(&run));
+    assert!(!d.join("out.exr").exists());
+
+    // A light layer without its B channel: an error, not a light left out of the sum.
+    use exr::prelude::*;
+    let plane = |name: &str| AnyChannel::new(name, FlatSamples::F32(vec![0.25; 16]));
+    let mut channels = vec![plane("light_0.R"), plane("light_0.G")];
+    for layer in ["ambient", "background", "light_1"] {
+        channels.extend(["R", "G", "B"].map(|c| plane(&format!("{layer}.{c}"))));
+    }
+    let layer = Layer::new(
+        (4, 4),
+        LayerAttributes::default(),
+        Encoding::FAST_LOSSLESS,
+        AnyChannels::sort(channels.into()),
+    );
+    Image::from_layer(layer)
+        .write()
+        .to_file(d.join("partial.exr"))
+        .expect("exr");
+    let run = whitted(d, &["relight", "partial.exr", "-o", "p.png"]);
+    assert_eq!(run.status.code(), Some(2), "{}", stderr(&run));
+    assert!(stderr(&run).contains("light_0"), "{}", stderr(&run));
+}
