@@ -90,8 +90,8 @@ pub enum Command {
     Regions(RegionsArgs),
     /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
     Completions(CompletionsArgs),
-    /// Print the manual page (roff) on standard output.
-    Man,
+    /// Print the manual page (roff) on standard output, or write every subcommand's page.
+    Man(ManArgs),
 }
 
 #[derive(Debug, Clone, Args)]
@@ -107,6 +107,14 @@ pub struct RegionsArgs {
     /// Image height in pixels
     #[arg(long, value_name = "H", default_value_t = 480, value_parser = parse_side)]
     pub height: u32,
+}
+
+#[derive(Debug, Clone, Args)]
+pub struct ManArgs {
+    /// Write whitted.1 and a page per subcommand (whitted-render.1, ...) into DIR, the pages
+    /// the main page's SUBCOMMANDS section names
+    #[arg(long, value_name = "DIR")]
+    pub dir: Option<PathBuf>,
 }
 
 #[derive(Debug, Clone, Args)]

@@ -28,7 +28,7 @@ fn main() -> ExitCode {
         Some(Command::Relight(args)) => commands::relight::run(args).map(|()| true),
         Some(Command::Regions(args)) => commands::regions::run(args).map(|()| true),
         Some(Command::Completions(args)) => commands::completions::run(args).map(|()| true),
-        Some(Command::Man) => commands::man::run().map(|()| true),
+        Some(Command::Man(args)) => commands::man::run(args).map(|()| true),
         None => commands::render::run(&cli.render).map(|()| true),
     };
     match result {

@@ -238,4 +238,23 @@ fn completions_and_the_manual_page_are_generated() {
         "{page}"
     );
     assert!(page.contains("merge"), "subcommands are listed");
+    // Every page the SUBCOMMANDS section names is written with --dir.
+    let pages = dir.path().join("man1");
+    std::fs::create_dir(&pages).expect("dir");
+    let run = whitted(dir.path(), &["man", "--dir", "man1"]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let named: Vec<&str> = page
+        .lines()
+        .filter_map(|l| l.strip_suffix("(1)"))
+        .filter(|l| l.starts_with("whitted"))
+        .collect();
+    assert!(named.len() >= 12, "{named:?}");
+    for name in std::iter::once("whitted").chain(named.iter().copied()) {
+        let file = pages.join(format!("{}.1", name.replace("\\-", "-")));
+        let text =
+            std::fs::read_to_string(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+        assert!(text.contains(".TH"), "{}", file.display());
+    }
+    let run = whitted(dir.path(), &["man", "--dir", "nowhere"]);
+    assert_eq!(run.status.code(), Some(2));
 }
