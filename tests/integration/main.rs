@@ -22,3 +22,4 @@ mod scale;
 mod scenes;
 mod tonemap;
 mod view;
+mod view_hostile;

@@ -197,7 +197,7 @@ fn the_viewer_serves_only_its_images_to_loopback_with_the_token() {
         dir.path(),
         &scene("tick2.xml"),
         "other.exr",
-        &["--width", "160", "--height", "120", "--bounces", "0"],
+        &["--width", "160", "--height", "120", "--no-shadows"],
     );
     let viewer = Viewer::start_with(
         dir.path(),

@@ -1,0 +1,232 @@
+//! A viewer request, parsed and checked before any work: the closed set of what the page asks
+//! for, or the refusal (status and message) for anything else. Pure, so that every hostile
+//! request is a unit test.
+
+use super::Reply;
+
+/// Which image a layer is taken from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Which {
+    Main,
+    Reference,
+}
+
+/// Everything the viewer answers.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum ApiRequest {
+    /// The page itself.
+    Page,
+    /// The image's size, layers and lights (JSON).
+    Image,
+    /// One layer's values, every `step`-th pixel of every `step`-th row.
+    Layer {
+        which: Which,
+        name: String,
+        step: usize,
+    },
+    /// Every layer's values at one pixel (JSON).
+    Pixel { x: usize, y: usize },
+}
+
+/// The parts of an HTTP request the viewer looks at, as the server library hands them over.
+#[derive(Debug, Clone)]
+pub struct Incoming<'a> {
+    pub method: &'a str,
+    /// The path, undecoded.
+    pub path: &'a str,
+    /// The query, undecoded (`a=1&b=%20`), empty when there is none.
+    pub query: &'a str,
+    /// Every `Host` header's value.
+    pub hosts: Vec<&'a [u8]>,
+    /// Whether the request announces a body (`Content-Length` > 0 or `Transfer-Encoding`).
+    pub has_body: bool,
+}
+
+/// The largest `step` asked for: past the image's size every step gives one pixel.
+const MAX_STEP: usize = 1 << 16;
+
+fn refuse(status: u16, message: &str) -> Reply {
+    super::text(status, message)
+}
+
+/// Checks and parses `request` for the viewer listening on 127.0.0.1:`port` with `token`:
+/// 405 for a method other than GET or HEAD; 400 for no or several Host headers; 403 for a
+/// Host that is not this loopback address (DNS rebinding) or a missing or wrong token; 413 for
+/// a body; 404 for any other path; 400 for a malformed parameter.
+pub fn parse(request: &Incoming, token: &str, port: u16) -> Result<ApiRequest, Reply> {
+    if request.method != "GET" && request.method != "HEAD" {
+        return Err(refuse(
+            405,
+            "method not allowed: the viewer answers GET and HEAD",
+        ));
+    }
+    let host = match request.hosts[..] {
+        [host] => host,
+        [] => return Err(refuse(400, "bad request: no Host header")),
+        _ => return Err(refuse(400, "bad request: more than one Host header")),
+    };
+    let allowed = [format!("127.0.0.1:{port}"), format!("localhost:{port}")];
+    if !allowed.iter().any(|a| a.as_bytes() == host) {
+        return Err(refuse(403, "forbidden: not the viewer's loopback address"));
+    }
+    if request.has_body {
+        return Err(refuse(413, "a request to the viewer has no body"));
+    }
+    let params: Vec<(String, String)> = form_urlencoded::parse(request.query.as_bytes())
+        .map(|(k, v)| (k.into_owned(), v.into_owned()))
+        .collect();
+    let param = |key: &str| {
+        params
+            .iter()
+            .find(|(k, _)| k == key)
+            .map(|(_, v)| v.as_str())
+    };
+    if param("token") != Some(token) {
+        return Err(refuse(403, "forbidden: missing or wrong token"));
+    }
+    let number = |key: &str| -> Result<Option<usize>, Reply> {
+        match param(key) {
+            None => Ok(None),
+            Some(v) => v
+                .parse::<usize>()
+                .map(Some)
+                .map_err(|_| refuse(400, &format!("bad request: `{key}` must be a whole number"))),
+        }
+    };
+    match request.path {
+        "/" => Ok(ApiRequest::Page),
+        "/api/image" => Ok(ApiRequest::Image),
+        "/api/layer" => {
+            let which = match param("which") {
+                None | Some("main") => Which::Main,
+                Some("reference") => Which::Reference,
+                Some(_) => return Err(refuse(400, "bad request: `which` is main or reference")),
+            };
+            let name = param("name")
+                .ok_or_else(|| refuse(400, "bad request: `name` is missing"))?
+                .to_string();
+            let step = number("step")?.unwrap_or(1);
+            if step == 0 || step > MAX_STEP {
+                return Err(refuse(400, "bad request: `step` is from 1 to 65536"));
+            }
+            Ok(ApiRequest::Layer { which, name, step })
+        }
+        "/api/pixel" => match (number("x")?, number("y")?) {
+            (Some(x), Some(y)) => Ok(ApiRequest::Pixel { x, y }),
+            _ => Err(refuse(400, "bad request: `x` and `y` are needed")),
+        },
+        _ => Err(refuse(404, "not found")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const TOKEN: &str = "0123abcd";
+
+    fn get(target: &str) -> Result<ApiRequest, u16> {
+        let (path, query) = target.split_once('?').unwrap_or((target, ""));
+        let request = Incoming {
+            method: "GET",
+            path,
+            query,
+            hosts: vec![b"127.0.0.1:8000"],
+            has_body: false,
+        };
+        parse(&request, TOKEN, 8000).map_err(|r| r.0)
+    }
+
+    #[test]
+    fn the_closed_set_of_requests_is_parsed() {
+        assert_eq!(get("/?token=0123abcd"), Ok(ApiRequest::Page));
+        assert_eq!(
+            get("/api/layer?name=light_a%20b%26%3D%2B%23%25%2F%3F%C3%A9&token=0123abcd&step=4"),
+            Ok(ApiRequest::Layer {
+                which: Which::Main,
+                name: "light_a b&=+#%/?é".into(),
+                step: 4
+            })
+        );
+        assert_eq!(
+            get("/api/pixel?x=3&y=4&token=0123abcd"),
+            Ok(ApiRequest::Pixel { x: 3, y: 4 })
+        );
+    }
+
+    #[test]
+    fn malformed_and_hostile_requests_are_refused_before_any_work() {
+        for (target, status) in [
+            ("/", 403),
+            ("/?token=wrong", 403),
+            ("/nowhere?token=0123abcd", 404),
+            ("/api/layer?token=0123abcd", 400),
+            ("/api/layer?name=direct&step=x&token=0123abcd", 400),
+            ("/api/layer?name=direct&step=0&token=0123abcd", 400),
+            (
+                "/api/layer?name=direct&step=99999999999999999999&token=0123abcd",
+                400,
+            ),
+            ("/api/layer?name=direct&which=other&token=0123abcd", 400),
+            ("/api/pixel?x=-1&y=0&token=0123abcd", 400),
+            ("/api/pixel?token=0123abcd", 400),
+        ] {
+            assert_eq!(get(target), Err(status), "{target}");
+        }
+        let base = Incoming {
+            method: "GET",
+            path: "/",
+            query: "token=0123abcd",
+            hosts: vec![b"127.0.0.1:8000"],
+            has_body: false,
+        };
+        let status = |r: Incoming| parse(&r, TOKEN, 8000).map_err(|r| r.0).err();
+        for method in ["POST", "PUT", "DELETE", "OPTIONS", "BREW"] {
+            assert_eq!(
+                status(Incoming {
+                    method,
+                    ..base.clone()
+                }),
+                Some(405),
+                "{method}"
+            );
+        }
+        assert_eq!(
+            status(Incoming {
+                method: "HEAD",
+                ..base.clone()
+            }),
+            None
+        );
+        let two = vec![&b"127.0.0.1:8000"[..], b"127.0.0.1:8000"];
+        assert_eq!(
+            status(Incoming {
+                hosts: two,
+                ..base.clone()
+            }),
+            Some(400)
+        );
+        assert_eq!(
+            status(Incoming {
+                hosts: vec![],
+                ..base.clone()
+            }),
+            Some(400)
+        );
+        let evil = vec![&b"evil.example:8000"[..]];
+        assert_eq!(
+            status(Incoming {
+                hosts: evil,
+                ..base.clone()
+            }),
+            Some(403)
+        );
+        assert_eq!(
+            status(Incoming {
+                has_body: true,
+                ..base
+            }),
+            Some(413)
+        );
+    }
+}

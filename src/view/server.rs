@@ -1,0 +1,124 @@
+//! The thin adapter between hyper and the viewer's pure request -> reply functions. hyper 1
+//! (HTTP/1 only) on a single-threaded tokio runtime: each connection is a task, so a client
+//! that stalls costs one task, not the server. The limits:
+//! - request line and headers: at most `MAX_HEAD` bytes (hyper answers 431 past them), read
+//!   within `HEAD_TIMEOUT`;
+//! - no body is read or buffered, ever: a request that announces one gets 413 (hyper then
+//!   closes the connection rather than read what was announced);
+//! - a connection lives at most `CONNECTION_TIME`, whatever it does (a client that never
+//!   reads a layer is cut off then);
+//! - at most `MAX_CONNECTIONS` at once; others are closed at once, and a failed accept (out
+//!   of descriptors) is waited out, never a panic.
+
+use std::convert::Infallible;
+use std::sync::Arc;
+use std::time::Duration;
+
+use http_body_util::Full;
+use hyper::body::{Bytes, Incoming as Body};
+use hyper::header::{HeaderValue, CONTENT_LENGTH, HOST, TRANSFER_ENCODING};
+use hyper::{Request, Response};
+use hyper_util::rt::{TokioIo, TokioTimer};
+
+use super::request::{parse, Incoming};
+use super::{api, Served};
+use crate::error::{Error, Result};
+use crate::interrupt;
+
+const MAX_HEAD: usize = 16 * 1024;
+const HEAD_TIMEOUT: Duration = Duration::from_secs(10);
+const CONNECTION_TIME: Duration = Duration::from_secs(120);
+const MAX_CONNECTIONS: usize = 64;
+/// How often the accept loop looks for Ctrl-C.
+const POLL: Duration = Duration::from_millis(100);
+
+/// Serves `served` on `listener` until a signal stops the process.
+pub fn run(listener: std::net::TcpListener, served: Served) -> Result<()> {
+    let runtime = tokio::runtime::Builder::new_current_thread()
+        .enable_io()
+        .enable_time()
+        .build()
+        .map_err(|e| Error::io("127.0.0.1", "cannot start the viewer's runtime", e))?;
+    let served = Arc::new(served);
+    runtime.block_on(async move {
+        listener
+            .set_nonblocking(true)
+            .map_err(|e| Error::io("127.0.0.1", "cannot listen", e))?;
+        let listener = tokio::net::TcpListener::from_std(listener)
+            .map_err(|e| Error::io("127.0.0.1", "cannot listen", e))?;
+        let permits = Arc::new(tokio::sync::Semaphore::new(MAX_CONNECTIONS));
+        loop {
+            interrupt::check()?;
+            let accepted = match tokio::time::timeout(POLL, listener.accept()).await {
+                Err(_) => continue,
+                Ok(accepted) => accepted,
+            };
+            let Ok((stream, _)) = accepted else {
+                // Out of descriptors, or a connection reset before it was taken: wait and go
+                // on serving the others.
+                tokio::time::sleep(POLL).await;
+                continue;
+            };
+            let Ok(permit) = permits.clone().try_acquire_owned() else {
+                drop(stream);
+                continue;
+            };
+            let served = served.clone();
+            tokio::spawn(async move {
+                let _permit = permit;
+                let service = hyper::service::service_fn(move |request| {
+                    let reply = answer(&served, &request);
+                    async move { Ok::<_, Infallible>(reply) }
+                });
+                let connection = hyper::server::conn::http1::Builder::new()
+                    .timer(TokioTimer::new())
+                    .header_read_timeout(HEAD_TIMEOUT)
+                    .max_buf_size(MAX_HEAD)
+                    .serve_connection(TokioIo::new(stream), service);
+                // A client that misbehaves or goes away ends its own connection only.
+                let _ = tokio::time::timeout(CONNECTION_TIME, connection).await;
+            });
+        }
+    })
+}
+
+/// The reply to one request, as hyper wants it.
+fn answer(served: &Served, request: &Request<Body>) -> Response<Full<Bytes>> {
+    let headers = request.headers();
+    let announced = headers
+        .get(CONTENT_LENGTH)
+        .is_some_and(|v| v.as_bytes() != b"0")
+        || headers.contains_key(TRANSFER_ENCODING);
+    let incoming = Incoming {
+        method: request.method().as_str(),
+        path: request.uri().path(),
+        query: request.uri().query().unwrap_or(""),
+        hosts: headers
+            .get_all(HOST)
+            .iter()
+            .map(HeaderValue::as_bytes)
+            .collect(),
+        has_body: announced,
+    };
+    let (status, kind, body) = match parse(&incoming, &served.token, served.port) {
+        Ok(api_request) => api::respond(served, &api_request),
+        Err(refusal) => refusal,
+    };
+    let body = if request.method() == hyper::Method::HEAD {
+        Vec::new()
+    } else {
+        body
+    };
+    let mut response = Response::new(Full::new(Bytes::from(body)));
+    *response.status_mut() =
+        hyper::StatusCode::from_u16(status).unwrap_or(hyper::StatusCode::INTERNAL_SERVER_ERROR);
+    let headers = response.headers_mut();
+    for (name, value) in [
+        (hyper::header::CONTENT_TYPE, kind),
+        (hyper::header::CACHE_CONTROL, "no-store"),
+        (hyper::header::X_CONTENT_TYPE_OPTIONS, "nosniff"),
+    ] {
+        headers.insert(name, HeaderValue::from_static(value));
+    }
+    response
+}

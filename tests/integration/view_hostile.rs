@@ -1,0 +1,196 @@
+//! The viewer against hostile local clients: oversized, stalled and malformed requests, every
+//! method, many connections, and layer names that need percent-encoding. After each, the
+//! viewer must still answer a well-behaved request promptly.
+
+use std::io::{BufRead, BufReader, Read, Write};
+use std::net::TcpStream;
+use std::path::Path;
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+use crate::common::*;
+
+struct Viewer {
+    child: Child,
+    port: u16,
+    token: String,
+}
+
+impl Viewer {
+    fn start(dir: &Path, exr: &Path) -> Viewer {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_whitted"))
+            .args(["view", exr.to_str().expect("utf-8"), "--no-browser"])
+            .current_dir(dir)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("whitted view starts");
+        let mut line = String::new();
+        BufReader::new(child.stdout.take().expect("stdout"))
+            .read_line(&mut line)
+            .expect("the URL line");
+        let rest = line.trim().strip_prefix("http://127.0.0.1:").expect("url");
+        let (port, query) = rest.split_once("/?token=").expect("token");
+        Viewer {
+            child,
+            port: port.parse().expect("port"),
+            token: query.to_string(),
+        }
+    }
+
+    fn alive(&mut self) -> bool {
+        self.child.try_wait().expect("wait").is_none()
+    }
+
+    /// The status of a raw request, or None when the server closed without answering.
+    fn raw(&self, request: &[u8]) -> Option<u16> {
+        let mut stream = TcpStream::connect(("127.0.0.1", self.port)).expect("connect");
+        stream
+            .set_read_timeout(Some(Duration::from_secs(20)))
+            .expect("timeout");
+        let _ = stream.write_all(request);
+        let mut head = [0u8; 12];
+        stream.read_exact(&mut head).ok()?;
+        std::str::from_utf8(&head[9..12]).ok()?.parse().ok()
+    }
+
+    fn get(&self, target: &str) -> Option<u16> {
+        let request = format!(
+            "GET {target} HTTP/1.1\r\nHost: 127.0.0.1:{}\r\nConnection: close\r\n\r\n",
+            self.port
+        );
+        self.raw(request.as_bytes())
+    }
+
+    /// A well-behaved request, answered within two seconds.
+    fn answers(&self) -> bool {
+        let started = Instant::now();
+        let ok = self.get(&format!("/api/image?token={}", self.token)) == Some(200);
+        ok && started.elapsed() < Duration::from_secs(2)
+    }
+}
+
+impl Drop for Viewer {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// A 640x480 EXR whose only layer has a name that needs every kind of encoding.
+fn odd_names(dir: &Path) -> std::path::PathBuf {
+    use exr::prelude::*;
+    let n = 640 * 480;
+    let channels = ["R", "G", "B"].map(|c| {
+        AnyChannel::new(
+            format!("a b&=+#%/?é.{c}").as_str(),
+            FlatSamples::F32(vec![0.5; n]),
+        )
+    });
+    let beauty = ["R", "G", "B", "A"].map(|c| AnyChannel::new(c, FlatSamples::F32(vec![1.0; n])));
+    let all: Vec<AnyChannel<FlatSamples>> = channels.into_iter().chain(beauty).collect();
+    let layer = Layer::new(
+        (640, 480),
+        LayerAttributes::default(),
+        Encoding::FAST_LOSSLESS,
+        AnyChannels::sort(all.into()),
+    );
+    let path = dir.join("odd.exr");
+    Image::from_layer(layer)
+        .write()
+        .to_file(&path)
+        .expect("exr");
+    path
+}
+
+#[test]
+fn the_viewer_survives_hostile_clients() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let exr = odd_names(dir.path());
+    let mut viewer = Viewer::start(dir.path(), &exr);
+    let host = format!("Host: 127.0.0.1:{}\r\n", viewer.port);
+    assert!(viewer.answers());
+
+    // A body of 10^14 bytes announced, without a token: refused, nothing allocated.
+    let huge = format!("POST / HTTP/1.1\r\n{host}Content-Length: 100000000000000\r\n\r\n");
+    assert_eq!(viewer.raw(huge.as_bytes()), Some(405));
+    let huge = format!(
+        "GET /?token={} HTTP/1.1\r\n{host}Content-Length: 100000000000000\r\n\r\n",
+        viewer.token
+    );
+    assert_eq!(viewer.raw(huge.as_bytes()), Some(413));
+    assert!(viewer.alive() && viewer.answers(), "after a huge body");
+
+    // Every method.
+    for (method, status) in [
+        ("GET", 200),
+        ("HEAD", 200),
+        ("POST", 405),
+        ("PUT", 405),
+        ("DELETE", 405),
+        ("OPTIONS", 405),
+        ("PATCH", 405),
+        ("TRACE", 405),
+    ] {
+        let request = format!(
+            "{method} /?token={} HTTP/1.1\r\n{host}Connection: close\r\n\r\n",
+            viewer.token
+        );
+        assert_eq!(viewer.raw(request.as_bytes()), Some(status), "{method}");
+    }
+    // Two Host headers; an oversized head.
+    let two = format!("GET /?token={} HTTP/1.1\r\n{host}{host}\r\n", viewer.token);
+    assert_eq!(viewer.raw(two.as_bytes()), Some(400));
+    let big = format!(
+        "GET /?token={} HTTP/1.1\r\n{host}X-Junk: {}\r\n\r\n",
+        viewer.token,
+        "x".repeat(100_000)
+    );
+    assert!(matches!(
+        viewer.raw(big.as_bytes()),
+        Some(431) | Some(400) | None
+    ));
+    assert!(viewer.alive() && viewer.answers(), "after malformed heads");
+
+    // A client that stalls half-way through its head, and one that never reads a layer.
+    let mut stalled = TcpStream::connect(("127.0.0.1", viewer.port)).expect("connect");
+    stalled.write_all(b"GET /?token=").expect("send");
+    let mut reader = TcpStream::connect(("127.0.0.1", viewer.port)).expect("connect");
+    let name = "a%20b%26%3D%2B%23%25%2F%3F%C3%A9";
+    let layer = format!(
+        "GET /api/layer?name={name}&token={} HTTP/1.1\r\n{host}\r\n",
+        viewer.token
+    );
+    reader.write_all(layer.as_bytes()).expect("send");
+    assert!(viewer.answers(), "a stalled client held the server");
+
+    // The encoded name is served: 640 * 480 pixels of 3 channels.
+    let mut stream = TcpStream::connect(("127.0.0.1", viewer.port)).expect("connect");
+    stream
+        .set_read_timeout(Some(Duration::from_secs(20)))
+        .expect("timeout");
+    let request = format!(
+        "GET /api/layer?name={name}&token={} HTTP/1.1\r\n{host}Connection: close\r\n\r\n",
+        viewer.token
+    );
+    stream.write_all(request.as_bytes()).expect("send");
+    let mut reply = Vec::new();
+    stream.read_to_end(&mut reply).expect("reply");
+    assert!(
+        reply.starts_with(b"HTTP/1.1 200"),
+        "{}",
+        String::from_utf8_lossy(&reply[..40.min(reply.len())])
+    );
+    assert!(reply.len() > 640 * 480 * 3 * 4);
+
+    // Many connections at once, held open: the server stays up and answers again once they
+    // are gone.
+    let many: Vec<TcpStream> = (0..300)
+        .filter_map(|_| TcpStream::connect(("127.0.0.1", viewer.port)).ok())
+        .collect();
+    assert!(viewer.alive());
+    drop(many);
+    drop((stalled, reader));
+    std::thread::sleep(Duration::from_millis(300));
+    assert!(viewer.alive() && viewer.answers(), "after many connections");
+}
