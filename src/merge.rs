@@ -35,7 +35,7 @@ fn check_parts(parts: &[FlatImage], names: &[PathBuf]) -> Result<()> {
             .channel_data
             .list
             .iter()
-            .map(|c| (c.name.to_string(), openexr::pixel_type(&c.sample_data)))
+            .map(|c| (openexr::text(&c.name), openexr::pixel_type(&c.sample_data)))
             .collect()
     };
     let channels = signature(first);
@@ -173,7 +173,7 @@ fn render_difference(first: &FlatImage, part: &FlatImage) -> Option<String> {
     }
     let options = |p: &FlatImage| -> Vec<String> {
         let comments = p.layer_data.attributes.comments.as_ref();
-        let text = comments.map(|c| c.to_string()).unwrap_or_default();
+        let text = comments.map(openexr::text).unwrap_or_default();
         let command = text.split_once("command: ").map_or("", |(_, c)| c);
         // The scene is compared by content above, not by the path it was read from.
         command
@@ -210,7 +210,7 @@ fn text_attribute(part: &FlatImage, name: &str) -> Option<String> {
         .chain(part.attributes.other.iter())
         .find(|(key, _)| **key == *name)
         .and_then(|(_, value)| match value {
-            x::AttributeValue::Text(t) => Some(t.to_string()),
+            x::AttributeValue::Text(t) => Some(openexr::text(t)),
             _ => None,
         })
 }

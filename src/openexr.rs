@@ -11,6 +11,14 @@ pub const MAGIC: [u8; 4] = [0x76, 0x2f, 0x31, 0x01];
 /// Longest channel name OpenEXR 2 readers accept (the 1.x header limit that many tools keep).
 pub const MAX_CHANNEL_NAME: usize = 31;
 
+/// A name or text from an OpenEXR header as UTF-8, which is what OpenEXR specifies (the
+/// `exr` crate's `Display` shows each byte as a Latin-1 character, so `é` would read `Ã©`
+/// and never match the name a user types). Invalid UTF-8 is shown with replacement
+/// characters.
+pub fn text(t: &x::Text) -> String {
+    String::from_utf8_lossy(t.bytes()).into_owned()
+}
+
 /// One part with every channel as flat samples, and its header.
 pub type FlatImage = x::Image<x::Layer<x::AnyChannels<x::FlatSamples>>>;
 

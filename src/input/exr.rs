@@ -91,7 +91,7 @@ fn part(
                 x::FlatSamples::U32(v) => v.iter().map(|&u| u as f32).collect(),
             };
             Channel {
-                name: c.name.to_string(),
+                name: openexr::text(&c.name),
                 pixel_type,
                 values,
             }
@@ -120,7 +120,7 @@ fn part(
     attributes.sort_by(|a, b| a.0.cmp(&b.0));
     Image {
         format: Format::Exr,
-        part: layer.attributes.layer_name.as_ref().map(|n| n.to_string()),
+        part: layer.attributes.layer_name.as_ref().map(openexr::text),
         width: layer.size.0,
         height: layer.size.1,
         data_window,
@@ -149,7 +149,7 @@ fn shared_attributes(image: &x::ImageAttributes) -> Vec<(String, Attribute)> {
         image
             .other
             .iter()
-            .map(|(name, value)| (name.to_string(), typed(value))),
+            .map(|(name, value)| (openexr::text(name), typed(value))),
     );
     out
 }
@@ -166,7 +166,7 @@ fn part_attributes(layer: &x::LayerAttributes) -> Vec<(String, Attribute)> {
     ];
     for (name, value) in texts {
         if let Some(v) = value {
-            out.push((name.to_string(), Attribute::Text(v.to_string())));
+            out.push((name.to_string(), Attribute::Text(openexr::text(v))));
         }
     }
     for (name, matrix) in [
@@ -181,7 +181,7 @@ fn part_attributes(layer: &x::LayerAttributes) -> Vec<(String, Attribute)> {
         layer
             .other
             .iter()
-            .map(|(name, value)| (name.to_string(), typed(value))),
+            .map(|(name, value)| (openexr::text(name), typed(value))),
     );
     out
 }
@@ -189,7 +189,7 @@ fn part_attributes(layer: &x::LayerAttributes) -> Vec<(String, Attribute)> {
 /// An attribute value the crate keeps generically, typed.
 fn typed(value: &x::AttributeValue) -> Attribute {
     match value {
-        x::AttributeValue::Text(t) => Attribute::Text(t.to_string()),
+        x::AttributeValue::Text(t) => Attribute::Text(openexr::text(t)),
         x::AttributeValue::I32(i) => Attribute::Integer(i64::from(*i)),
         x::AttributeValue::F32(f) => Attribute::Number(f64::from(*f)),
         x::AttributeValue::F64(f) => Attribute::Number(*f),

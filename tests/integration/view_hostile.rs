@@ -79,11 +79,11 @@ impl Drop for Viewer {
 fn odd_names(dir: &Path) -> std::path::PathBuf {
     use exr::prelude::*;
     let n = 640 * 480;
+    // As UTF-8 bytes, as OpenEXR specifies (the crate's `From<&str>` would store Latin-1).
+    let utf8 = |name: String| Text::from_slice_unchecked(name.as_bytes());
     let channels = ["R", "G", "B"].map(|c| {
-        AnyChannel::new(
-            format!("a b&=+#%/?é.{c}").as_str(),
-            FlatSamples::F32(vec![0.5; n]),
-        )
+        let name = utf8(format!("a b&=+#%/?é.{c}"));
+        AnyChannel::new(name, FlatSamples::F32(vec![0.5; n]))
     });
     let beauty = ["R", "G", "B", "A"].map(|c| AnyChannel::new(c, FlatSamples::F32(vec![1.0; n])));
     let all: Vec<AnyChannel<FlatSamples>> = channels.into_iter().chain(beauty).collect();
@@ -191,4 +191,42 @@ fn the_viewer_survives_hostile_clients() {
     drop((stalled, reader));
     std::thread::sleep(Duration::from_millis(300));
     assert!(viewer.alive() && viewer.answers(), "after many connections");
+}
+
+#[test]
+fn utf8_channel_names_are_shown_and_selectable_everywhere() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let exr = odd_names(d);
+    let exr = exr.to_str().expect("utf-8");
+    let run = |args: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_whitted"))
+            .args(args)
+            .current_dir(d)
+            .output()
+            .expect("runs")
+    };
+    let info = run(&["info", exr, "--json"]);
+    assert!(info.status.success());
+    let text = String::from_utf8_lossy(&info.stdout);
+    assert!(text.contains("a b&=+#%/?é"), "{text}");
+    assert!(!text.contains("Ã©"), "Latin-1 decoded: {text}");
+    let tonemap = run(&["tonemap", exr, "--layer", "a b&=+#%/?é", "-o", "t.png"]);
+    assert!(
+        tonemap.status.success(),
+        "{}",
+        String::from_utf8_lossy(&tonemap.stderr)
+    );
+    let sheet = run(&["sheet", exr, "--layers", "a b&=+#%/?é", "-o", "s.png"]);
+    assert!(
+        sheet.status.success(),
+        "{}",
+        String::from_utf8_lossy(&sheet.stderr)
+    );
+    let diff = run(&["diff", exr, exr, "--layers", "a b&=+#%/?é"]);
+    assert!(
+        diff.status.success(),
+        "{}",
+        String::from_utf8_lossy(&diff.stderr)
+    );
 }

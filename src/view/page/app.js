@@ -291,15 +291,22 @@ async function thumbnails() {
       c.width = Math.floor(width / step);
       c.height = Math.floor(height / step);
       const ctx = c.getContext("2d");
-      const img = ctx.createImageData(c.width, c.height);
-      const small = await layer(name, "main", step);
-      let lo = Infinity, hi = -Infinity;
-      for (const x of small) if (x !== 0 && Number.isFinite(x) && x < 1e10) { lo = Math.min(lo, x); hi = Math.max(hi, x); }
-      for (let q = 0; q < c.width * c.height; q++) {
-        const b = layerBytes(info(name), small, q, "clamp", 0, [lo, hi]);
-        img.data.set([b[0], b[1], b[2], 255], q * 4);
+      // One layer that cannot be had (a 404, a 503 under a tight memory limit) costs its
+      // thumbnail only: the others, and the controls, go on working.
+      try {
+        const img = ctx.createImageData(c.width, c.height);
+        const small = await layer(name, "main", step);
+        let lo = Infinity, hi = -Infinity;
+        for (const x of small) if (x !== 0 && Number.isFinite(x) && x < 1e10) { lo = Math.min(lo, x); hi = Math.max(hi, x); }
+        for (let q = 0; q < c.width * c.height; q++) {
+          const b = layerBytes(info(name), small, q, "clamp", 0, [lo, hi]);
+          img.data.set([b[0], b[1], b[2], 255], q * 4);
+        }
+        ctx.putImageData(img, 0, 0);
+      } catch (e) {
+        fig.title = e.message;
+        fig.classList.add("unavailable");
       }
-      ctx.putImageData(img, 0, 0);
       const cap = document.createElement("figcaption");
       cap.textContent = name;
       fig.append(c, cap);
@@ -378,8 +385,6 @@ async function start() {
   }
   if (!info("beauty")) state.selected = state.meta.layers[0].name;
   relightPanel();
-  await draw();
-  await thumbnails();
   for (const id of ["tonemap", "ab"]) document.getElementById(id).onchange = draw;
   document.getElementById("exposure").oninput = (e) => {
     document.getElementById("exposure-value").textContent = Number(e.target.value).toFixed(1);
@@ -402,6 +407,9 @@ async function start() {
       a.click();
     });
   };
+  // The controls are wired first: a layer that fails to load below leaves them working.
+  await draw().catch((e) => { document.getElementById("status").textContent = `error: ${e.message}`; });
+  await thumbnails();
   window.whitted.ready = true;
 }
 
