@@ -89,19 +89,20 @@ pub fn explain(
     y: u32,
 ) -> Result<Explanation> {
     let frame = Frame::new(scene, spec)?;
-    if x >= frame.camera.width || y >= frame.camera.height {
+    if x >= frame.camera().width || y >= frame.camera().height {
         return Err(Error::Usage(format!(
             "the pixel {x},{y} is outside the {}x{} image",
-            frame.camera.width, frame.camera.height
+            frame.camera().width,
+            frame.camera().height
         )));
     }
     // `Mistakes::frame_spec` asks for brute force where the model needs it.
-    let accel = match frame.acceleration {
+    let accel = match frame.acceleration() {
         Acceleration::Bvh => Accelerator::build(&scene.objects),
         Acceleration::BruteForce => Accelerator::brute_force(&scene.objects),
     };
-    let camera_ray = frame.camera.pixel_centre_ray(x, y);
-    let mut sample = Sample::empty(scene.lights.len(), frame.trace.bounces);
+    let camera_ray = frame.camera().pixel_centre_ray(x, y);
+    let mut sample = Sample::empty(scene.lights.len(), frame.trace().bounces);
     let mut recorder = Recorder {
         scene,
         pending: Vec::new(),
@@ -114,7 +115,7 @@ pub fn explain(
         scene,
         &accel,
         camera_ray,
-        frame.trace,
+        frame.trace(),
         &mut sample,
         &mut recorder,
     );

@@ -108,19 +108,20 @@ impl Default for FrameSpec {
     }
 }
 
-/// A checked frame: what `render::render` runs.
+/// A checked frame: what `render::render` runs. Its fields are private, so that nothing can
+/// change a frame after `Frame::new` checked it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Frame {
-    pub camera: Camera,
+    camera: Camera,
     /// Inside the camera's image and not empty.
-    pub region: Region,
+    region: Region,
     /// A square k*k >= 1.
-    pub spp: u32,
-    pub trace: TraceOptions,
+    spp: u32,
+    trace: TraceOptions,
     /// The layers to fill, in file order; the beauty first. Built for `trace.bounces` and the
     /// scene's lights.
-    pub layers: Vec<Layer>,
-    pub acceleration: Acceleration,
+    layers: Vec<Layer>,
+    acceleration: Acceleration,
 }
 
 impl Frame {
@@ -155,6 +156,39 @@ impl Frame {
             layers,
             acceleration: spec.acceleration,
         })
+    }
+
+    pub fn camera(&self) -> &Camera {
+        &self.camera
+    }
+
+    pub fn region(&self) -> Region {
+        self.region
+    }
+
+    pub fn spp(&self) -> u32 {
+        self.spp
+    }
+
+    pub fn trace(&self) -> TraceOptions {
+        self.trace
+    }
+
+    pub fn layers(&self) -> &[Layer] {
+        &self.layers
+    }
+
+    pub fn acceleration(&self) -> Acceleration {
+        self.acceleration
+    }
+
+    /// The same frame with no layers to fill (a render to a PNG only needs the beauty, which
+    /// every film has).
+    pub fn without_layers(self) -> Frame {
+        Frame {
+            layers: Vec::new(),
+            ..self
+        }
     }
 
     /// Values stored per pixel: the channels of every layer.

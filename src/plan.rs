@@ -92,13 +92,14 @@ impl RenderPlan {
     /// film's f64 beauty is what the PNG is made from).
     pub fn new(request: &RenderRequest, scene: &Scene) -> Result<Self> {
         let encoding = request.tone.encoding()?;
-        let mut frame = Frame::new(scene, &request.frame)?;
-        if request.exr.is_some() {
+        let frame = Frame::new(scene, &request.frame)?;
+        let frame = if request.exr.is_some() {
             check_channel_names(&frame)?;
+            frame
         } else {
             // The PNG is made from the film's f64 beauty, which every film has.
-            frame.layers.clear();
-        }
+            frame.without_layers()
+        };
         if let Some(n) = request.threads {
             if n == 0 || n > MAX_THREADS {
                 return Err(Error::Usage(format!(
@@ -106,7 +107,7 @@ impl RenderPlan {
                 )));
             }
         }
-        let (width, height) = (frame.region.width(), frame.region.height());
+        let (width, height) = (frame.region().width(), frame.region().height());
         let channels = frame.channel_count();
         let strip_rows = strip_rows(width, channels, exr_block_lines(request));
         memory::check(
@@ -144,7 +145,7 @@ fn exr_block_lines(request: &RenderRequest) -> Option<u32> {
 /// holds for every scene the loader accepts; the check keeps the writer's rule with the writer.
 fn check_channel_names(frame: &Frame) -> Result<()> {
     let long = frame
-        .layers
+        .layers()
         .iter()
         .flat_map(|l| l.channel_names())
         .find(|name| name.len() > MAX_CHANNEL_NAME);
@@ -218,7 +219,7 @@ mod tests {
     #[test]
     fn without_an_exr_only_the_beauty_is_kept_but_the_selection_is_checked() {
         let plan = RenderPlan::new(&request(), &scene()).expect("plan");
-        assert!(plan.frame.layers.is_empty());
+        assert!(plan.frame.layers().is_empty());
         let mut bad = request();
         bad.frame.aovs = "direct,nope".into();
         assert!(RenderPlan::new(&bad, &scene()).is_err());
@@ -228,7 +229,7 @@ mod tests {
             RenderPlan::new(&exr, &scene())
                 .expect("plan")
                 .frame
-                .layers
+                .layers()
                 .len()
                 == 20
         );

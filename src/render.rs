@@ -51,10 +51,10 @@ pub fn render(
     frame: &Frame,
     rows_done: &(dyn Fn(u64) + Sync),
 ) -> Result<(Film, RenderStats)> {
-    let region = frame.region;
-    let mut film = Film::new(region.width(), region.height(), frame.layers.clone())?;
+    let region = frame.region();
+    let mut film = Film::new(region.width(), region.height(), frame.layers().to_vec())?;
     film.origin = (region.x0, region.y0);
-    film.display = (frame.camera.width, frame.camera.height);
+    film.display = (frame.camera().width, frame.camera().height);
     let channels = film.channel_count();
     let width = region.width() as usize;
     let rows = strip_rows(region.width(), channels, None);
@@ -110,16 +110,16 @@ pub fn render_strips(
     sink: &mut (dyn FnMut(&Film) -> Result<()> + Send),
 ) -> Result<RenderStats> {
     let started = Instant::now();
-    let accel = match frame.acceleration {
+    let accel = match frame.acceleration() {
         Acceleration::Bvh => Accelerator::build(&scene.objects),
         Acceleration::BruteForce => Accelerator::brute_force(&scene.objects),
     };
     let hierarchy_time = started.elapsed();
-    let region = frame.region;
+    let region = frame.region();
     let strip_rows = strip_rows.clamp(1, region.height());
     let new_strip = || -> Result<Film> {
-        let mut strip = Film::new(region.width(), strip_rows, frame.layers.clone())?;
-        strip.display = (frame.camera.width, frame.camera.height);
+        let mut strip = Film::new(region.width(), strip_rows, frame.layers().to_vec())?;
+        strip.display = (frame.camera().width, frame.camera().height);
         Ok(strip)
     };
     let (mut rendering, mut finished) = (new_strip()?, new_strip()?);
@@ -165,7 +165,7 @@ struct PixelRenderer<'a> {
 
 impl<'a> PixelRenderer<'a> {
     fn new(scene: &'a Scene, accel: &'a Accelerator, frame: &'a Frame) -> Self {
-        let (grid, centre) = sample_grid(frame.spp);
+        let (grid, centre) = sample_grid(frame.spp());
         PixelRenderer {
             scene,
             accel,
@@ -211,7 +211,7 @@ impl<'a> PixelRenderer<'a> {
         beauty: &mut [DVec3],
         data: &mut [f32],
     ) -> (u64, u64) {
-        let (camera, trace) = (&self.frame.camera, self.frame.trace);
+        let (camera, trace) = (self.frame.camera(), self.frame.trace());
         let channels = data.len() / beauty.len().max(1);
         let mut accumulator = PixelAccumulator::new(layers, channels);
         let mut sample = Sample::empty(self.scene.lights.len(), trace.bounces);
@@ -259,18 +259,18 @@ pub fn trace_pixels<const LAYERS: bool, T>(
     pixels: &[(u32, u32)],
     keep: impl Fn(&Sample) -> T,
 ) -> Vec<T> {
-    let mut sample = Sample::empty(scene.lights.len(), frame.trace.bounces);
+    let mut sample = Sample::empty(scene.lights.len(), frame.trace().bounces);
     pixels
         .iter()
         .take_while(|_| !interrupt::requested())
         .map(|&(x, y)| {
-            let ray = frame.camera.pixel_centre_ray(x, y);
+            let ray = frame.camera().pixel_centre_ray(x, y);
             trace_observed::<LAYERS>(
                 model,
                 scene,
                 accel,
                 ray,
-                frame.trace,
+                frame.trace(),
                 &mut sample,
                 &mut Silent,
             );

@@ -16,8 +16,8 @@ pub fn metadata(
     scene_bytes: &[u8],
     light_names: Vec<String>,
 ) -> ExrMetadata {
-    let catalogue = aov::all_layers(&light_names, plan.frame.trace.bounces);
-    let aovs = aov::selection_spec(&plan.frame.layers, &catalogue);
+    let catalogue = aov::all_layers(&light_names, plan.frame.trace().bounces);
+    let aovs = aov::selection_spec(plan.frame.layers(), &catalogue);
     let command = render_command(plan, &aovs, Some(scene_name));
     // The scene's content, not its path: parts rendered on machines that mount the scene in
     // different places are still one render.
@@ -28,11 +28,11 @@ pub fn metadata(
         identity: fingerprint(&[scene.as_bytes(), options.as_bytes()]),
         scene,
         comments: format!("scene: {scene_name}; command: {command}"),
-        bounces: plan.frame.trace.bounces,
-        spp: plan.frame.spp,
+        bounces: plan.frame.trace().bounces,
+        spp: plan.frame.spp(),
         light_names,
         capture_date: plan.stamp_date.then(|| capture_date(SystemTime::now())),
-        world_to_ndc: plan.frame.camera.world_to_ndc(),
+        world_to_ndc: plan.frame.camera().world_to_ndc(),
     }
 }
 
@@ -58,14 +58,15 @@ fn render_command(plan: &RenderPlan, aovs: &str, scene_name: Option<&str>) -> St
         None => {}
     }
     parts.extend([
-        format!("--bounces {}", frame.trace.bounces),
+        format!("--bounces {}", frame.trace().bounces),
         format!(
             "--width {} --height {}",
-            frame.camera.width, frame.camera.height
+            frame.camera().width,
+            frame.camera().height
         ),
-        format!("--spp {}", frame.spp),
+        format!("--spp {}", frame.spp()),
     ]);
-    if !frame.trace.shadows {
+    if !frame.trace().shadows {
         parts.push("--no-shadows".into());
     }
     parts.push(format!("--aovs {}", quote(aovs)));

@@ -94,7 +94,7 @@ impl<'a> Renderer<'a> {
         pixels: &[(u32, u32)],
     ) -> Result<Vec<u8>> {
         // `Mistakes::frame_spec` asks for brute force where the model needs it.
-        let accel = match frame.acceleration {
+        let accel = match frame.acceleration() {
             Acceleration::Bvh => &self.bvh,
             Acceleration::BruteForce => &self.brute,
         };

@@ -23,7 +23,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let mut png = plan.png.as_deref().map(Destination::open).transpose()?;
     let mut exr_file = plan.exr.as_deref().map(AtomicFile::create).transpose()?;
 
-    let progress = Progress::new(u64::from(plan.frame.region.height()), args.quiet);
+    let progress = Progress::new(u64::from(plan.frame.region().height()), args.quiet);
     let started = Instant::now();
     // Both writers take each strip as it is finished, into temporary files: then rename, so
     // that there are all outputs or none.
@@ -57,7 +57,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     }
 
     if !args.quiet {
-        let layers = plan.frame.layers.len();
+        let layers = plan.frame.layers().len();
         let times = Times {
             load: load_time,
             render: render_time,
@@ -114,13 +114,13 @@ fn summary(plan: &RenderPlan, stats: &RenderStats, layers: usize, times: Times) 
         format!(" -> {}", outputs.join(", "))
     };
     let frame = &plan.frame;
-    let bounces = frame.trace.bounces;
+    let bounces = frame.trace().bounces;
     format!(
         "whitted: {}x{}, {} spp, {bounces} bounce{}, {} rays in {seconds:.2} s ({rate:.1} Mrays/s, \
          scene loaded in {:.2} s, hierarchy built in {:.2} s){target}",
-        frame.region.width(),
-        frame.region.height(),
-        frame.spp,
+        frame.region().width(),
+        frame.region().height(),
+        frame.spp(),
         if bounces == 1 { "" } else { "s" },
         stats.rays,
         times.load.as_secs_f64(),

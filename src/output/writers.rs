@@ -36,7 +36,7 @@ impl<'a> Writers<'a> {
         png: Option<&mut Destination>,
         exr_file: Option<&'a mut AtomicFile>,
     ) -> Result<Self> {
-        let region = plan.frame.region;
+        let region = plan.frame.region();
         let (width, height) = (region.width(), region.height());
         let png = png
             .map(|png| Ok((png.stream_png(width, height, plan.encoding)?, png.path())))
@@ -47,13 +47,13 @@ impl<'a> Writers<'a> {
                 let path = file.target().to_path_buf();
                 let lights = input.scene.lights.iter().map(|l| l.name.clone()).collect();
                 let metadata = render_record::metadata(plan, &input.name, &input.bytes, lights);
-                let camera = &plan.frame.camera;
+                let camera = plan.frame.camera();
                 let at = Placement {
                     size: (width as usize, height as usize),
                     origin: (region.x0 as i32, region.y0 as i32),
                     display: ((0, 0), (camera.width as usize, camera.height as usize)),
                 };
-                let (header, stored) = header(at, &plan.frame.layers, plan.exr_options, &metadata);
+                let (header, stored) = header(at, plan.frame.layers(), plan.exr_options, &metadata);
                 let stream =
                     ExrStream::create(file.file(), header).map_err(|msg| exr_error(&path, msg))?;
                 Some(ExrOutput {
