@@ -3,8 +3,8 @@
 //! `whitted` and OpenImageIO's `oiiotool` on PATH.
 //!
 //! Two lines of the first block are the repository's own commands and are not run again
-//! here: `tools/test` is the command running this very test, and `cargo run --release` runs
-//! the binary under test with the same arguments, which is what is run in its place.
+//! here: `tools/test` is the command running this very test, and `cargo run --release [--]`
+//! runs the binary under test with the same arguments, which is what is run in its place.
 
 use std::path::Path;
 use std::process::Command;
@@ -37,7 +37,13 @@ fn runnable(block: &str) -> String {
     block
         .lines()
         .filter(|l| !l.trim_start().starts_with("tools/test"))
-        .map(|l| l.replacen("cargo run --release", "whitted", 1))
+        .map(|l| {
+            l.replacen("cargo run --release --", "whitted", 1).replacen(
+                "cargo run --release",
+                "whitted",
+                1,
+            )
+        })
         .collect::<Vec<_>>()
         .join("\n")
 }
