@@ -14,14 +14,14 @@ use serde_json::{json, Value};
 use crate::common::*;
 
 /// A running `whitted view`, stopped (SIGTERM) when dropped.
-struct Viewer {
+pub struct Viewer {
     child: Child,
     url: String,
-    port: u16,
+    pub port: u16,
 }
 
 impl Viewer {
-    fn start(dir: &Path, exr: &Path) -> Viewer {
+    pub fn start(dir: &Path, exr: &Path) -> Viewer {
         Viewer::start_with(dir, &[exr.to_str().expect("utf-8")])
     }
 
@@ -58,8 +58,13 @@ impl Viewer {
         self.child.wait().expect("wait").code()
     }
 
-    fn token(&self) -> &str {
+    pub fn token(&self) -> &str {
         self.url.rsplit_once("token=").expect("a token").1
+    }
+
+    /// Whether the process is still running.
+    pub fn alive(&mut self) -> bool {
+        self.child.try_wait().expect("wait").is_none()
     }
 }
 

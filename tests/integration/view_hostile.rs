@@ -2,77 +2,36 @@
 //! method, many connections, and layer names that need percent-encoding. After each, the
 //! viewer must still answer a well-behaved request promptly.
 
-use std::io::{BufRead, BufReader, Read, Write};
+use std::io::{Read, Write};
 use std::net::TcpStream;
 use std::path::Path;
-use std::process::{Child, Command, Stdio};
+
+use crate::view::Viewer;
+use std::process::Command;
 use std::time::{Duration, Instant};
 
-struct Viewer {
-    child: Child,
-    port: u16,
-    token: String,
+/// The status of a raw request, or None when the server closed without answering.
+fn raw(viewer: &Viewer, request: &[u8]) -> Option<u16> {
+    let mut stream = TcpStream::connect(("127.0.0.1", viewer.port)).expect("connect");
+    stream
+        .set_read_timeout(Some(Duration::from_secs(20)))
+        .expect("timeout");
+    let _ = stream.write_all(request);
+    let mut head = [0u8; 12];
+    stream.read_exact(&mut head).ok()?;
+    std::str::from_utf8(&head[9..12]).ok()?.parse().ok()
 }
 
-impl Viewer {
-    fn start(dir: &Path, exr: &Path) -> Viewer {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_whitted"))
-            .args(["view", exr.to_str().expect("utf-8"), "--no-browser"])
-            .current_dir(dir)
-            .stdout(Stdio::piped())
-            .stderr(Stdio::null())
-            .spawn()
-            .expect("whitted view starts");
-        let mut line = String::new();
-        BufReader::new(child.stdout.take().expect("stdout"))
-            .read_line(&mut line)
-            .expect("the URL line");
-        let rest = line.trim().strip_prefix("http://127.0.0.1:").expect("url");
-        let (port, query) = rest.split_once("/?token=").expect("token");
-        Viewer {
-            child,
-            port: port.parse().expect("port"),
-            token: query.to_string(),
-        }
-    }
-
-    fn alive(&mut self) -> bool {
-        self.child.try_wait().expect("wait").is_none()
-    }
-
-    /// The status of a raw request, or None when the server closed without answering.
-    fn raw(&self, request: &[u8]) -> Option<u16> {
-        let mut stream = TcpStream::connect(("127.0.0.1", self.port)).expect("connect");
-        stream
-            .set_read_timeout(Some(Duration::from_secs(20)))
-            .expect("timeout");
-        let _ = stream.write_all(request);
-        let mut head = [0u8; 12];
-        stream.read_exact(&mut head).ok()?;
-        std::str::from_utf8(&head[9..12]).ok()?.parse().ok()
-    }
-
-    fn get(&self, target: &str) -> Option<u16> {
-        let request = format!(
-            "GET {target} HTTP/1.1\r\nHost: 127.0.0.1:{}\r\nConnection: close\r\n\r\n",
-            self.port
-        );
-        self.raw(request.as_bytes())
-    }
-
-    /// A well-behaved request, answered within two seconds.
-    fn answers(&self) -> bool {
-        let started = Instant::now();
-        let ok = self.get(&format!("/api/image?token={}", self.token)) == Some(200);
-        ok && started.elapsed() < Duration::from_secs(2)
-    }
-}
-
-impl Drop for Viewer {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
+/// A well-behaved request, answered within two seconds.
+fn answers(viewer: &Viewer) -> bool {
+    let started = Instant::now();
+    let request = format!(
+        "GET /api/image?token={} HTTP/1.1\r\nHost: 127.0.0.1:{}\r\nConnection: close\r\n\r\n",
+        viewer.token(),
+        viewer.port
+    );
+    let ok = raw(viewer, request.as_bytes()) == Some(200);
+    ok && started.elapsed() < Duration::from_secs(2)
 }
 
 /// A 640x480 EXR whose only layer has a name that needs every kind of encoding.
@@ -107,17 +66,17 @@ fn the_viewer_survives_hostile_clients() {
     let exr = odd_names(dir.path());
     let mut viewer = Viewer::start(dir.path(), &exr);
     let host = format!("Host: 127.0.0.1:{}\r\n", viewer.port);
-    assert!(viewer.answers());
+    assert!(answers(&viewer));
 
     // A body of 10^14 bytes announced, without a token: refused, nothing allocated.
     let huge = format!("POST / HTTP/1.1\r\n{host}Content-Length: 100000000000000\r\n\r\n");
-    assert_eq!(viewer.raw(huge.as_bytes()), Some(405));
+    assert_eq!(raw(&viewer, huge.as_bytes()), Some(405));
     let huge = format!(
         "GET /?token={} HTTP/1.1\r\n{host}Content-Length: 100000000000000\r\n\r\n",
-        viewer.token
+        viewer.token()
     );
-    assert_eq!(viewer.raw(huge.as_bytes()), Some(413));
-    assert!(viewer.alive() && viewer.answers(), "after a huge body");
+    assert_eq!(raw(&viewer, huge.as_bytes()), Some(413));
+    assert!(viewer.alive() && answers(&viewer), "after a huge body");
 
     // Every method.
     for (method, status) in [
@@ -132,23 +91,26 @@ fn the_viewer_survives_hostile_clients() {
     ] {
         let request = format!(
             "{method} /?token={} HTTP/1.1\r\n{host}Connection: close\r\n\r\n",
-            viewer.token
+            viewer.token()
         );
-        assert_eq!(viewer.raw(request.as_bytes()), Some(status), "{method}");
+        assert_eq!(raw(&viewer, request.as_bytes()), Some(status), "{method}");
     }
     // Two Host headers; an oversized head.
-    let two = format!("GET /?token={} HTTP/1.1\r\n{host}{host}\r\n", viewer.token);
-    assert_eq!(viewer.raw(two.as_bytes()), Some(400));
+    let two = format!(
+        "GET /?token={} HTTP/1.1\r\n{host}{host}\r\n",
+        viewer.token()
+    );
+    assert_eq!(raw(&viewer, two.as_bytes()), Some(400));
     let big = format!(
         "GET /?token={} HTTP/1.1\r\n{host}X-Junk: {}\r\n\r\n",
-        viewer.token,
+        viewer.token(),
         "x".repeat(100_000)
     );
     assert!(matches!(
-        viewer.raw(big.as_bytes()),
+        raw(&viewer, big.as_bytes()),
         Some(431) | Some(400) | None
     ));
-    assert!(viewer.alive() && viewer.answers(), "after malformed heads");
+    assert!(viewer.alive() && answers(&viewer), "after malformed heads");
 
     // A client that stalls half-way through its head, and one that never reads a layer.
     let mut stalled = TcpStream::connect(("127.0.0.1", viewer.port)).expect("connect");
@@ -157,10 +119,10 @@ fn the_viewer_survives_hostile_clients() {
     let name = "a%20b%26%3D%2B%23%25%2F%3F%C3%A9";
     let layer = format!(
         "GET /api/layer?name={name}&token={} HTTP/1.1\r\n{host}\r\n",
-        viewer.token
+        viewer.token()
     );
     reader.write_all(layer.as_bytes()).expect("send");
-    assert!(viewer.answers(), "a stalled client held the server");
+    assert!(answers(&viewer), "a stalled client held the server");
 
     // The encoded name is served: 640 * 480 pixels of 3 channels.
     let mut stream = TcpStream::connect(("127.0.0.1", viewer.port)).expect("connect");
@@ -169,7 +131,7 @@ fn the_viewer_survives_hostile_clients() {
         .expect("timeout");
     let request = format!(
         "GET /api/layer?name={name}&token={} HTTP/1.1\r\n{host}Connection: close\r\n\r\n",
-        viewer.token
+        viewer.token()
     );
     stream.write_all(request.as_bytes()).expect("send");
     let mut reply = Vec::new();
@@ -190,7 +152,7 @@ fn the_viewer_survives_hostile_clients() {
     drop(many);
     drop((stalled, reader));
     std::thread::sleep(Duration::from_millis(300));
-    assert!(viewer.alive() && viewer.answers(), "after many connections");
+    assert!(viewer.alive() && answers(&viewer), "after many connections");
 }
 
 #[test]
