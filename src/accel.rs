@@ -142,7 +142,7 @@ impl Accelerator {
         }
         let prepared = RayMargin::new(ray, self.nodes[0].bounds, self.near_zone);
         let mut stack: SmallVec<[(u32, f64); 64]> = SmallVec::new();
-        if let Some(t) = self.nodes[0].bounds.entry(&prepared) {
+        if let Some(t) = prepared.entry(self.nodes[0].bounds) {
             stack.push((0, t));
         }
         while let Some((index, entry)) = stack.pop() {
@@ -157,7 +157,7 @@ impl Accelerator {
                 continue;
             }
             let children = [node.first, node.first + 1]
-                .map(|c| (c, self.nodes[c as usize].bounds.entry(&prepared)));
+                .map(|c| (c, prepared.entry(self.nodes[c as usize].bounds)));
             // Push the farther child first so the nearer one is searched first.
             let (near, far) = match (children[0].1, children[1].1) {
                 (Some(a), Some(b)) if b < a => (children[1], children[0]),
@@ -219,7 +219,7 @@ impl Accelerator {
         stack.push(0);
         while let Some(index) = stack.pop() {
             let node = self.nodes[index as usize];
-            match node.bounds.entry(&prepared) {
+            match prepared.entry(node.bounds) {
                 Some(t) if t < max_distance => {}
                 _ => continue,
             }

@@ -36,8 +36,11 @@ pub enum Error {
     /// A command line that asks for something impossible: the user's mistake only.
     #[error("{0}")]
     Usage(String),
+    /// The machine refused what a valid request needs: a port to listen on, worker threads.
+    #[error("{0}")]
+    Environment(String),
     /// Memory that was needed and could not be had, with the numbers.
-    #[error("cannot allocate {} for {what}", crate::memory::gib(*bytes))]
+    #[error("cannot allocate {} for {what}", crate::numbers::gib(*bytes))]
     Allocation { what: String, bytes: u64 },
     /// A signal (Ctrl-C, SIGTERM, SIGHUP, SIGQUIT) stopped the run; nothing was written.
     #[error("interrupted by signal {signal}; no output was written")]

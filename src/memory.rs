@@ -8,6 +8,7 @@ pub use limits::{available_bytes, limit_to};
 use rayon::prelude::*;
 
 use crate::error::{Error, Result};
+use crate::numbers::gib;
 
 /// Bytes a render of this size needs at its peak, streamed in strips of `strip_rows` rows:
 /// two strips of f64 beauty and f32 channels (one rendering, one being written), the EXR
@@ -34,11 +35,6 @@ pub fn check(needed: u64, available: Option<u64>, what: &str) -> Result<()> {
         }),
         _ => Ok(()),
     }
-}
-
-/// `bytes` in GiB, one decimal, as messages show sizes.
-pub fn gib(bytes: u64) -> String {
-    format!("{:.1} GiB", bytes as f64 / f64::from(1u32 << 30))
 }
 
 /// A vector of `len` copies of `value`, or an error instead of an abort when the allocation

@@ -1,5 +1,19 @@
 //! How numbers are written for people: compact in tables, exact in error messages.
 
+/// `bytes` in GiB, one decimal, as messages show sizes.
+pub fn gib(bytes: u64) -> String {
+    format!("{:.1} GiB", bytes as f64 / f64::from(1u32 << 30))
+}
+
+/// `v` for JSON, which has no NaN or infinities: `null` for those.
+pub fn finite_or_null(v: f64) -> serde_json::Value {
+    if v.is_finite() {
+        serde_json::json!(v)
+    } else {
+        serde_json::Value::Null
+    }
+}
+
 /// A compact, readable number for tables: 4 significant digits, scientific when far from 1.
 pub fn compact(v: f64) -> String {
     if v == 0.0 {

@@ -48,7 +48,7 @@ pub struct Served {
 /// `no_browser`, and serves until a signal stops it.
 pub fn serve(main: Image, reference: Option<Image>, port: u16, no_browser: bool) -> Result<()> {
     let listener = std::net::TcpListener::bind(("127.0.0.1", port))
-        .map_err(|e| Error::Usage(format!("cannot listen on 127.0.0.1:{port}: {e}")))?;
+        .map_err(|e| Error::Environment(format!("cannot listen on 127.0.0.1:{port}: {e}")))?;
     let port = listener
         .local_addr()
         .map_err(|e| Error::io("127.0.0.1", "cannot listen", e))?

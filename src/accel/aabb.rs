@@ -2,8 +2,6 @@
 
 use glam::DVec3;
 
-use super::margin::RayMargin;
-
 /// An axis-aligned box.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) struct Aabb {
@@ -48,20 +46,6 @@ impl Aabb {
     pub(super) fn area(self) -> f64 {
         let d = (self.max - self.min).max(DVec3::ZERO);
         2.0 * (d.x * d.y + d.y * d.z + d.z * d.x)
-    }
-
-    /// Parameter where the ray enters the box grown by the ray's margin on every side, or
-    /// `None` if it misses it or the box lies wholly behind the origin. Growing the box by m is
-    /// moving the origin by -m towards `min` and +m towards `max`: the same three subtractions
-    /// per slab as an ungrown test.
-    pub(super) fn entry(self, ray: &RayMargin) -> Option<f64> {
-        let t1 = (self.min - ray.origin_plus_margin) * ray.inverse;
-        let t2 = (self.max - ray.origin_minus_margin) * ray.inverse;
-        // f64::min/max ignore a NaN operand (0 * inf on a slab plane), keeping the test
-        // conservative.
-        let near = t1.x.min(t2.x).max(t1.y.min(t2.y)).max(t1.z.min(t2.z));
-        let far = t1.x.max(t2.x).min(t1.y.max(t2.y)).min(t1.z.max(t2.z));
-        (near <= far && far >= 0.0).then_some(near)
     }
 }
 

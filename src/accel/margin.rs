@@ -50,6 +50,20 @@ pub(super) struct RayMargin {
 }
 
 impl RayMargin {
+    /// Parameter where the ray enters `bounds` grown by the ray's margin on every side, or
+    /// `None` if it misses it or the box lies wholly behind the origin. Growing the box by m is
+    /// moving the origin by -m towards `min` and +m towards `max`: the same three subtractions
+    /// per slab as an ungrown test.
+    pub(super) fn entry(&self, bounds: Aabb) -> Option<f64> {
+        let t1 = (bounds.min - self.origin_plus_margin) * self.inverse;
+        let t2 = (bounds.max - self.origin_minus_margin) * self.inverse;
+        // f64::min/max ignore a NaN operand (0 * inf on a slab plane), keeping the test
+        // conservative.
+        let near = t1.x.min(t2.x).max(t1.y.min(t2.y)).max(t1.z.min(t2.z));
+        let far = t1.x.max(t2.x).min(t1.y.max(t2.y)).min(t1.z.max(t2.z));
+        (near <= far && far >= 0.0).then_some(near)
+    }
+
     /// The ray with its own margin, or none when it starts in the near zone, whose margin the
     /// stored boxes already have.
     pub(super) fn new(ray: &Ray, root: Aabb, near_zone: Aabb) -> Self {

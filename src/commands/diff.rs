@@ -9,7 +9,7 @@ use crate::cli::DiffArgs;
 use crate::compare::{align, compare_files, excess_map, matching_part, PartReport};
 use crate::error::{Error, Result};
 use crate::input;
-use crate::numbers::compact as number;
+use crate::numbers::{compact as number, finite_or_null};
 use crate::output::destination::{refuse_clashes, Destination};
 use crate::output::png::{PngImage, PngPixels};
 use crate::output::stdout;
@@ -193,13 +193,4 @@ fn to_json(args: &DiffArgs, parts: &[PartReport], passed: bool) -> serde_json::V
         "layers": first["layers"],
         "parts": parts,
     })
-}
-
-/// JSON has no infinity: identical layers have PSNR `null`.
-fn finite_or_null(v: f64) -> serde_json::Value {
-    if v.is_finite() {
-        json!(v)
-    } else {
-        serde_json::Value::Null
-    }
 }

@@ -9,6 +9,7 @@ use crate::error::Result;
 use crate::explain::{explain, vector, Explanation};
 use crate::mistakes::Mistakes;
 use crate::model::Tick;
+use crate::numbers::finite_or_null;
 use crate::output::stdout;
 use crate::scene::{self, Scene};
 
@@ -145,9 +146,7 @@ fn layers(e: &Explanation, scene: &Scene) -> Vec<(String, DVec3)> {
 }
 
 fn array(v: DVec3) -> Value {
-    json!(v
-        .to_array()
-        .map(|c| if c.is_finite() { json!(c) } else { Value::Null }))
+    json!(v.to_array().map(finite_or_null))
 }
 
 fn to_json(e: &Explanation, scene: &Scene, mistakes: Mistakes) -> Value {

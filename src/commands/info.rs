@@ -6,7 +6,7 @@ use serde_json::json;
 use crate::cli::InfoArgs;
 use crate::error::Result;
 use crate::input::{self, Image, Layer, Window};
-use crate::numbers::compact as number;
+use crate::numbers::{compact as number, finite_or_null};
 use crate::output::stdout;
 use crate::stats::Stats;
 
@@ -120,13 +120,4 @@ fn table(image: &Image, file: &str) -> String {
         }
     }
     out.trim_end().to_string()
-}
-
-/// JSON has no infinity or NaN.
-fn finite_or_null(v: f64) -> serde_json::Value {
-    if v.is_finite() {
-        json!(v)
-    } else {
-        serde_json::Value::Null
-    }
 }

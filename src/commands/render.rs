@@ -76,7 +76,7 @@ fn with_threads<T: Send>(threads: Option<usize>, work: impl FnOnce() -> T + Send
             .num_threads(n)
             .build()
             .map(|pool| pool.install(work))
-            .map_err(|e| Error::Usage(format!("cannot start {n} worker threads: {e}"))),
+            .map_err(|e| Error::Environment(format!("cannot start {n} worker threads: {e}"))),
     }
 }
 

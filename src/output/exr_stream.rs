@@ -79,11 +79,6 @@ impl<'f> ExrStream<'f> {
         })
     }
 
-    /// Lines per block: every call to `write_rows` but the last must be a multiple of it.
-    pub fn lines_per_block(&self) -> u32 {
-        self.lines
-    }
-
     /// Packs the next `rows` rows of the image and starts compressing them; `pack` gives rows
     /// (counted from the first of these) in OpenEXR's uncompressed block layout. Returns once
     /// every block of earlier calls is written, so that at most two calls' blocks are held.

@@ -32,6 +32,11 @@ pub fn whitted(dir: &Path, args: &[&str]) -> Output {
         .expect("the whitted binary runs")
 }
 
+/// A path as a command-line argument (the tests' paths are UTF-8).
+pub fn s(p: &Path) -> &str {
+    p.to_str().expect("utf-8 path")
+}
+
 pub fn stderr(out: &Output) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()
 }

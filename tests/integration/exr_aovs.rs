@@ -20,10 +20,6 @@ fn tick2_exr() -> &'static Path {
     path
 }
 
-fn s(p: &Path) -> &str {
-    p.to_str().expect("utf-8 path")
-}
-
 /// `oiiotool` selection of layer `name`'s R, G, B renamed to bare R, G, B.
 fn rgb_of(name: &str) -> String {
     if name.is_empty() {

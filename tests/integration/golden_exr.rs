@@ -67,10 +67,6 @@ fn check_scene(name: &str, dir: &Path) -> Result<(), String> {
     ))
 }
 
-fn s(p: &Path) -> &str {
-    p.to_str().expect("utf-8 path")
-}
-
 #[test]
 fn every_scene_matches_its_reference_exr() {
     let dir = tempfile::tempdir().expect("tempdir");

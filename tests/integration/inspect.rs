@@ -5,10 +5,6 @@ use std::path::{Path, PathBuf};
 use crate::common::*;
 use exr::prelude::{self as x, WritableImage as _};
 
-fn s(p: &Path) -> &str {
-    p.to_str().expect("utf-8 path")
-}
-
 /// A copy of the tick2 reference EXR with channel `Z` changed by +0.5 at `pixels`.
 fn tampered(dir: &Path, pixels: &[(usize, usize)]) -> PathBuf {
     let source = read_exr(&reference("exr/tick2.exr"));

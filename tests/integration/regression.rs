@@ -6,10 +6,6 @@ use std::path::{Path, PathBuf};
 
 use crate::common::*;
 
-fn s(p: &Path) -> &str {
-    p.to_str().expect("utf-8 path")
-}
-
 fn oiiotool(dir: &Path, args: &[&str]) {
     let run = run_tool("oiiotool", args, dir);
     assert!(

@@ -1,13 +1,7 @@
 //! `whitted relight`: light groups recombined from the EXR's layers, checked against the layer
 //! arithmetic done here independently.
 
-use std::path::Path;
-
 use crate::common::*;
-
-fn s(p: &Path) -> &str {
-    p.to_str().expect("utf-8 path")
-}
 
 /// A layer and its gain.
 type Term<'a> = (&'a str, [f64; 3]);

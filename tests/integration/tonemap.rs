@@ -31,10 +31,6 @@ fn tick2() -> &'static (tempfile::TempDir, PathBuf, PathBuf) {
     })
 }
 
-fn s(p: &Path) -> &str {
-    p.to_str().expect("utf-8 path")
-}
-
 /// Runs `whitted tonemap EXR -o OUT args...` in `dir`, asserting success.
 fn tonemap(dir: &Path, exr: &Path, out: &str, args: &[&str]) -> PathBuf {
     let mut all = vec!["tonemap", s(exr), "-o", out];
