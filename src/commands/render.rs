@@ -7,10 +7,12 @@ use crate::cli::RenderArgs;
 use crate::error::{Error, Result};
 use crate::output::atomic::AtomicFile;
 use crate::output::destination::{Destination, STDOUT};
-use crate::output::writers::Writers;
+use crate::output::exr::Placement;
+use crate::output::writers::{Outputs, Writers};
 use crate::plan::RenderPlan;
 use crate::progress::Progress;
 use crate::render::{render_strips, RenderStats};
+use crate::render_record;
 use crate::scene;
 
 pub fn run(args: &RenderArgs) -> Result<()> {
@@ -28,7 +30,11 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     // Both writers take each strip as it is finished, into temporary files: then rename, so
     // that there are all outputs or none.
     let (stats, exr_time) = with_threads(plan.threads, || -> Result<(RenderStats, Duration)> {
-        let mut writers = Writers::open(&plan, &input, png.as_mut(), exr_file.as_mut())?;
+        let mut writers = Writers::open(
+            &outputs(&plan, &input, exr_file.is_some()),
+            png.as_mut(),
+            exr_file.as_mut(),
+        )?;
         let stats = render_strips(
             scene,
             &plan.frame,
@@ -126,4 +132,26 @@ fn summary(plan: &RenderPlan, stats: &RenderStats, layers: usize, times: Times) 
         times.load.as_secs_f64(),
         stats.hierarchy_time.as_secs_f64(),
     )
+}
+
+/// What the writers are to write for `plan`: the EXR's header metadata (the render record)
+/// is built here, with the rest of the plan's facts, so that `output/` knows nothing of plans
+/// or scenes.
+fn outputs<'a>(plan: &'a RenderPlan, input: &scene::Input, exr: bool) -> Outputs<'a> {
+    let (region, camera) = (plan.frame.region(), plan.frame.camera());
+    let metadata = exr.then(|| {
+        let lights = input.scene.lights.iter().map(|l| l.name.clone()).collect();
+        render_record::metadata(plan, &input.name, &input.bytes, lights)
+    });
+    Outputs {
+        placement: Placement {
+            size: (region.width() as usize, region.height() as usize),
+            origin: (region.x0 as i32, region.y0 as i32),
+            display: ((0, 0), (camera.width as usize, camera.height as usize)),
+        },
+        layers: plan.frame.layers(),
+        encoding: plan.encoding,
+        exr_options: plan.exr_options,
+        metadata,
+    }
 }

@@ -1,8 +1,8 @@
 //! One scanline block of a render's EXR: the film's rows packed the way the file stores them,
 //! then compressed. The layout is OpenEXR's: line by line, and within a line each channel's
-//! samples in turn (channels in name order), little-endian. ZIP is done here, with zlib-rs at a fast level, because it is what every
-//! render writes by default and the `exr` crate's own (miniz level 4) was 0.7 s of a 0.9 s
-//! tick2 run; the other codecs go through the crate.
+//! samples in turn (channels in name order), little-endian. ZIP is done here, with zlib-rs at
+//! a fast level, because it is what every render writes by default and the `exr` crate's own
+//! deflate is several times slower (bench/README.md); the other codecs go through the crate.
 
 use exr::block::chunk::CompressedBlock;
 use exr::block::{BlockIndex, UncompressedBlock};
@@ -18,10 +18,8 @@ use crate::openexr::FlatImage;
 // calls "native" for the codecs it compresses: true on every target whitted is built for.
 const _: () = assert!(cfg!(target_endian = "little"));
 
-/// zlib level for ZIP blocks, chosen by measurement on the 53-channel tick2 film (2 vCPU
-/// Xeon, MB/s of raw block data per core, compressed/raw): level 1 ~210 MB/s, 0.396;
-/// level 2 ~135 MB/s, 0.378; level 4 ~110 MB/s, 0.374; level 6 ~90 MB/s, 0.371. Level 1
-/// writes files about 7% larger than OpenEXR's default for less than half the time.
+/// zlib level for ZIP blocks: the fastest, for files a few per cent larger than OpenEXR's
+/// default level makes (the levels measured are in bench/README.md).
 const ZIP_LEVEL: i32 = 1;
 
 /// Largest finite half float.

@@ -5,9 +5,8 @@
 //! are written in order, and the same however the rows arrive.
 //!
 //! Blocks are compressed in the background, as jobs on the render's threads: a strip's
-//! blocks are still compressing while the next strip renders. Waiting for them at the end of
-//! each strip instead left one core idle through the strip's last block (a sixth of a 1080p
-//! render's time).
+//! blocks are still compressing while the next strip renders, so that no core waits idle
+//! through the last block of a strip.
 
 use std::collections::BTreeMap;
 use std::fs::File;

@@ -139,8 +139,8 @@ fn quantised<T: Copy + Default + Send>(
 ///
 /// Returns the code *before* the floor, clamped to `0..=max`: the caller's `as` conversion
 /// truncates toward zero, which is the floor for these non-negative values (NaN becomes 0
-/// either way). Done so because `f64::floor` is a library call on baseline x86-64 and was
-/// 4% of a tick render.
+/// either way). Done so because `f64::floor` is a library call on baseline x86-64, once per
+/// channel of every pixel.
 fn quantise(e: f64, max: f64, truncate: bool, noise: f64) -> f64 {
     let code = if truncate {
         max * e

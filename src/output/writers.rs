@@ -4,17 +4,15 @@
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
+use crate::aov::Layer;
 use crate::error::{Error, Result};
 use crate::film::Film;
 use crate::output::atomic::AtomicFile;
 use crate::output::destination::Destination;
-use crate::output::exr::{header, Placement};
+use crate::output::exr::{header, ExrMetadata, ExrOptions, Placement};
 use crate::output::exr_block::{self, StoredChannel};
 use crate::output::exr_stream::ExrStream;
-use crate::output::png::PngStream;
-use crate::plan::RenderPlan;
-use crate::render_record;
-use crate::scene::Input;
+use crate::output::png::{PngEncoding, PngStream};
 
 /// The render's EXR being written, and how its channels are stored.
 struct ExrOutput<'a> {
@@ -29,31 +27,32 @@ pub struct Writers<'a> {
     exr: Option<ExrOutput<'a>>,
 }
 
+/// What a render's writers write, as plain data the render command builds: where the pixels
+/// sit, the layers, how the PNG is encoded, how the EXR is stored and what its header records
+/// (`None` without an EXR).
+pub struct Outputs<'a> {
+    pub placement: Placement,
+    pub layers: &'a [Layer],
+    pub encoding: PngEncoding,
+    pub exr_options: ExrOptions,
+    pub metadata: Option<ExrMetadata>,
+}
+
 impl<'a> Writers<'a> {
     pub fn open(
-        plan: &RenderPlan,
-        input: &Input,
+        outputs: &Outputs,
         png: Option<&mut Destination>,
         exr_file: Option<&'a mut AtomicFile>,
     ) -> Result<Self> {
-        let region = plan.frame.region();
-        let (width, height) = (region.width(), region.height());
+        let at = outputs.placement;
+        let (width, height) = (at.size.0 as u32, at.size.1 as u32);
         let png = png
-            .map(|png| Ok((png.stream_png(width, height, plan.encoding)?, png.path())))
+            .map(|png| Ok((png.stream_png(width, height, outputs.encoding)?, png.path())))
             .transpose()?;
-        let exr = match exr_file {
-            None => None,
-            Some(file) => {
+        let exr = match (exr_file, &outputs.metadata) {
+            (Some(file), Some(metadata)) => {
                 let path = file.target().to_path_buf();
-                let lights = input.scene.lights.iter().map(|l| l.name.clone()).collect();
-                let metadata = render_record::metadata(plan, &input.name, &input.bytes, lights);
-                let camera = plan.frame.camera();
-                let at = Placement {
-                    size: (width as usize, height as usize),
-                    origin: (region.x0 as i32, region.y0 as i32),
-                    display: ((0, 0), (camera.width as usize, camera.height as usize)),
-                };
-                let (header, stored) = header(at, plan.frame.layers(), plan.exr_options, &metadata);
+                let (header, stored) = header(at, outputs.layers, outputs.exr_options, metadata);
                 let stream =
                     ExrStream::create(file.file(), header).map_err(|msg| exr_error(&path, msg))?;
                 Some(ExrOutput {
@@ -62,6 +61,7 @@ impl<'a> Writers<'a> {
                     path,
                 })
             }
+            _ => None,
         };
         Ok(Writers { png, exr })
     }
