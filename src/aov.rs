@@ -168,8 +168,7 @@ pub fn layer_of_channel(channel: &str) -> &str {
     }
 }
 
-/// What a stored layer is, for showing it: whitted's layer names, recognised here where they
-/// are made.
+/// What a stored layer is, for showing it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Role {
     /// Linear radiance.
@@ -184,20 +183,148 @@ pub enum Role {
     Data,
 }
 
+/// The three layers every light has, each named `<prefix><light name>`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PerLight {
+    /// `light_<name>`: its shadowed diffuse + specular.
+    Shadowed,
+    /// `unshadowed_<name>`: the same with visibility 1.
+    Unshadowed,
+    /// `shadow_<name>`: the shadow mask at the primary hit.
+    Mask,
+}
+
+impl PerLight {
+    const ALL: [PerLight; 3] = [PerLight::Shadowed, PerLight::Unshadowed, PerLight::Mask];
+
+    fn prefix(self) -> &'static str {
+        match self {
+            PerLight::Shadowed => "light_",
+            PerLight::Unshadowed => "unshadowed_",
+            PerLight::Mask => "shadow_",
+        }
+    }
+
+    /// The layer's name for the light called `light`.
+    pub fn layer_name(self, light: &str) -> String {
+        format!("{}{light}", self.prefix())
+    }
+
+    /// The quantity for light `index`.
+    fn quantity(self, index: usize) -> Quantity {
+        match self {
+            PerLight::Shadowed => Quantity::Light(index),
+            PerLight::Unshadowed => Quantity::Unshadowed(index),
+            PerLight::Mask => Quantity::Shadow(index),
+        }
+    }
+}
+
+/// A layer name read back: a quantity of the whole image, or one of a light's layers with
+/// the light's name (a file names its lights, it does not number them).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LayerName<'a> {
+    Image(Quantity),
+    Light(PerLight, &'a str),
+}
+
+/// The names of the quantities that are not per light; `ReflectedBounce` is `reflected_<k>`.
+fn fixed_name(q: Quantity) -> Option<&'static str> {
+    Some(match q {
+        Quantity::Beauty => BEAUTY,
+        Quantity::Direct => "direct",
+        Quantity::Reflected => "reflected",
+        Quantity::Ambient => "ambient",
+        Quantity::Diffuse => "diffuse",
+        Quantity::Specular => "specular",
+        Quantity::Background => "background",
+        Quantity::Depth => "Z",
+        Quantity::Normal => "N",
+        Quantity::Position => "P",
+        Quantity::Albedo => "albedo",
+        Quantity::ObjectId => "objectid",
+        Quantity::ReflectedBounce(_)
+        | Quantity::Light(_)
+        | Quantity::Unshadowed(_)
+        | Quantity::Shadow(_) => return None,
+    })
+}
+
+/// Every quantity that has a fixed name, for parsing.
+const FIXED: [Quantity; 12] = [
+    Quantity::Beauty,
+    Quantity::Direct,
+    Quantity::Reflected,
+    Quantity::Ambient,
+    Quantity::Diffuse,
+    Quantity::Specular,
+    Quantity::Background,
+    Quantity::Depth,
+    Quantity::Normal,
+    Quantity::Position,
+    Quantity::Albedo,
+    Quantity::ObjectId,
+];
+
+impl Quantity {
+    /// The one spelling of this quantity's layer name, for a scene whose lights are called
+    /// `light_names` (the beauty is `beauty`, though its channels are stored bare).
+    pub fn name(self, light_names: &[String]) -> String {
+        let light = |i: usize| light_names.get(i).map_or("?", String::as_str);
+        match self {
+            Quantity::ReflectedBounce(k) => format!("reflected_{k}"),
+            Quantity::Light(i) => PerLight::Shadowed.layer_name(light(i)),
+            Quantity::Unshadowed(i) => PerLight::Unshadowed.layer_name(light(i)),
+            Quantity::Shadow(i) => PerLight::Mask.layer_name(light(i)),
+            fixed => fixed_name(fixed).unwrap_or_default().to_string(),
+        }
+    }
+
+    /// What `role` a layer of this quantity plays, from its kind.
+    pub fn role(self) -> Role {
+        match (self.kind(), self) {
+            (Kind::Colour, _) => Role::Colour,
+            (Kind::Mask, _) => Role::Mask,
+            (Kind::Data, Quantity::Normal) => Role::Normal,
+            (Kind::Data, Quantity::ObjectId) => Role::ObjectId,
+            (Kind::Data, _) => Role::Data,
+        }
+    }
+}
+
+/// A layer name as `Quantity::name` spells it, read back; `None` for a name whitted never
+/// writes.
+pub fn parse_layer_name(name: &str) -> Option<LayerName<'_>> {
+    if let Some(q) = FIXED.into_iter().find(|&q| fixed_name(q) == Some(name)) {
+        return Some(LayerName::Image(q));
+    }
+    if let Some(k) = name.strip_prefix("reflected_") {
+        // Only as `name` writes it: `reflected_1`, not `reflected_01` or `reflected_+1`.
+        let bounce = k
+            .parse::<u32>()
+            .ok()
+            .filter(|b| *b >= 1 && b.to_string() == k)?;
+        return Some(LayerName::Image(Quantity::ReflectedBounce(bounce)));
+    }
+    PerLight::ALL.into_iter().find_map(|per| {
+        let light = name.strip_prefix(per.prefix())?;
+        (!light.is_empty()).then_some(LayerName::Light(per, light))
+    })
+}
+
+/// The light a `light_<name>` layer is of.
+pub fn light_of_layer(name: &str) -> Option<&str> {
+    match parse_layer_name(name)? {
+        LayerName::Light(PerLight::Shadowed, light) => Some(light),
+        _ => None,
+    }
+}
+
 /// The role of a layer named as whitted names them, or `None` for a name it never writes.
 pub fn role_of_layer(name: &str) -> Option<Role> {
-    let is_bounce = |k: &str| !k.is_empty() && k.bytes().all(|b| b.is_ascii_digit());
-    Some(match name {
-        BEAUTY | "direct" | "reflected" | "ambient" | "diffuse" | "specular" | "background" => {
-            Role::Colour
-        }
-        "N" => Role::Normal,
-        "objectid" => Role::ObjectId,
-        "Z" | "P" | "albedo" => Role::Data,
-        _ if name.strip_prefix("reflected_").is_some_and(is_bounce) => Role::Colour,
-        _ if name.starts_with("light_") || name.starts_with("unshadowed_") => Role::Colour,
-        _ if name.starts_with("shadow_") => Role::Mask,
-        _ => return None,
+    Some(match parse_layer_name(name)? {
+        LayerName::Image(q) => q.role(),
+        LayerName::Light(per, _) => per.quantity(0).role(),
     })
 }
 
@@ -207,40 +334,29 @@ pub const BEAUTY: &str = "beauty";
 /// Every layer a render of a scene with these lights and bounces can write, in file order:
 /// beauty, the radiance split, per-light layers, shadow masks, then the data layers.
 pub fn all_layers(light_names: &[String], bounces: u32) -> Vec<Layer> {
-    let mut layers = vec![
-        Layer::new("", Quantity::Beauty),
-        Layer::new("direct", Quantity::Direct),
-        Layer::new("reflected", Quantity::Reflected),
-    ];
-    layers.extend(
-        (1..=bounces).map(|k| Layer::new(format!("reflected_{k}"), Quantity::ReflectedBounce(k))),
-    );
-    layers.push(Layer::new("ambient", Quantity::Ambient));
-    for (i, name) in light_names.iter().enumerate() {
-        layers.push(Layer::new(format!("light_{name}"), Quantity::Light(i)));
-    }
-    for (i, name) in light_names.iter().enumerate() {
-        layers.push(Layer::new(
-            format!("unshadowed_{name}"),
-            Quantity::Unshadowed(i),
-        ));
-    }
-    layers.extend([
-        Layer::new("diffuse", Quantity::Diffuse),
-        Layer::new("specular", Quantity::Specular),
-        Layer::new("background", Quantity::Background),
-    ]);
-    for (i, name) in light_names.iter().enumerate() {
-        layers.push(Layer::new(format!("shadow_{name}"), Quantity::Shadow(i)));
-    }
-    layers.extend([
-        Layer::new("Z", Quantity::Depth),
-        Layer::new("N", Quantity::Normal),
-        Layer::new("P", Quantity::Position),
-        Layer::new("albedo", Quantity::Albedo),
-        Layer::new("objectid", Quantity::ObjectId),
-    ]);
-    layers
+    let lights = |per: PerLight| (0..light_names.len()).map(move |i| per.quantity(i));
+    let quantities = [Quantity::Beauty, Quantity::Direct, Quantity::Reflected]
+        .into_iter()
+        .chain((1..=bounces).map(Quantity::ReflectedBounce))
+        .chain([Quantity::Ambient])
+        .chain(lights(PerLight::Shadowed))
+        .chain(lights(PerLight::Unshadowed))
+        .chain([Quantity::Diffuse, Quantity::Specular, Quantity::Background])
+        .chain(lights(PerLight::Mask))
+        .chain([
+            Quantity::Depth,
+            Quantity::Normal,
+            Quantity::Position,
+            Quantity::Albedo,
+            Quantity::ObjectId,
+        ]);
+    quantities
+        .map(|q| match q {
+            // Stored as the bare R G B A, so its layer has no name.
+            Quantity::Beauty => Layer::new("", q),
+            q => Layer::new(q.name(light_names), q),
+        })
+        .collect()
 }
 
 /// The canonical `--aovs` of `selected` (as `select` returns them from `available`): `all`
@@ -297,6 +413,32 @@ mod tests {
 
     fn names(layers: &[Layer]) -> Vec<String> {
         layers.iter().flat_map(Layer::channel_names).collect()
+    }
+
+    #[test]
+    fn every_layer_name_is_built_from_its_quantity_and_parses_back() {
+        let lights: Vec<String> = vec!["key".into(), "0".into()];
+        for layer in all_layers(&lights, 3) {
+            let name = layer.quantity.name(&lights);
+            if layer.quantity != Quantity::Beauty {
+                assert_eq!(name, layer.name);
+            }
+            let parsed = parse_layer_name(&name).unwrap_or_else(|| panic!("{name}"));
+            let back = match parsed {
+                LayerName::Image(q) => q,
+                LayerName::Light(per, light) => {
+                    let index = lights.iter().position(|l| l == light).expect("light");
+                    per.quantity(index)
+                }
+            };
+            assert_eq!(back, layer.quantity, "{name}");
+            assert_eq!(role_of_layer(&name), Some(layer.quantity.role()), "{name}");
+        }
+        for name in ["reflected_0", "reflected_01", "light_", "sky", "Zed"] {
+            assert_eq!(parse_layer_name(name), None, "{name}");
+        }
+        assert_eq!(light_of_layer("light_key"), Some("key"));
+        assert_eq!(light_of_layer("unshadowed_key"), None);
     }
 
     #[test]

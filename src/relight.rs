@@ -6,6 +6,7 @@
 
 use glam::DVec3;
 
+use crate::aov::{self, PerLight};
 use crate::input::Image;
 
 /// What to change. Lights not named keep gain 1.
@@ -32,7 +33,7 @@ pub fn relight(image: &Image, spec: &RelightSpec) -> Result<Vec<DVec3>, String> 
     let lights: Vec<String> = image
         .layers()
         .into_iter()
-        .filter_map(|l| l.name.strip_prefix("light_").map(str::to_string))
+        .filter_map(|l| aov::light_of_layer(&l.name).map(str::to_string))
         .collect();
     for name in spec.lights.iter().map(|(n, _)| n).chain(&spec.no_shadow) {
         if !lights.contains(name) {
@@ -56,9 +57,9 @@ pub fn relight(image: &Image, spec: &RelightSpec) -> Result<Vec<DVec3>, String> 
             .find(|(n, _)| n == name)
             .map_or(DVec3::ONE, |(_, g)| *g);
         let layer = if spec.no_shadow.contains(name) {
-            format!("unshadowed_{name}")
+            PerLight::Unshadowed.layer_name(name)
         } else {
-            format!("light_{name}")
+            PerLight::Shadowed.layer_name(name)
         };
         terms.push((layer, gain));
     }

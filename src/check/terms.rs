@@ -7,7 +7,7 @@
 
 use glam::DVec3;
 
-use crate::aov::{self, Kind, Quantity};
+use crate::aov::{self, Kind, PerLight, Quantity};
 use crate::check::student_png::Rgb8;
 use crate::output::png::tick_bytes;
 use crate::sample::Sample;
@@ -87,8 +87,8 @@ pub fn fit(
         .collect();
     for (i, name) in names.iter().enumerate() {
         terms.push(Term {
-            layer: format!("unshadowed_{name}"),
-            replaces: Some(format!("light_{name}")),
+            layer: PerLight::Unshadowed.layer_name(name),
+            replaces: Some(PerLight::Shadowed.layer_name(name)),
             values: samples
                 .iter()
                 .map(|s| (s.beauty - s.lights[i].shadowed, s.lights[i].unshadowed))

@@ -4,6 +4,7 @@
 use glam::DVec3;
 use serde_json::{json, Value};
 
+use crate::aov;
 use crate::cli::ExplainArgs;
 use crate::error::Result;
 use crate::explain::{explain, vector, Explanation};
@@ -124,25 +125,20 @@ fn tree(e: &Explanation, scene: &Scene, name: &str, mistakes: Mistakes) -> Strin
 }
 
 /// The per-layer totals of this sample, in file order.
+/// The per-layer totals of this sample, in file order: every colour layer of the EXR but the
+/// beauty, named and computed as the film names and computes them.
 fn layers(e: &Explanation, scene: &Scene) -> Vec<(String, DVec3)> {
-    let s = &e.sample;
-    let mut out = vec![("direct".to_string(), s.direct)];
-    for (k, r) in s.reflected_by_bounce.iter().enumerate() {
-        out.push((format!("reflected_{}", k + 1), *r));
-    }
-    out.push(("ambient".into(), s.ambient));
-    for (light, l) in scene.lights.iter().zip(&s.lights) {
-        out.push((format!("light_{}", light.name), l.shadowed));
-    }
-    for (light, l) in scene.lights.iter().zip(&s.lights) {
-        out.push((format!("unshadowed_{}", light.name), l.unshadowed));
-    }
-    out.extend([
-        ("diffuse".to_string(), s.diffuse),
-        ("specular".to_string(), s.specular),
-        ("background".to_string(), s.background),
-    ]);
-    out
+    let names: Vec<String> = scene.lights.iter().map(|l| l.name.clone()).collect();
+    let bounces = e.sample.reflected_by_bounce.len() as u32;
+    aov::all_layers(&names, bounces)
+        .into_iter()
+        .filter(|l| l.quantity.kind() == aov::Kind::Colour && l.quantity != aov::Quantity::Beauty)
+        .map(|l| {
+            let mut values = [0.0; 4];
+            l.quantity.values(&e.sample, &mut values);
+            (l.name, DVec3::new(values[0], values[1], values[2]))
+        })
+        .collect()
 }
 
 fn array(v: DVec3) -> Value {

@@ -101,7 +101,7 @@ fn describe(served: &Served) -> serde_json::Value {
     let lights: Vec<String> = image
         .colour_layers()
         .into_iter()
-        .filter_map(|l| l.strip_prefix("light_").map(str::to_string))
+        .filter_map(|l| aov::light_of_layer(&l).map(str::to_string))
         .collect();
     let reference = served
         .reference
