@@ -49,12 +49,12 @@ impl ExplainArgs {
 
 #[derive(Debug, Clone, Args)]
 pub struct ViewArgs {
-    /// The EXR to look at
-    #[arg(value_name = "FILE.exr")]
+    /// The image to look at: OpenEXR, PNG, JPEG, TIFF or Radiance HDR
+    #[arg(value_name = "IMAGE")]
     pub input: PathBuf,
 
-    /// A reference EXR of the same size, for A/B and a difference map
-    #[arg(long, value_name = "REF.exr")]
+    /// A reference of the same size and layers, for A/B and a difference map
+    #[arg(long, value_name = "REF")]
     pub reference: Option<PathBuf>,
 
     /// Port on 127.0.0.1 (0: any free port)

@@ -1,4 +1,6 @@
-//! `whitted view FILE.exr [--reference REF.exr] [--port N] [--no-browser]`.
+//! `whitted view IMAGE [--reference REF] [--port N] [--no-browser]`: an EXR, or a PNG, JPEG,
+//! TIFF or Radiance HDR through the same readers as `info` and `diff`, so that a student's
+//! PNG can be set against the reference.
 
 use crate::cli::ViewArgs;
 use crate::error::{Error, Result};
@@ -6,8 +8,8 @@ use crate::input::{self, Image};
 use crate::view::serve;
 
 pub fn run(args: &ViewArgs) -> Result<()> {
-    let main = input::read_exr(&args.input)?;
-    let reference = args.reference.as_deref().map(input::read_exr).transpose()?;
+    let main = input::read(&args.input)?;
+    let reference = args.reference.as_deref().map(input::read).transpose()?;
     if let (Some(reference), Some(path)) = (&reference, &args.reference) {
         comparable(&main, reference).map_err(|why| {
             Error::Usage(format!(

@@ -25,7 +25,7 @@ impl Viewer {
         Viewer::start_with(dir, &[exr.to_str().expect("utf-8")])
     }
 
-    fn start_with(dir: &Path, args: &[&str]) -> Viewer {
+    pub fn start_with(dir: &Path, args: &[&str]) -> Viewer {
         let mut child = Command::new(env!("CARGO_BIN_EXE_whitted"))
             .arg("view")
             .args(args)

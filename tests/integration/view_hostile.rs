@@ -192,3 +192,53 @@ fn utf8_channel_names_are_shown_and_selectable_everywhere() {
         String::from_utf8_lossy(&diff.stderr)
     );
 }
+
+#[test]
+fn a_student_png_opens_against_a_reference_png() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    for (name, bounces) in [("mine.png", "1"), ("reference.png", "2")] {
+        let run = Command::new(env!("CARGO_BIN_EXE_whitted"))
+            .args([
+                "-q", "-o", name, "-b", bounces, "--width", "64", "--height", "48",
+            ])
+            .current_dir(d)
+            .output()
+            .expect("render");
+        assert!(run.status.success());
+    }
+    let viewer = Viewer::start_with(d, &["mine.png", "--reference", "reference.png"]);
+    let request = |path: &str| {
+        let target = format!("{path}token={}", viewer.token());
+        let request = format!(
+            "GET {target} HTTP/1.1\r\nHost: 127.0.0.1:{}\r\nConnection: close\r\n\r\n",
+            viewer.port
+        );
+        raw(&viewer, request.as_bytes())
+    };
+    assert_eq!(request("/api/image?"), Some(200));
+    assert_eq!(
+        request("/api/layer?name=beauty&which=reference&"),
+        Some(200)
+    );
+    // A reference of another size is refused before the server starts.
+    let run = Command::new(env!("CARGO_BIN_EXE_whitted"))
+        .args(["-q", "-o", "small.png", "--width", "32", "--height", "24"])
+        .current_dir(d)
+        .output()
+        .expect("render");
+    assert!(run.status.success());
+    let refused = Command::new(env!("CARGO_BIN_EXE_whitted"))
+        .args([
+            "view",
+            "mine.png",
+            "--reference",
+            "small.png",
+            "--no-browser",
+        ])
+        .current_dir(d)
+        .output()
+        .expect("view");
+    assert_eq!(refused.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("cannot be compared"));
+}
