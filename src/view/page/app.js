@@ -15,6 +15,10 @@ const state = {
   ambient: 1,
   background: 1,
   display: null, // Uint8ClampedArray RGBA of the canvas
+  ranges: {}, // name -> [lo, hi] of a data layer's values, for showing it
+  pending: {}, // name -> the fetch of that layer under way, so it is fetched once
+  step: 1, // pixels of the image per pixel of the canvas
+  generation: 0, // of the latest draw: an older draw that finishes late is dropped
 };
 
 // ---- tone maps: docs/tonemap.md, as src/tonemap.rs evaluates them ----
@@ -136,16 +140,19 @@ async function layer(name, which = "main", step = 1) {
 }
 const info = (name) => state.meta.layers.find((l) => l.name === name);
 
-/** Fetches the layers not yet here (whole), with the range data layers are shown over. */
+/** Fetches the layers not yet here (whole), with the range data layers are shown over; a
+ * layer already being fetched (by an earlier draw) is waited for, not fetched again. */
 async function need(names) {
-  for (const name of names) {
-    if (state.layers[name] || !info(name)) continue;
-    const data = await layer(name);
-    let lo = Infinity, hi = -Infinity;
-    for (const x of data) if (x !== 0 && Number.isFinite(x) && x < 1e10) { lo = Math.min(lo, x); hi = Math.max(hi, x); }
-    state.ranges[name] = [lo, hi];
-    state.layers[name] = data;
-  }
+  const fetches = names.filter((name) => !state.layers[name] && info(name)).map((name) => {
+    state.pending[name] ||= layer(name).then((data) => {
+      let lo = Infinity, hi = -Infinity;
+      for (const x of data) if (x !== 0 && Number.isFinite(x) && x < 1e10) { lo = Math.min(lo, x); hi = Math.max(hi, x); }
+      state.ranges[name] = [lo, hi];
+      state.layers[name] = data;
+    }).finally(() => { delete state.pending[name]; });
+    return state.pending[name];
+  });
+  await Promise.all(fetches);
 }
 
 /** Linear RGB of a colour layer at pixel p. */
@@ -198,10 +205,13 @@ function layerBytes(l, data, q, op, ev, range) {
  * step-th pixel of a large image, so a 4K render stays responsive); `full` computes every
  * pixel (for saving, and for `pixels()`). */
 async function draw(full = false) {
+  const generation = ++state.generation;
   const mode = document.getElementById("ab").value;
   const wanted = mode === "a" || !state.reference ? [state.selected] : ["beauty"];
   if (state.selected === "beauty" && relighting()) wanted.push(...relightTerms().map(([n]) => n));
   await need(wanted);
+  // A newer draw was asked for while this one waited for its layers: it draws instead.
+  if (generation !== state.generation) return;
   const { width: fullWidth, height: fullHeight } = state.meta;
   const shown = document.getElementById("view").clientWidth || fullWidth;
   const step = full ? 1 : Math.max(1, Math.floor(fullWidth / Math.max(shown, 1)));
@@ -374,10 +384,10 @@ function relightPanel() {
 // ---- start ----
 async function start() {
   state.meta = await (await fetch(api("/api/image"))).json();
-  state.ranges = {};
   if (state.meta.reference) {
     const ref = await layer("beauty", "reference");
-    const n = info("beauty").channels.length;
+    // The reference's own channel count (the server refuses one with other layers).
+    const n = ref.length / (state.meta.width * state.meta.height);
     state.reference = new Float32Array(state.meta.width * state.meta.height * 4);
     for (let p = 0; p < state.meta.width * state.meta.height; p++)
       for (let c = 0; c < 3; c++) state.reference[p * 4 + c] = ref[p * n + c];
