@@ -6,6 +6,7 @@
 
 pub mod diagnose;
 pub mod difference;
+pub mod json;
 pub mod program;
 pub mod report;
 pub mod student_png;

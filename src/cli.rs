@@ -16,7 +16,7 @@ use crate::output::exr::ExrOptions;
 use crate::plan::{RenderRequest, ToneRequest};
 use crate::sheet::SheetOptions;
 pub use check::CheckArgs;
-pub use look::{ExplainArgs, RelightArgs, ViewArgs};
+pub use look::{ExplainArgs, RelightArgs, ServeArgs, ViewArgs};
 use parse::*;
 pub use values::{CompressionArg, ToneMapArg};
 

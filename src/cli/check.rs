@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use clap::Args;
 
 use super::parse::*;
+use super::ServeArgs;
 
 #[derive(Debug, Clone, Args)]
 pub struct CheckArgs {
@@ -51,4 +52,12 @@ pub struct CheckArgs {
     /// Print the catalogue of mistakes and exit
     #[arg(long, exclusive = true)]
     pub list_bugs: bool,
+
+    /// Open the check in the viewer: the image against the reference, the error maps, the
+    /// diagnosis, and a click's two ray trees (the reference's and the top mistake's)
+    #[arg(long, conflicts_with_all = ["program", "json"])]
+    pub view: bool,
+
+    #[command(flatten)]
+    pub serve: ServeArgs,
 }

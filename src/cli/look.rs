@@ -53,10 +53,23 @@ pub struct ViewArgs {
     #[arg(value_name = "IMAGE")]
     pub input: PathBuf,
 
-    /// A reference of the same size and layers, for A/B and a difference map
+    /// A reference of the same size and layers, for A/B and the error metrics
     #[arg(long, value_name = "REF")]
     pub reference: Option<PathBuf>,
 
+    /// The scene the image was rendered from, so that a click shows the pixel's ray tree
+    /// (a whitted EXR records which scene it was: another one is refused; one of the embedded
+    /// tick2 scene needs none)
+    #[arg(short = 'i', long = "input", value_name = "SCENE")]
+    pub scene: Option<PathBuf>,
+
+    #[command(flatten)]
+    pub serve: ServeArgs,
+}
+
+/// How the viewer is served: `view`'s options, and `check --view`'s.
+#[derive(Debug, Clone, Args)]
+pub struct ServeArgs {
     /// Port on 127.0.0.1 (0: any free port)
     #[arg(long, value_name = "N", default_value_t = 0)]
     pub port: u16,
@@ -64,6 +77,10 @@ pub struct ViewArgs {
     /// Only print the URL; do not try to open a browser
     #[arg(long)]
     pub no_browser: bool,
+
+    /// Reload when the file changes on disk (in check mode, check it again)
+    #[arg(long)]
+    pub watch: bool,
 }
 
 #[derive(Debug, Clone, Args)]

@@ -7,11 +7,11 @@ use serde_json::{json, Value};
 use crate::check::diagnose::Diagnosis;
 use crate::check::program::{run_suite, CaseOutcome, Status, SuiteRun, HEIGHT, WIDTH};
 use crate::check::report::{contact_sheet, heat_map, ReportRow};
-use crate::check::terms::TermFit;
+use crate::check::json::{case_json, diagnosis_json, name};
 use crate::check::{check_image, student_png, CaseReport};
 use crate::cli::CheckArgs;
 use crate::error::Result;
-use crate::mistakes::{Bug, Mistakes};
+use crate::mistakes::Bug;
 use crate::output::destination::{refuse_clashes, Destination};
 use crate::output::stdout;
 use crate::scene;
@@ -22,8 +22,15 @@ pub fn run(args: &CheckArgs) -> Result<bool> {
         stdout::print_line(&catalogue())?;
         return Ok(true);
     }
+    let serve = &args.serve;
+    if !args.view && (serve.watch || serve.no_browser || serve.port != 0) {
+        return Err(crate::Error::Usage(
+            "--watch, --no-browser and --port are options of --view".into(),
+        ));
+    }
     match (&args.program, &args.image) {
         (Some(program), _) => run_program(args, program),
+        (None, Some(image)) if args.view => view(args, image),
         (None, Some(image)) => run_image(args, image),
         (None, None) => Err(crate::Error::Usage(
             "give the PNG to check, or --program 'CMD ARGS'".into(),
@@ -79,6 +86,19 @@ fn run_image(args: &CheckArgs, image: &std::path::Path) -> Result<bool> {
     Ok(case.difference.verdict.passes())
 }
 
+/// `--view`: the check in the viewer, until a signal stops it (the status is then 130).
+fn view(args: &CheckArgs, image: &std::path::Path) -> Result<bool> {
+    let source = crate::view::Source::Check {
+        image: image.to_path_buf(),
+        scene: args.input.clone(),
+        bounces: args.bounces,
+        tolerance: args.tolerance,
+    };
+    let serve = &args.serve;
+    crate::view::serve(source, serve.port, serve.no_browser, serve.watch)?;
+    Ok(true)
+}
+
 fn run_program(args: &CheckArgs, program: &str) -> Result<bool> {
     if let Some(report) = &args.report {
         refuse_clashes(&[], &[report])?;
@@ -113,59 +133,6 @@ fn run_program(args: &CheckArgs, program: &str) -> Result<bool> {
 fn pretty(value: &Value) -> String {
     // serde_json cannot fail to print a Value it built itself.
     serde_json::to_string_pretty(value).unwrap_or_default()
-}
-
-/// `a+b` for a pair.
-fn name(m: Mistakes) -> String {
-    m.ids().join("+")
-}
-
-fn diagnosis_json(list: &[Diagnosis]) -> Value {
-    json!(list
-        .iter()
-        .map(|d| json!({
-            "bugs": d.mistakes.ids(),
-            "explained": (d.explained * 1000.0).round() / 1000.0,
-            "unexplained_pixels": d.unexplained_pixels,
-            "wrongly_changed_pixels": d.wrongly_changed_pixels,
-            "indistinguishable_from": d.indistinguishable_from.iter().map(|&m| name(m)).collect::<Vec<_>>(),
-            "exact": d.exact,
-        }))
-        .collect::<Vec<_>>())
-}
-
-fn terms_json(terms: &[TermFit]) -> Value {
-    json!(terms
-        .iter()
-        .map(|t| json!({
-            "layer": t.layer,
-            "replaces": t.replaces,
-            "factor": (t.factor * 1000.0).round() / 1000.0,
-            "explained": (t.explained * 1000.0).round() / 1000.0,
-        }))
-        .collect::<Vec<_>>())
-}
-
-fn case_json(case: &CaseReport) -> Value {
-    let d = &case.difference;
-    let mut object = json!({
-        "verdict": d.verdict.name(),
-        "width": d.width,
-        "height": d.height,
-        "bounces": case.bounces,
-        "scene": case.scene_name,
-        "tolerance": case.tolerance,
-        "differing_pixels": d.differing_pixels,
-        "pixels_beyond_tolerance": d.beyond_tolerance,
-        "max_difference": d.max_difference,
-        "worst_pixel": d.worst_pixel.map(|(x, y)| json!([x, y])),
-        "bounds": d.bounds.map(|(x0, y0, x1, y1)| json!([x0, y0, x1, y1])),
-        "diagnosis": diagnosis_json(&case.diagnosis),
-    });
-    if !case.terms.is_empty() {
-        object["terms"] = terms_json(&case.terms);
-    }
-    object
 }
 
 fn diagnosis_lines(list: &[Diagnosis]) -> String {

@@ -45,7 +45,44 @@ pub fn decode(path: &Path, bytes: &[u8], format: Format) -> Result<Image> {
     reader.limits(limits);
     let decoded = reader.decode().map_err(fail)?;
     let (names, pixel_type, samples) = samples(decoded);
-    let (width, height) = (width as usize, height as usize);
+    Ok(image(
+        format,
+        width as usize,
+        height as usize,
+        names,
+        pixel_type,
+        &samples,
+    ))
+}
+
+/// An 8-bit RGB raster already in memory (a check's student image and reference) as the
+/// `Image` its PNG would read as.
+pub fn rgb8(width: usize, height: usize, bytes: &[u8]) -> Image {
+    let samples: Vec<f32> = bytes.iter().map(|&b| eight_bit(b)).collect();
+    image(
+        Format::Png,
+        width,
+        height,
+        &["R", "G", "B"],
+        "uint8",
+        &samples,
+    )
+}
+
+/// An 8-bit sample scaled to [0, 1].
+fn eight_bit(b: u8) -> f32 {
+    f32::from(b) / 255.0
+}
+
+/// Interleaved `samples` of `names` channels as an image.
+fn image(
+    format: Format,
+    width: usize,
+    height: usize,
+    names: &[&str],
+    pixel_type: &'static str,
+    samples: &[f32],
+) -> Image {
     let channels = names
         .iter()
         .enumerate()
@@ -61,7 +98,7 @@ pub fn decode(path: &Path, bytes: &[u8], format: Format) -> Result<Image> {
         })
         .collect();
     let window = Window::at([0, 0], width, height);
-    Ok(Image {
+    Image {
         format,
         part: None,
         width,
@@ -70,12 +107,12 @@ pub fn decode(path: &Path, bytes: &[u8], format: Format) -> Result<Image> {
         display_window: window,
         channels,
         attributes: Vec::new(),
-    })
+    }
 }
 
 /// Channel names, the stored sample type, and the interleaved samples as f32.
 fn samples(image: DynamicImage) -> (&'static [&'static str], &'static str, Vec<f32>) {
-    let eight = |v: Vec<u8>| v.into_iter().map(|b| f32::from(b) / 255.0).collect();
+    let eight = |v: Vec<u8>| v.into_iter().map(eight_bit).collect();
     let sixteen = |v: Vec<u16>| v.into_iter().map(|b| f32::from(b) / 65535.0).collect();
     match image {
         DynamicImage::ImageLuma8(i) => (&["Y"], "uint8", eight(i.into_raw())),

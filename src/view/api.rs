@@ -1,58 +1,108 @@
-//! The viewer's answers: the page, the image's description, each layer's values and a
-//! pixel's, for a request already parsed and checked (`view::request`). A pure function from
-//! request to reply; nothing is read from disk.
+//! The viewer's answers: the page, the image's description, layers (whole or by tile, the
+//! image's, the reference's or an error metric's), statistics, a pixel's values and ray trees,
+//! the check's report, for a request already parsed and checked (`view::request`). A pure
+//! function from what is loaded and the request to the reply; nothing is read from disk.
 
 use serde_json::json;
 
-use super::request::{ApiRequest, Which};
-use super::{text, Reply, Served};
+use super::content::Content;
+use super::metric::Metric;
+use super::planes::{differing_pixels, Missing, Planes, Which};
+use super::request::ApiRequest;
+use super::{stats, text, Reply};
 use crate::aov;
+use crate::explain::{explain, json::to_json};
 use crate::input::Image;
 use crate::memory;
+use crate::model::Tick;
 
 const PAGE: &str = include_str!("page/index.html");
-const SCRIPT: &str = include_str!("page/app.js");
 const STYLE: &str = include_str!("page/style.css");
+/// The page's script, one concept a file, in the order they depend on each other.
+const SCRIPTS: [&str; 6] = [
+    include_str!("page/tonemap.js"),
+    include_str!("page/colormap.js"),
+    include_str!("page/viewport.js"),
+    include_str!("page/panels.js"),
+    include_str!("page/trees.js"),
+    include_str!("page/app.js"),
+];
+
+/// Samples a side of a tile: 256 x 256 x 4 channels is 1 MiB of f32s.
+pub const TILE: usize = 256;
+
+/// What one load gave, and how many loads there were.
+#[derive(Clone)]
+pub struct Snapshot {
+    pub content: std::sync::Arc<Content>,
+    pub version: u64,
+    /// Why the last reload failed, if it did (the content is then the one before).
+    pub problem: Option<String>,
+}
+
+fn json_reply(value: &serde_json::Value) -> Reply {
+    (200, "application/json", value.to_string().into_bytes())
+}
 
 /// The reply to `request`.
-pub fn respond(served: &Served, request: &ApiRequest) -> Reply {
+pub fn respond(now: &Snapshot, request: &ApiRequest) -> Reply {
+    let content = &now.content;
     match request {
         // One document with its style and script inline: every request carries the token.
         ApiRequest::Page => (
             200,
             "text/html; charset=utf-8",
             PAGE.replace("/*STYLE*/", STYLE)
-                .replace("/*SCRIPT*/", SCRIPT)
+                .replace("/*SCRIPT*/", &SCRIPTS.concat())
                 .into_bytes(),
         ),
-        ApiRequest::Image => (
-            200,
-            "application/json",
-            describe(served).to_string().into_bytes(),
-        ),
-        ApiRequest::Layer { which, name, step } => {
-            let image = match which {
-                Which::Main => Some(&served.main),
-                Which::Reference => served.reference.as_ref(),
-            };
-            match image {
-                Some(image) => layer_bytes(image, name, *step),
-                None => text(404, "no reference image"),
+        ApiRequest::Image => json_reply(&describe(now)),
+        ApiRequest::Version => json_reply(&json!({
+            "version": now.version,
+            "problem": now.problem,
+        })),
+        ApiRequest::Check => match &content.check {
+            Some(report) => json_reply(report),
+            None => text(404, "not in check mode"),
+        },
+        ApiRequest::Layer {
+            which,
+            name,
+            step,
+            tile,
+        } => match planes(content, *which, name) {
+            Ok(planes) => layer_bytes(&planes, *step, *tile),
+            Err(refusal) => refusal,
+        },
+        ApiRequest::Stats { which, name } => match planes(content, *which, name) {
+            Ok(planes) => {
+                let mut s = stats::statistics(&planes);
+                s["differing_pixels"] =
+                    json!(differing_pixels(&content.main, content.reference.as_ref(), name));
+                json_reply(&s)
             }
-        }
+            Err(refusal) => refusal,
+        },
         ApiRequest::Pixel { x, y } => {
-            let image = &served.main;
+            let image = &content.main;
             if *x < image.width && *y < image.height {
-                (
-                    200,
-                    "application/json",
-                    pixel(image, *x, *y).to_string().into_bytes(),
-                )
+                json_reply(&json!({
+                    "values": pixel(image, *x, *y),
+                    "reference": content.reference.as_ref().map(|r| pixel(r, *x, *y)),
+                }))
             } else {
                 text(404, "no such pixel")
             }
         }
+        ApiRequest::Trees { x, y } => trees(content, *x, *y),
     }
+}
+
+fn planes<'a>(content: &'a Content, which: Which, name: &str) -> Result<Planes<'a>, Reply> {
+    Planes::of(&content.main, content.reference.as_ref(), which, name).map_err(|m| match m {
+        Missing::Layer => text(404, "no such layer"),
+        Missing::Reference => text(404, "no reference image"),
+    })
 }
 
 /// Every layer's values at pixel (x, y), for the probe.
@@ -73,10 +123,41 @@ fn pixel(image: &Image, x: usize, y: usize) -> serde_json::Value {
     serde_json::Value::Object(layers)
 }
 
-/// The image's size and layers (name, channels, role), its lights, and whether a reference
-/// of the same size is there.
-fn describe(served: &Served) -> serde_json::Value {
-    let image = &served.main;
+/// The ray trees of pixel (x, y): the course's, and the top-ranked mistake's in check mode.
+fn trees(content: &Content, x: usize, y: usize) -> Reply {
+    let Some(tracer) = &content.tracer else {
+        return text(
+            404,
+            "no scene to trace: give the scene with -i, or view a whitted EXR of the embedded scene",
+        );
+    };
+    let (Ok(x), Ok(y)) = (u32::try_from(x), u32::try_from(y)) else {
+        return text(404, "no such pixel");
+    };
+    if x >= tracer.frame.width || y >= tracer.frame.height {
+        return text(404, "no such pixel");
+    }
+    let reference = match explain(&Tick, &tracer.scene, &tracer.frame, x, y) {
+        Ok(e) => to_json(&e, &tracer.scene, crate::mistakes::Mistakes::NONE),
+        Err(e) => return text(400, &e.to_string()),
+    };
+    let mistake = if tracer.mistakes.is_empty() {
+        serde_json::Value::Null
+    } else {
+        let frame = tracer.mistakes.frame_spec(&tracer.frame);
+        match explain(&tracer.mistakes, &tracer.scene, &frame, x, y) {
+            Ok(e) => to_json(&e, &tracer.scene, tracer.mistakes),
+            Err(e) => return text(400, &e.to_string()),
+        }
+    };
+    json_reply(&json!({ "reference": reference, "mistake": mistake }))
+}
+
+/// The image's size and layers (name, channels, role), its lights, and what else the page can
+/// ask for: a reference, the error metrics, ray trees, a check report.
+fn describe(now: &Snapshot) -> serde_json::Value {
+    let content = &now.content;
+    let image = &content.main;
     let layers: Vec<serde_json::Value> = image
         .layers()
         .iter()
@@ -103,36 +184,48 @@ fn describe(served: &Served) -> serde_json::Value {
         .into_iter()
         .filter_map(|l| aov::light_of_layer(&l).map(str::to_string))
         .collect();
-    let reference = served
-        .reference
-        .as_ref()
-        .is_some_and(|r| (r.width, r.height) == (image.width, image.height));
     json!({
         "width": image.width,
         "height": image.height,
         "layers": layers,
         "lights": lights,
-        "reference": reference,
+        "reference": content.reference.is_some(),
+        "metrics": Metric::ALL.map(Metric::name),
+        "tile": TILE,
+        "trees": content.tracer.is_some(),
+        "check": content.check.is_some(),
+        "labels": content.labels,
+        "version": now.version,
+        "problem": now.problem,
     })
 }
 
 /// A layer's values, pixel-major, its channels in display order, little-endian f32; with
-/// `step` > 1 every step-th pixel of every step-th row (`width / step` by `height / step`, for
-/// thumbnails), so a 4K image's page never needs every layer whole. 404 for no such layer,
-/// 503 when the reply does not fit in the memory this process may use.
-fn layer_bytes(image: &Image, name: &str, step: usize) -> Reply {
-    let Some(layer) = image.layers().into_iter().find(|l| l.name == name) else {
-        return text(404, "no such layer");
+/// `step` > 1 every step-th pixel of every step-th row (`width / step` by `height / step`).
+/// With a tile (tx, ty), only the `TILE` x `TILE` block of those samples there (fewer at the
+/// right and bottom edges: the samples at x = (tx * TILE + i) * step < width), so that a
+/// zoomed-in page fetches the full resolution of what it shows and nothing else. 404 for no
+/// such layer or tile, 503 when the reply does not fit in the memory this process may use.
+fn layer_bytes(planes: &Planes, step: usize, tile: Option<(usize, usize)>) -> Reply {
+    let (w, h) = (planes.width, planes.height);
+    let (x0, y0, columns, rows) = match tile {
+        None => (0, 0, w / step, h / step),
+        Some((tx, ty)) => {
+            let origin = |t: usize| t.checked_mul(TILE).and_then(|t| t.checked_mul(step));
+            match (origin(tx), origin(ty)) {
+                (Some(x0), Some(y0)) if x0 < w && y0 < h => (
+                    x0,
+                    y0,
+                    TILE.min((w - x0).div_ceil(step)),
+                    TILE.min((h - y0).div_ceil(step)),
+                ),
+                _ => return text(404, "no such tile"),
+            }
+        }
     };
-    let channels: Vec<&[f32]> = layer
-        .channels
-        .iter()
-        .map(|&i| image.channels[i].values.as_slice())
-        .collect();
-    let (width, height) = (image.width / step, image.height / step);
-    let size = (width as u64)
-        .saturating_mul(height as u64)
-        .saturating_mul(4 * channels.len() as u64);
+    let size = (columns as u64)
+        .saturating_mul(rows as u64)
+        .saturating_mul(4 * planes.count() as u64);
     if let Err(e) = memory::check(size, memory::available_bytes(), "the layer") {
         return text(503, &format!("service unavailable: {e}"));
     }
@@ -140,13 +233,92 @@ fn layer_bytes(image: &Image, name: &str, step: usize) -> Reply {
     if bytes.try_reserve_exact(size as usize).is_err() {
         return text(503, "service unavailable: not enough memory for the layer");
     }
-    for y in 0..height {
-        for x in 0..width {
-            let p = y * step * image.width + x * step;
-            for c in &channels {
-                bytes.extend_from_slice(&c[p].to_le_bytes());
+    for row in 0..rows {
+        for column in 0..columns {
+            let p = (y0 + row * step) * w + x0 + column * step;
+            for c in 0..planes.count() {
+                bytes.extend_from_slice(&planes.value(c, p).to_le_bytes());
             }
         }
     }
     (200, "application/octet-stream", bytes)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::input::raster;
+
+    fn snapshot() -> Snapshot {
+        let main = raster::rgb8(300, 2, &vec![51; 300 * 2 * 3]);
+        let reference = raster::rgb8(300, 2, &vec![102; 300 * 2 * 3]);
+        Snapshot {
+            content: std::sync::Arc::new(Content {
+                main,
+                reference: Some(reference),
+                tracer: None,
+                check: None,
+                labels: ["a.png".into(), "b.png".into()],
+            }),
+            version: 1,
+            problem: None,
+        }
+    }
+
+    fn floats(bytes: &[u8]) -> Vec<f32> {
+        bytes
+            .chunks(4)
+            .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+            .collect()
+    }
+
+    #[test]
+    fn tiles_hold_the_samples_of_their_block_and_metrics_the_metric() {
+        let now = snapshot();
+        let layer = |which, step, tile| {
+            respond(
+                &now,
+                &ApiRequest::Layer {
+                    which,
+                    name: "beauty".into(),
+                    step,
+                    tile,
+                },
+            )
+        };
+        // 300 wide: tile 0 has 256 columns, tile 1 the 44 left; at step 2, one tile of 150.
+        assert_eq!(layer(Which::Main, 1, Some((0, 0))).2.len(), 256 * 2 * 3 * 4);
+        assert_eq!(layer(Which::Main, 1, Some((1, 0))).2.len(), 44 * 2 * 3 * 4);
+        assert_eq!(layer(Which::Main, 2, Some((0, 0))).2.len(), 150 * 3 * 4);
+        assert_eq!(layer(Which::Main, 2, Some((1, 0))).0, 404);
+        assert_eq!(layer(Which::Main, 1, Some((usize::MAX, 0))).0, 404);
+        let squared = floats(&layer(Which::Metric(Metric::SquaredError), 1, Some((1, 1))).2);
+        let (a, b) = (51.0_f32 / 255.0, 102.0_f32 / 255.0);
+        assert_eq!(squared[0], Metric::SquaredError.apply(a, b));
+        let reference = floats(&layer(Which::Reference, 1, None).2);
+        assert_eq!(reference[0], b);
+    }
+
+    #[test]
+    fn statistics_count_the_differing_pixels_and_trees_need_a_scene() {
+        let now = snapshot();
+        let (status, _, body) = respond(
+            &now,
+            &ApiRequest::Stats {
+                which: Which::Metric(Metric::Error),
+                name: "beauty".into(),
+            },
+        );
+        assert_eq!(status, 200);
+        let s: serde_json::Value = serde_json::from_slice(&body).expect("json");
+        assert_eq!(s["differing_pixels"], 600);
+        assert_eq!(s["channels"][0]["max"], f64::from(Metric::Error.apply(0.2, 0.4)));
+        assert_eq!(respond(&now, &ApiRequest::Trees { x: 0, y: 0 }).0, 404);
+        assert_eq!(respond(&now, &ApiRequest::Check).0, 404);
+        let missing = ApiRequest::Stats {
+            which: Which::Main,
+            name: "nothing".into(),
+        };
+        assert_eq!(respond(&now, &missing).0, 404);
+    }
 }

@@ -2,30 +2,34 @@
 //! for, or the refusal (status and message) for anything else. Pure, so that every hostile
 //! request is a unit test.
 
+use super::planes::Which;
 use super::Reply;
-
-/// Which image a layer is taken from.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Which {
-    Main,
-    Reference,
-}
 
 /// Everything the viewer answers.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum ApiRequest {
     /// The page itself.
     Page,
-    /// The image's size, layers and lights (JSON).
+    /// The image's size, layers and lights, and what else there is (JSON).
     Image,
-    /// One layer's values, every `step`-th pixel of every `step`-th row.
+    /// How many times the files were (re)loaded, and the last reload's failure (JSON).
+    Version,
+    /// The check's report (JSON), in check mode.
+    Check,
+    /// One layer's values, every `step`-th pixel of every `step`-th row: the whole layer, or
+    /// one `TILE` x `TILE` tile of those samples.
     Layer {
         which: Which,
         name: String,
         step: usize,
+        tile: Option<(usize, usize)>,
     },
-    /// Every layer's values at one pixel (JSON).
+    /// A layer's statistics and histogram (JSON).
+    Stats { which: Which, name: String },
+    /// Every layer's values at one pixel, the image's and the reference's (JSON).
     Pixel { x: usize, y: usize },
+    /// One pixel's ray trees: the reference's and the top mistake's (JSON).
+    Trees { x: usize, y: usize },
 }
 
 /// The parts of an HTTP request the viewer looks at, as the server library hands them over.
@@ -93,28 +97,53 @@ pub fn parse(request: &Incoming, token: &str, port: u16) -> Result<ApiRequest, R
                 .map_err(|_| refuse(400, &format!("bad request: `{key}` must be a whole number"))),
         }
     };
+    let which = || match param("which") {
+        None => Ok(Which::Main),
+        Some(name) => Which::from_name(name).ok_or_else(|| {
+            refuse(
+                400,
+                "bad request: `which` is main, reference or an error metric",
+            )
+        }),
+    };
+    let name = || -> Result<String, Reply> {
+        Ok(param("name")
+            .ok_or_else(|| refuse(400, "bad request: `name` is missing"))?
+            .to_string())
+    };
+    let pixel = || match (number("x")?, number("y")?) {
+        (Some(x), Some(y)) => Ok((x, y)),
+        _ => Err(refuse(400, "bad request: `x` and `y` are needed")),
+    };
     match request.path {
         "/" => Ok(ApiRequest::Page),
         "/api/image" => Ok(ApiRequest::Image),
+        "/api/version" => Ok(ApiRequest::Version),
+        "/api/check" => Ok(ApiRequest::Check),
         "/api/layer" => {
-            let which = match param("which") {
-                None | Some("main") => Which::Main,
-                Some("reference") => Which::Reference,
-                Some(_) => return Err(refuse(400, "bad request: `which` is main or reference")),
-            };
-            let name = param("name")
-                .ok_or_else(|| refuse(400, "bad request: `name` is missing"))?
-                .to_string();
+            let (which, name) = (which()?, name()?);
             let step = number("step")?.unwrap_or(1);
             if step == 0 || step > MAX_STEP {
                 return Err(refuse(400, "bad request: `step` is from 1 to 65536"));
             }
-            Ok(ApiRequest::Layer { which, name, step })
+            let tile = match (number("tx")?, number("ty")?) {
+                (Some(tx), Some(ty)) => Some((tx, ty)),
+                (None, None) => None,
+                _ => return Err(refuse(400, "bad request: a tile needs `tx` and `ty`")),
+            };
+            Ok(ApiRequest::Layer {
+                which,
+                name,
+                step,
+                tile,
+            })
         }
-        "/api/pixel" => match (number("x")?, number("y")?) {
-            (Some(x), Some(y)) => Ok(ApiRequest::Pixel { x, y }),
-            _ => Err(refuse(400, "bad request: `x` and `y` are needed")),
-        },
+        "/api/stats" => Ok(ApiRequest::Stats {
+            which: which()?,
+            name: name()?,
+        }),
+        "/api/pixel" => pixel().map(|(x, y)| ApiRequest::Pixel { x, y }),
+        "/api/trees" => pixel().map(|(x, y)| ApiRequest::Trees { x, y }),
         _ => Err(refuse(404, "not found")),
     }
 }
@@ -145,9 +174,34 @@ mod tests {
             Ok(ApiRequest::Layer {
                 which: Which::Main,
                 name: "light_a b&=+#%/?é".into(),
-                step: 4
+                step: 4,
+                tile: None,
             })
         );
+        assert_eq!(
+            get("/api/layer?name=beauty&which=relative-squared-error&tx=2&ty=0&token=0123abcd"),
+            Ok(ApiRequest::Layer {
+                which: Which::Metric(super::super::metric::Metric::RelativeSquaredError),
+                name: "beauty".into(),
+                step: 1,
+                tile: Some((2, 0)),
+            })
+        );
+        assert_eq!(
+            get("/api/stats?name=Z&which=reference&token=0123abcd"),
+            Ok(ApiRequest::Stats {
+                which: Which::Reference,
+                name: "Z".into(),
+            })
+        );
+        assert_eq!(
+            get("/api/trees?x=1&y=2&token=0123abcd"),
+            Ok(ApiRequest::Trees { x: 1, y: 2 })
+        );
+        for path in ["/api/version", "/api/check"] {
+            assert!(get(&format!("{path}?token=0123abcd")).is_ok(), "{path}");
+            assert_eq!(get(path), Err(403), "{path} without the token");
+        }
         assert_eq!(
             get("/api/pixel?x=3&y=4&token=0123abcd"),
             Ok(ApiRequest::Pixel { x: 3, y: 4 })
@@ -170,6 +224,12 @@ mod tests {
             ("/api/layer?name=direct&which=other&token=0123abcd", 400),
             ("/api/pixel?x=-1&y=0&token=0123abcd", 400),
             ("/api/pixel?token=0123abcd", 400),
+            ("/api/trees?x=1&token=0123abcd", 400),
+            ("/api/trees?x=1&y=1e3&token=0123abcd", 400),
+            ("/api/stats?token=0123abcd", 400),
+            ("/api/stats?name=beauty&which=mse&token=0123abcd", 400),
+            ("/api/layer?name=beauty&tx=1&token=0123abcd", 400),
+            ("/api/layer?name=beauty&tx=1&ty=-1&token=0123abcd", 400),
         ] {
             assert_eq!(get(target), Err(status), "{target}");
         }

@@ -33,13 +33,12 @@ const MAX_CONNECTIONS: usize = 64;
 const POLL: Duration = Duration::from_millis(100);
 
 /// Serves `served` on `listener` until a signal stops the process.
-pub fn run(listener: std::net::TcpListener, served: Served) -> Result<()> {
+pub fn run(listener: std::net::TcpListener, served: Arc<Served>) -> Result<()> {
     let runtime = tokio::runtime::Builder::new_current_thread()
         .enable_io()
         .enable_time()
         .build()
         .map_err(|e| Error::io("127.0.0.1", "cannot start the viewer's runtime", e))?;
-    let served = Arc::new(served);
     runtime.block_on(async move {
         listener
             .set_nonblocking(true)
@@ -101,7 +100,7 @@ fn answer(served: &Served, request: &Request<Body>) -> Response<Full<Bytes>> {
         has_body: announced,
     };
     let (status, kind, body) = match parse(&incoming, &served.token, served.port) {
-        Ok(api_request) => api::respond(served, &api_request),
+        Ok(api_request) => api::respond(&served.now(), &api_request),
         Err(refusal) => refusal,
     };
     let body = if request.method() == hyper::Method::HEAD {

@@ -1,166 +1,73 @@
-// whitted view: layers, tone maps (the CLI's operators, same numbers), a pixel probe,
-// relighting from light layers (the same sum as `whitted relight`), A/B with a reference.
+// ---- whitted view: the page ----
+// Layers, tone maps (TONEMAP: the CLI's operators, same numbers), zoom and pan (VIEWPORT,
+// TILES), the image against a reference (A/B and the server's error metrics, in false
+// colour), statistics, relighting from light layers (the same sum as `whitted relight`), a
+// pixel's values and ray trees, and --watch.
 "use strict";
 
 const token = new URLSearchParams(location.search).get("token");
 const api = (path) => `${path}${path.includes("?") ? "&" : "?"}token=${token}`;
+const $ = (id) => document.getElementById(id);
+
+/** Canvas pixels an image pixel must cover before its values are written in it. */
+const VALUE_ZOOM = 48;
 
 const state = {
   meta: null,
-  layers: {}, // name -> Float32Array (pixel-major, the layer's channels)
-  reference: null, // beauty of the reference, Float32Array RGBA
+  version: 0,
   selected: "beauty",
+  compare: "a", // "a" the image, "b" the reference, or an error metric's name
+  view: { zoom: 1, x: 0, y: 0 },
+  fitted: false, // whether the view still follows the window (until the user zooms or pans)
   gains: {}, // light -> [r, g, b]
-  shadows: {}, // light -> true when shown with shadows
+  shadows: {}, // light -> false when shown without its shadows
   ambient: 1,
   background: 1,
-  display: null, // Uint8ClampedArray RGBA of the canvas
-  ranges: {}, // name -> [lo, hi] of a data layer's values, for showing it
-  pending: {}, // name -> the fetch of that layer under way, so it is fetched once
-  step: 1, // pixels of the image per pixel of the canvas
+  stats: new Map(), // "which\0name" -> the promise of /api/stats
+  display: null, // Uint8ClampedArray RGBA of the last full-resolution render (pixels())
   generation: 0, // of the latest draw: an older draw that finishes late is dropped
+  trees: null, // [x, y] of the pixel whose trees are shown
 };
-
-// ---- tone maps: docs/tonemap.md, as src/tonemap.rs evaluates them ----
-const MAX_INPUT = 1e9;
-const srgb = (t) => (t <= 0.0031308 ? 12.92 * t : 1.055 * Math.pow(t, 1 / 2.4) - 0.055);
-const clamp01 = (x) => Math.min(Math.max(x, 0), 1);
-const mul = (m, v) => [0, 1, 2].map((r) => m[r][0] * v[0] + m[r][1] * v[1] + m[r][2] * v[2]);
-const AGX = {
-  to2020: [[0.6274, 0.3293, 0.0433], [0.0691, 0.9195, 0.0113], [0.0164, 0.088, 0.8956]],
-  inset: [[0.856627153315983, 0.0951212405381588, 0.0482516061458583],
-    [0.137318972929847, 0.761241990602591, 0.101439036467562],
-    [0.11189821299995, 0.0767994186031903, 0.811302368396859]],
-  outset: [[1.1271005818144368, -0.1106066430966032, -0.0164939387178346],
-    [-0.1413297634984383, 1.157823702216272, -0.0164939387178343],
-    [-0.1413297634984383, -0.1106066430966029, 1.2519364065950405]],
-  to709: [[1.6605, -0.5876, -0.0728], [-0.1246, 1.1329, -0.0083], [-0.0182, -0.1006, 1.1187]],
-};
-function agx(v) {
-  const c = mul(AGX.inset, mul(AGX.to2020, v));
-  const curve = c.map((x) => {
-    const t = clamp01((Math.log2(Math.max(x, 1e-10)) + 12.47393) / (4.026069 + 12.47393));
-    const x2 = t * t, x4 = x2 * x2;
-    return 15.5 * x4 * x2 - 40.14 * x4 * t + 31.96 * x4 - 6.868 * x2 * t + 0.4298 * x2 + 0.1191 * t - 0.00232;
-  });
-  const lin = mul(AGX.outset, curve).map((x) => Math.pow(Math.max(x, 0), 2.2));
-  return mul(AGX.to709, lin).map(clamp01);
-}
-const AGX_OUT = new Float64Array(3);
-/** agx() on scalars, into `out`, evaluated in the same order. */
-function agxInto(r, g, b, out) {
-  const m = AGX.to2020, i = AGX.inset, o = AGX.outset, t = AGX.to709;
-  const r1 = m[0][0] * r + m[0][1] * g + m[0][2] * b;
-  const g1 = m[1][0] * r + m[1][1] * g + m[1][2] * b;
-  const b1 = m[2][0] * r + m[2][1] * g + m[2][2] * b;
-  const r2 = i[0][0] * r1 + i[0][1] * g1 + i[0][2] * b1;
-  const g2 = i[1][0] * r1 + i[1][1] * g1 + i[1][2] * b1;
-  const b2 = i[2][0] * r1 + i[2][1] * g1 + i[2][2] * b1;
-  const curve = (x) => {
-    const u = clamp01((Math.log2(Math.max(x, 1e-10)) + 12.47393) / (4.026069 + 12.47393));
-    const u2 = u * u, u4 = u2 * u2;
-    return 15.5 * u4 * u2 - 40.14 * u4 * u + 31.96 * u4 - 6.868 * u2 * u + 0.4298 * u2 + 0.1191 * u - 0.00232;
-  };
-  const r3 = curve(r2), g3 = curve(g2), b3 = curve(b2);
-  const lin = (x) => Math.pow(Math.max(x, 0), 2.2);
-  const r4 = lin(o[0][0] * r3 + o[0][1] * g3 + o[0][2] * b3);
-  const g4 = lin(o[1][0] * r3 + o[1][1] * g3 + o[1][2] * b3);
-  const b4 = lin(o[2][0] * r3 + o[2][1] * g3 + o[2][2] * b3);
-  out[0] = clamp01(t[0][0] * r4 + t[0][1] * g4 + t[0][2] * b4);
-  out[1] = clamp01(t[1][0] * r4 + t[1][1] * g4 + t[1][2] * b4);
-  out[2] = clamp01(t[2][0] * r4 + t[2][1] * g4 + t[2][2] * b4);
-}
-
-function neutral(v) {
-  const x = Math.min(v[0], v[1], v[2]);
-  const offset = x < 0.08 ? x - 6.25 * x * x : 0.04;
-  let c = v.map((e) => e - offset);
-  const peak = Math.max(c[0], c[1], c[2]);
-  if (peak < 0.76) return c;
-  const d = 0.24;
-  const newPeak = 1 - (d * d) / (peak + d - 0.76);
-  c = c.map((e) => e * (newPeak / peak));
-  const g = 1 - 1 / (0.15 * (peak - newPeak) + 1);
-  return c.map((e) => e * (1 - g) + newPeak * g);
-}
-const OPERATORS = {
-  tick: (v) => v.map(clamp01),
-  clamp: (v) => v.map(clamp01),
-  reinhard: (v) => v.map((x) => x / (1 + x)),
-  aces: (v) => v.map((x) => clamp01((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14))),
-  agx,
-  neutral,
-};
-/** Linear RGB -> three bytes, exactly as the PNG writer quantises. */
-function toBytes(rgb, op, ev) {
-  const scale = Math.pow(2, ev);
-  const v = rgb.map((x) => (Number.isNaN(x) ? 0 : Math.min(Math.max(x * scale, 0), MAX_INPUT)));
-  const t = OPERATORS[op](v);
-  if (op === "tick") return t.map((x) => Math.floor(255 * x));
-  return t.map((x) => Math.min(255, Math.max(0, Math.floor(255 * srgb(x) + 0.5))));
-}
-
-/** The per-channel operators as one scalar function, for the fast path of a whole image. */
-const SCALAR = {
-  tick: clamp01,
-  clamp: clamp01,
-  reinhard: (x) => x / (1 + x),
-  aces: (x) => clamp01((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14)),
-};
-
-/** Writes the display bytes of linear (r, g, b) into `out` at `o`, quantised exactly as the PNG
- * writer does (a lookup table would not be exact). */
-function quantise(r, g, b, op, ev, scale, out, o) {
-  const f = SCALAR[op];
-  if (op === "agx") {
-    // The same arithmetic as agx(), on scalars: no allocation per pixel.
-    const bound = (x) => (Number.isNaN(x) ? 0 : Math.min(Math.max(x * scale, 0), MAX_INPUT));
-    agxInto(bound(r), bound(g), bound(b), AGX_OUT);
-    for (let c = 0; c < 3; c++) out[o + c] = Math.min(255, Math.max(0, Math.floor(255 * srgb(AGX_OUT[c]) + 0.5)));
-    return;
-  }
-  if (!f) {
-    const bytes = toBytes([r, g, b], op, ev);
-    out[o] = bytes[0]; out[o + 1] = bytes[1]; out[o + 2] = bytes[2];
-    return;
-  }
-  const v = [r, g, b];
-  for (let c = 0; c < 3; c++) {
-    const x = v[c];
-    const t = f(Number.isNaN(x) ? 0 : Math.min(Math.max(x * scale, 0), MAX_INPUT));
-    out[o + c] = op === "tick" ? Math.floor(255 * t) : Math.min(255, Math.max(0, Math.floor(255 * srgb(t) + 0.5)));
-  }
-}
 
 // ---- data ----
-async function layer(name, which = "main", step = 1) {
-  const response = await fetch(api(`/api/layer?name=${encodeURIComponent(name)}&which=${which}&step=${step}`));
-  if (!response.ok) throw new Error(`layer ${name}: ${response.status}`);
-  return new Float32Array(await response.arrayBuffer());
+async function fetchOk(path) {
+  const response = await fetch(api(path));
+  if (!response.ok) throw new Error(`${path.split("?")[0]}: ${response.status} ${await response.text()}`);
+  return response;
+}
+const getJson = async (path) => (await fetchOk(path)).json();
+async function fetchTile(which, name, step, tx, ty) {
+  const q = `name=${encodeURIComponent(name)}&which=${which}&step=${step}&tx=${tx}&ty=${ty}`;
+  return new Float32Array(await (await fetchOk(`/api/layer?${q}`)).arrayBuffer());
+}
+async function wholeLayer(name, which, step) {
+  const q = `name=${encodeURIComponent(name)}&which=${which}&step=${step}`;
+  return new Float32Array(await (await fetchOk(`/api/layer?${q}`)).arrayBuffer());
 }
 const info = (name) => state.meta.layers.find((l) => l.name === name);
-
-/** Fetches the layers not yet here (whole), with the range data layers are shown over; a
- * layer already being fetched (by an earlier draw) is waited for, not fetched again. */
-async function need(names) {
-  const fetches = names.filter((name) => !state.layers[name] && info(name)).map((name) => {
-    state.pending[name] ||= layer(name).then((data) => {
-      let lo = Infinity, hi = -Infinity;
-      for (const x of data) if (x !== 0 && Number.isFinite(x) && x < 1e10) { lo = Math.min(lo, x); hi = Math.max(hi, x); }
-      state.ranges[name] = [lo, hi];
-      state.layers[name] = data;
-    }).finally(() => { delete state.pending[name]; });
-    return state.pending[name];
-  });
-  await Promise.all(fetches);
+const isMetric = (compare) => compare !== "a" && compare !== "b";
+const whichOf = (compare) => (compare === "a" ? "main" : compare === "b" ? "reference" : compare);
+function stats(which, name) {
+  const key = `${which}\u0000${name}`;
+  if (!state.stats.has(key)) {
+    const p = getJson(`/api/stats?name=${encodeURIComponent(name)}&which=${which}`);
+    p.catch(() => state.stats.delete(key));
+    state.stats.set(key, p);
+  }
+  return state.stats.get(key);
+}
+/** The range a layer is shown over in false colour: its finite values short of the 1e10 a
+ * miss stores in Z (the server's `range`), symmetric about 0 for the signed error. */
+function rangeOf(s, compare) {
+  const [lo, hi] = s.range || [0, 1];
+  if (compare === "error") { const m = Math.max(Math.abs(lo), Math.abs(hi)) || 1; return [-m, m]; }
+  return lo < hi ? [lo, hi] : [lo, lo + 1];
 }
 
-/** Linear RGB of a colour layer at pixel p. */
-function rgbAt(name, p) {
-  const l = info(name), data = state.layers[name], n = l.channels.length;
-  const at = (c) => data[p * n + l.channels.indexOf(c)];
-  return [at("R"), at("G"), at("B")];
-}
+// ---- what a pixel shows ----
+const relighting = () =>
+  state.ambient !== 1 || state.background !== 1 ||
+  state.meta.lights.some((l) => (state.gains[l] || [1, 1, 1]).some((g) => g !== 1) || state.shadows[l] === false);
 
 /** The layers and gains of the relit image, in the order of the sum. */
 function relightTerms() {
@@ -173,110 +80,194 @@ function relightTerms() {
   return terms;
 }
 
-const relighting = () =>
-  state.ambient !== 1 || state.background !== 1 ||
-  state.meta.lights.some((l) => (state.gains[l] || [1, 1, 1]).some((g) => g !== 1) || state.shadows[l] === false);
-
-/** Display bytes of value q of `data`, a layer described by `l` (whole or subsampled). */
-function layerBytes(l, data, q, op, ev, range) {
-  const n = l.channels.length;
+/** What the current settings show: the planes summed into each pixel (which, layer, gain,
+ * the channels picked) and how the sum is painted. */
+function recipe() {
+  const l = info(state.selected);
+  const which = whichOf(state.compare);
+  const rgb = (li) => ["R", "G", "B"].map((c) => li.channels.indexOf(c));
+  const map = $("colormap").value;
   if (l.role === "colour") {
-    const at = (c) => data[q * n + l.channels.indexOf(c)];
-    return toBytes([at("R"), at("G"), at("B")], op, ev);
+    const terms = state.compare === "a" && state.selected === "beauty" && relighting()
+      ? relightTerms() : [[state.selected, [1, 1, 1]]];
+    const planes = terms.map(([name, gain]) => ({ which, name, gain, picks: rgb(info(name)) }));
+    const kind = isMetric(state.compare) ? "metric" : map ? "false" : "colour";
+    return { planes, kind, map: map || "turbo", channels: ["R", "G", "B"] };
   }
-  const p = q;
-  if (l.role === "normal") return [0, 1, 2].map((c) => Math.round(255 * clamp01((data[p * n + c] + 1) / 2)));
-  if (l.role === "mask") return [0, 0, 0].map(() => Math.round(255 * clamp01(data[p * n])));
-  if (l.role === "id") {
-    const id = data[p * n];
-    if (!(id > 0)) return [0, 0, 0];
-    const hue = (id * 0.618033988749895) % 1;
-    return [0, 1 / 3, 2 / 3].map((o) => Math.round(255 * (0.35 + 0.55 * (0.5 + 0.5 * Math.cos(2 * Math.PI * (hue + o))))));
+  const picks = l.channels.map((_, i) => i);
+  const kind = isMetric(state.compare) ? "metric" : map ? "false" : l.role;
+  return { planes: [{ which, name: l.name, gain: null, picks }], kind, map: map || "turbo", channels: l.channels };
+}
+
+/** Paints the summed values `px` (as `recipe` picks them) into out[o..o+3]. */
+function painter(r, range) {
+  const op = $("tonemap").value;
+  const gain = Math.pow(2, Number($("exposure").value));
+  const n = r.planes[0].picks.length;
+  const [lo, hi] = range;
+  const mean = (px) => { let s = 0; for (let c = 0; c < n; c++) s += px[c]; return s / n; };
+  switch (r.kind) {
+    case "colour": return (px, out, o) => TONEMAP.into(px[0], px[1], px[2], op, gain, out, o);
+    case "metric": case "false": return (px, out, o) => COLORMAP.into(mean(px), lo, hi, r.map, out, o);
+    case "normal": return (px, out, o) => { for (let c = 0; c < 3; c++) out[o + c] = Math.round(255 * TONEMAP.clamp01((px[c] + 1) / 2)); };
+    case "mask": return (px, out, o) => { out[o] = out[o + 1] = out[o + 2] = Math.round(255 * TONEMAP.clamp01(px[0])); };
+    case "id": return (px, out, o) => COLORMAP.categorical(px[0], out, o);
+    default: return (px, out, o) => {
+      for (let c = 0; c < 3; c++) {
+        const x = px[Math.min(c, n - 1)];
+        out[o + c] = Number.isFinite(x) && Math.abs(x) < 1e10 ? Math.round(255 * TONEMAP.clamp01((x - lo) / (hi - lo))) : 0;
+      }
+    };
   }
-  return [0, 1, 2].map((c) => {
-    const x = data[p * n + Math.min(c, n - 1)];
-    if (!(x !== 0 && Number.isFinite(x) && x < 1e10)) return 0;
-    return Math.round(255 * (0.2 + (0.8 * (x - range[0])) / Math.max(range[1] - range[0], 1e-30)));
-  });
+}
+
+/** Where sample (x, y) of a layer at `step` lies: tile and index in it. */
+function locate(x, y, step) {
+  const T = TILES.size, { width } = state.meta;
+  const sx = Math.floor(x / step), sy = Math.floor(y / step);
+  const tx = Math.floor(sx / T), ty = Math.floor(sy / T);
+  const tw = Math.min(T, Math.ceil((width - tx * T * step) / step));
+  return [tx, ty, (sy - ty * T) * tw + (sx - tx * T)];
+}
+
+/** Sums the planes at image pixel (x, y) into `px` from tiles already here; false if one is
+ * missing. */
+function gather(r, x, y, step, px) {
+  const [tx, ty, i] = locate(x, y, step);
+  px.fill(0);
+  for (const p of r.planes) {
+    const data = TILES.peek(p.which, p.name, step, tx, ty);
+    if (!data) return false;
+    const n = info(p.name).channels.length;
+    for (let c = 0; c < p.picks.length; c++) px[c] += data[i * n + p.picks[c]] * (p.gain ? p.gain[c] : 1);
+  }
+  return true;
+}
+
+/** Fetches every tile of `r`'s planes that covers image rows y0..y1, columns x0..x1. */
+async function needTiles(r, step, x0, y0, x1, y1) {
+  const { width, height } = state.meta;
+  const clampX = (x) => Math.min(Math.max(x, 0), width - 1), clampY = (y) => Math.min(Math.max(y, 0), height - 1);
+  const [ax, ay] = locate(clampX(x0), clampY(y0), step), [bx, by] = locate(clampX(x1), clampY(y1), step);
+  const waits = [];
+  for (const p of r.planes)
+    for (let ty = ay; ty <= by; ty++)
+      for (let tx = ax; tx <= bx; tx++) waits.push(TILES.get(p.which, p.name, step, tx, ty, fetchTile));
+  await Promise.all(waits);
 }
 
 // ---- drawing ----
-/** Draws the current view. While interacting it computes one pixel per screen pixel (every
- * step-th pixel of a large image, so a 4K render stays responsive); `full` computes every
- * pixel (for saving, and for `pixels()`). */
-async function draw(full = false) {
+/** Renders `view` into an ImageData of cw x ch (the canvas outside the image dark grey), or
+ * null when draw `generation` was overtaken meanwhile (null: never overtaken). */
+async function render(view, cw, ch, generation) {
+  const r = recipe();
+  const step = VIEWPORT.step(view);
+  const [x0, y0] = VIEWPORT.imageAt(view, 0, 0), [x1, y1] = VIEWPORT.imageAt(view, cw - 1, ch - 1);
+  const needsRange = !["colour", "normal", "mask", "id"].includes(r.kind);
+  const layerStats = stats(r.planes[0].which, state.selected);
+  const [, range] = await Promise.all([needTiles(r, step, x0, y0, x1, y1),
+    needsRange ? layerStats.then((s) => rangeOf(s, state.compare)) : [0, 1]]);
+  if (generation !== null && generation !== state.generation) return null;
+  const { width, height } = state.meta;
+  const img = new ImageData(cw, ch);
+  const out = img.data, px = new Float64Array(8), paint = painter(r, range);
+  for (let cy = 0; cy < ch; cy++) {
+    const y = Math.floor(view.y + (cy + 0.5) / view.zoom);
+    for (let cx = 0; cx < cw; cx++) {
+      const x = Math.floor(view.x + (cx + 0.5) / view.zoom);
+      const o = (cy * cw + cx) * 4;
+      out[o + 3] = 255;
+      if (x < 0 || y < 0 || x >= width || y >= height || !gather(r, x, y, step, px)) {
+        out[o] = out[o + 1] = out[o + 2] = 21;
+        continue;
+      }
+      paint(px, out, o);
+    }
+  }
+  return { img, r, range, step };
+}
+
+/** Draws the current view; a draw overtaken by a newer one while it waited is dropped. */
+async function draw() {
   const generation = ++state.generation;
-  const mode = document.getElementById("ab").value;
-  const wanted = mode === "a" || !state.reference ? [state.selected] : ["beauty"];
-  if (state.selected === "beauty" && relighting()) wanted.push(...relightTerms().map(([n]) => n));
-  await need(wanted);
-  // A newer draw was asked for while this one waited for its layers: it draws instead.
-  if (generation !== state.generation) return;
-  const { width: fullWidth, height: fullHeight } = state.meta;
-  const shown = document.getElementById("view").clientWidth || fullWidth;
-  const step = full ? 1 : Math.max(1, Math.floor(fullWidth / Math.max(shown, 1)));
-  const width = Math.floor(fullWidth / step), height = Math.floor(fullHeight / step);
-  state.step = step;
-  const source = (q) => Math.floor(q / width) * step * fullWidth + (q % width) * step;
-  const canvas = document.getElementById("canvas");
-  canvas.width = width;
-  canvas.height = height;
+  const stage = $("stage"), canvas = $("canvas");
+  const cw = Math.max(1, stage.clientWidth), ch = Math.max(1, stage.clientHeight);
+  if (state.fitted) VIEWPORT.fit(state.view, cw, ch, state.meta.width, state.meta.height);
+  const done = await render(state.view, cw, ch, generation);
+  if (!done) return;
+  canvas.width = cw;
+  canvas.height = ch;
   const ctx = canvas.getContext("2d");
-  const img = ctx.createImageData(width, height);
-  const op = document.getElementById("tonemap").value;
-  const ev = Number(document.getElementById("exposure").value);
-  const l = info(state.selected);
-  if ((mode === "a" || !state.reference) && l.role === "colour") {
-    // The fast path for colour layers and the relit beauty: no allocation per pixel.
-    const scale = Math.pow(2, ev);
-    const terms = state.selected === "beauty" && relighting() ? relightTerms() : [[state.selected, [1, 1, 1]]];
-    const planes = terms.map(([name, gain]) => {
-      const li = info(name), n = li.channels.length;
-      return [state.layers[name], n, li.channels.indexOf("R"), li.channels.indexOf("G"), li.channels.indexOf("B"), gain];
-    });
-    for (let q = 0; q < width * height; q++) {
-      const p = source(q);
-      let r = 0, g = 0, b = 0;
-      for (const [data, n, ri, gi, bi, gain] of planes) {
-        r += data[p * n + ri] * gain[0];
-        g += data[p * n + gi] * gain[1];
-        b += data[p * n + bi] * gain[2];
-      }
-      quantise(r, g, b, op, ev, scale, img.data, q * 4);
-      img.data[q * 4 + 3] = 255;
-    }
-    finishDraw(ctx, img, op, ev);
-    return;
-  }
-  for (let q = 0; q < width * height; q++) {
-    const p = source(q);
-    let bytes;
-    if (mode === "a" || !state.reference) {
-      bytes = layerBytes(l, state.layers[state.selected], p, op, ev, state.ranges[state.selected]);
-    } else {
-      const b = [0, 1, 2].map((c) => state.reference[p * 4 + c]);
-      if (mode === "b") bytes = toBytes(b, op, ev);
-      else {
-        const a = rgbAt("beauty", p);
-        const e = Math.max(...[0, 1, 2].map((c) => Math.abs(a[c] - b[c])));
-        const t = e === 0 ? 0 : clamp01((Math.log10(e) + 6) / 6);
-        bytes = e === 0 ? [0, 0, 0] : [Math.round(255 * t), Math.round(255 * t * t), Math.round(90 * (1 - t))];
-      }
-    }
-    img.data.set([bytes[0], bytes[1], bytes[2], 255], q * 4);
-  }
-  finishDraw(ctx, img, op, ev);
+  ctx.putImageData(done.img, 0, 0);
+  if (state.view.zoom >= VALUE_ZOOM) writeValues(ctx, done.r, cw, ch);
+  const scaled = done.r.kind === "metric" || done.r.kind === "false";
+  PANELS.scaleBar($("scale"), scaled ? done.r.map : null, done.range[0], done.range[1],
+    isMetric(state.compare) ? `${state.compare} of ${state.selected} (channel mean)` : state.selected);
+  showStatus();
+  showStatistics();
 }
 
-function finishDraw(ctx, img, op, ev) {
-  ctx.putImageData(img, 0, 0);
-  state.display = img.data;
-  document.getElementById("status").textContent =
-    `${state.selected}${state.selected === "beauty" && relighting() ? " (relit)" : ""}, ${op}, EV ${ev.toFixed(1)}`;
+/** Each visible pixel's values, written inside it (the pixels are large enough). */
+function writeValues(ctx, r, cw, ch) {
+  const view = state.view, px = new Float64Array(8), n = r.planes[0].picks.length;
+  const [x0, y0] = VIEWPORT.imageAt(view, 0, 0), [x1, y1] = VIEWPORT.imageAt(view, cw, ch);
+  const size = Math.min(14, Math.floor(view.zoom / (n + 1)));
+  ctx.font = `${size}px ui-monospace, monospace`;
+  ctx.textAlign = "center";
+  ctx.textBaseline = "middle";
+  for (let y = Math.max(y0, 0); y <= Math.min(y1, state.meta.height - 1); y++) {
+    for (let x = Math.max(x0, 0); x <= Math.min(x1, state.meta.width - 1); x++) {
+      if (!gather(r, x, y, 1, px)) continue;
+      const [cx, cy] = VIEWPORT.canvasAt(view, x, y);
+      const [pr, pg, pb] = ctx.getImageData(Math.floor(cx), Math.floor(cy), 1, 1).data;
+      ctx.fillStyle = 0.299 * pr + 0.587 * pg + 0.114 * pb > 128 ? "#000" : "#fff";
+      for (let c = 0; c < n; c++) ctx.fillText(px[c].toPrecision(4), cx, cy + (c - (n - 1) / 2) * size * 1.15);
+    }
+  }
 }
 
+function showStatus(hover) {
+  const op = $("tonemap").value, ev = Number($("exposure").value);
+  const shown = state.compare === "a" ? state.meta.labels[0] : state.compare === "b" ? state.meta.labels[1] : `${state.compare}`;
+  let text = `${state.selected}${state.selected === "beauty" && relighting() && state.compare === "a" ? " (relit)" : ""} of ${shown}, ${op}, EV ${ev.toFixed(1)}, zoom ${state.view.zoom >= 1 ? state.view.zoom.toFixed(2) : `1/${(1 / state.view.zoom).toFixed(2)}`}`;
+  if (hover) text += `   (${hover[0]}, ${hover[1]}): ${hover[2]}`;
+  if (state.meta.problem) text += `\nthe last reload failed: ${state.meta.problem}`;
+  $("status").textContent = text;
+  $("status").className = state.meta.problem ? "problem" : "";
+}
+
+async function showStatistics() {
+  const which = whichOf(state.compare), name = state.selected;
+  try {
+    const s = await stats(which, name);
+    if (which !== whichOf(state.compare) || name !== state.selected) return;
+    PANELS.statistics($("stats"), `${name}${which === "main" ? "" : ` (${which})`}, every pixel`, s);
+    $("differing").textContent = s.differing_pixels === null ? ""
+      : `${s.differing_pixels} of ${state.meta.width * state.meta.height} pixels of ${name} differ from the reference`;
+  } catch (e) {
+    $("stats").textContent = e.message;
+  }
+}
+
+/** Every pixel at full resolution as shown now (for `save PNG` and the tests). */
+async function fullImage() {
+  const { width, height } = state.meta;
+  const done = await render({ zoom: 1, x: 0, y: 0 }, width, height, null);
+  return done.img;
+}
+
+/** The values shown at image pixel (x, y) (the relit sum, or the metric), at full resolution. */
+async function valueAt(x, y) {
+  const r = recipe();
+  await needTiles(r, 1, x, y, x, y);
+  const px = new Float64Array(8);
+  gather(r, x, y, 1, px);
+  return Array.from(px.slice(0, r.planes[0].picks.length));
+}
+
+// ---- thumbnails ----
 async function thumbnails() {
-  const nav = document.getElementById("layers");
+  const nav = $("layers");
   nav.textContent = "";
   const groups = { beauty: [], effects: [], lights: [], bounces: [], masks: [], data: [] };
   for (const l of state.meta.layers) {
@@ -288,6 +279,7 @@ async function thumbnails() {
   }
   const { width, height } = state.meta;
   const step = Math.max(1, Math.ceil(width / 180));
+  const figures = [];
   for (const [group, names] of Object.entries(groups)) {
     if (!names.length) continue;
     const h = document.createElement("h3");
@@ -297,53 +289,85 @@ async function thumbnails() {
       const fig = document.createElement("figure");
       fig.dataset.layer = name;
       if (name === state.selected) fig.className = "selected";
-      const c = document.createElement("canvas");
-      c.width = Math.floor(width / step);
-      c.height = Math.floor(height / step);
-      const ctx = c.getContext("2d");
-      // One layer that cannot be had (a 404, a 503 under a tight memory limit) costs its
-      // thumbnail only: the others, and the controls, go on working.
-      try {
-        const img = ctx.createImageData(c.width, c.height);
-        const small = await layer(name, "main", step);
-        let lo = Infinity, hi = -Infinity;
-        for (const x of small) if (x !== 0 && Number.isFinite(x) && x < 1e10) { lo = Math.min(lo, x); hi = Math.max(hi, x); }
-        for (let q = 0; q < c.width * c.height; q++) {
-          const b = layerBytes(info(name), small, q, "clamp", 0, [lo, hi]);
-          img.data.set([b[0], b[1], b[2], 255], q * 4);
-        }
-        ctx.putImageData(img, 0, 0);
-      } catch (e) {
-        fig.title = e.message;
-        fig.classList.add("unavailable");
-      }
+      const c = Object.assign(document.createElement("canvas"), { width: Math.floor(width / step), height: Math.floor(height / step) });
       const cap = document.createElement("figcaption");
       cap.textContent = name;
       fig.append(c, cap);
       fig.onclick = () => select(name);
       nav.append(fig);
+      figures.push([fig, c, name]);
+    }
+  }
+  for (const [fig, c, name] of figures) {
+    // One layer that cannot be had (a 404, a 503 under a tight memory limit) costs its
+    // thumbnail only: the others, and the controls, go on working.
+    try {
+      const l = info(name), small = await wholeLayer(name, "main", step), n = l.channels.length;
+      let lo = Infinity, hi = -Infinity;
+      for (const x of small) if (Number.isFinite(x) && Math.abs(x) < 1e10) { lo = Math.min(lo, x); hi = Math.max(hi, x); }
+      const rgb = ["R", "G", "B"].map((ch) => l.channels.indexOf(ch));
+      const picks = l.role === "colour" ? rgb : l.channels.map((_, i) => i);
+      const paint = painter({ planes: [{ picks }], kind: l.role === "colour" ? "colour" : l.role }, [lo, hi > lo ? hi : lo + 1]);
+      const img = new ImageData(c.width, c.height), px = new Float64Array(8);
+      for (let q = 0; q < c.width * c.height; q++) {
+        for (let k = 0; k < picks.length; k++) px[k] = small[q * n + picks[k]];
+        paint(px, img.data, q * 4);
+        img.data[q * 4 + 3] = 255;
+      }
+      c.getContext("2d").putImageData(img, 0, 0);
+    } catch (e) {
+      fig.title = e.message;
+      fig.classList.add("unavailable");
     }
   }
 }
 
 function select(name) {
+  if (!info(name)) return draw();
   state.selected = name;
-  for (const f of document.querySelectorAll("nav figure")) f.className = f.dataset.layer === name ? "selected" : "";
-  draw();
+  for (const f of document.querySelectorAll("nav figure")) f.classList.toggle("selected", f.dataset.layer === name);
+  return draw();
 }
 
-// ---- probe ----
+// ---- probe and ray trees ----
 async function probe(x, y) {
-  const values = await (await fetch(api(`/api/pixel?x=${x}&y=${y}`))).json();
+  const reply = await getJson(`/api/pixel?x=${x}&y=${y}`);
+  const values = reply.values;
   const sum = [0, 0, 0];
   for (const [name, gain] of relightTerms()) {
     const v = values[name] || [0, 0, 0];
     for (let c = 0; c < 3; c++) sum[c] += v[c] * gain[c];
   }
   const text = [`pixel (${x}, ${y})`, `RGB = ambient + sum light + background = ${sum.map((v) => v.toPrecision(6)).join(", ")}`];
-  for (const [name, v] of Object.entries(values)) text.push(`${name}: ${v.map((e) => e.toPrecision(6)).join(", ")}`);
-  document.getElementById("probe").textContent = text.join("\n");
-  return { pixel: [x, y], values, breakdown: sum };
+  for (const [name, v] of Object.entries(values)) {
+    const ref = reply.reference && reply.reference[name];
+    text.push(`${name}: ${v.map((e) => e.toPrecision(6)).join(", ")}${ref ? `   reference ${ref.map((e) => e.toPrecision(6)).join(", ")}` : ""}`);
+  }
+  $("probe").textContent = text.join("\n");
+  return { pixel: [x, y], values, reference: reply.reference, breakdown: sum };
+}
+
+async function showTrees(x, y) {
+  if (!state.meta.trees) return null;
+  const reply = await getJson(`/api/trees?x=${x}&y=${y}`);
+  state.trees = [x, y];
+  TREES.show($("trees"), x, y, reply);
+  return reply;
+}
+
+async function inspect(x, y) {
+  const { width, height } = state.meta;
+  if (x < 0 || y < 0 || x >= width || y >= height) return;
+  await Promise.all([probe(x, y), showTrees(x, y)]);
+}
+
+/** Centres the view on pixel (x, y) at a zoom its values show at, and inspects it. */
+function goTo(x, y) {
+  const stage = $("stage");
+  state.fitted = false;
+  Object.assign(state.view, { zoom: VALUE_ZOOM, x: x + 0.5 - stage.clientWidth / (2 * VALUE_ZOOM), y: y + 0.5 - stage.clientHeight / (2 * VALUE_ZOOM) });
+  draw();
+  return inspect(x, y);
 }
 
 // ---- relight panel ----
@@ -351,7 +375,7 @@ function hexToGain(hex, scale) {
   return [1, 3, 5].map((i) => (parseInt(hex.slice(i, i + 2), 16) / 255) * scale);
 }
 function relightPanel() {
-  const panel = document.getElementById("relight");
+  const panel = $("relight");
   panel.textContent = "";
   const row = (label, value, onInput, colour) => {
     const div = document.createElement("div");
@@ -381,56 +405,202 @@ function relightPanel() {
   if (info("background")) row("background", 1, (g) => { state.background = g; draw(); });
 }
 
-// ---- start ----
-async function start() {
-  state.meta = await (await fetch(api("/api/image"))).json();
-  if (state.meta.reference) {
-    const ref = await layer("beauty", "reference");
-    // The reference's own channel count (the server refuses one with other layers).
-    const n = ref.length / (state.meta.width * state.meta.height);
-    state.reference = new Float32Array(state.meta.width * state.meta.height * 4);
-    for (let p = 0; p < state.meta.width * state.meta.height; p++)
-      for (let c = 0; c < 3; c++) state.reference[p * 4 + c] = ref[p * n + c];
-    document.getElementById("ab-label").hidden = false;
-  }
-  if (!info("beauty")) state.selected = state.meta.layers[0].name;
+// ---- controls ----
+function setExposure(ev) {
+  const e = Math.min(8, Math.max(-8, ev));
+  $("exposure").value = e;
+  $("exposure-value").textContent = e.toFixed(1);
+  return draw();
+}
+function setCompare(mode) {
+  if (!state.meta.reference) mode = "a";
+  state.compare = mode;
+  $("compare").value = mode;
+  return draw();
+}
+function fit() { state.fitted = true; return draw(); }
+function actualSize() {
+  state.fitted = false;
+  VIEWPORT.actual(state.view, $("stage").clientWidth, $("stage").clientHeight);
+  return draw();
+}
+function zoomAt(cx, cy, factor) {
+  state.fitted = false;
+  VIEWPORT.zoomAt(state.view, cx, cy, factor);
+  return draw();
+}
+function reset() {
+  Object.assign(state, { gains: {}, shadows: {}, ambient: 1, background: 1 });
+  $("tonemap").value = "tick";
   relightPanel();
-  for (const id of ["tonemap", "ab"]) document.getElementById(id).onchange = draw;
-  document.getElementById("exposure").oninput = (e) => {
-    document.getElementById("exposure-value").textContent = Number(e.target.value).toFixed(1);
-    draw();
-  };
-  document.getElementById("canvas").onclick = (e) => {
-    const c = e.target, r = c.getBoundingClientRect();
-    const step = state.step || 1;
-    probe(step * Math.floor(((e.clientX - r.left) * c.width) / r.width), step * Math.floor(((e.clientY - r.top) * c.height) / r.height));
-  };
-  document.getElementById("reset").onclick = () => {
-    Object.assign(state, { gains: {}, shadows: {}, ambient: 1, background: 1 });
-    relightPanel();
-    draw();
-  };
-  document.getElementById("save").onclick = async () => {
-    await draw(true);
-    document.getElementById("canvas").toBlob((blob) => {
+  state.fitted = true;
+  return setExposure(0);
+}
+function stepLayer(by) {
+  const names = [...document.querySelectorAll("nav figure")].map((f) => f.dataset.layer);
+  const i = names.indexOf(state.selected);
+  return select(names[(i + by + names.length) % names.length]);
+}
+function toggleHelp(show = $("help").hidden) { $("help").hidden = !show; }
+
+const KEYS = {
+  "?": () => toggleHelp(),
+  e: () => setExposure(Number($("exposure").value) + 0.5),
+  E: () => setExposure(Number($("exposure").value) - 0.5),
+  "]": () => stepLayer(1), ArrowDown: () => stepLayer(1),
+  "[": () => stepLayer(-1), ArrowUp: () => stepLayer(-1),
+  b: () => setCompare(state.compare === "a" ? "b" : "a"),
+  m: () => {
+    const modes = [...$("compare").options].map((o) => o.value);
+    return setCompare(modes[(modes.indexOf(state.compare) + 1) % modes.length]);
+  },
+  f: fit,
+  1: actualSize,
+  "+": () => zoomAt($("stage").clientWidth / 2, $("stage").clientHeight / 2, 2),
+  "=": () => zoomAt($("stage").clientWidth / 2, $("stage").clientHeight / 2, 2),
+  "-": () => zoomAt($("stage").clientWidth / 2, $("stage").clientHeight / 2, 0.5),
+  r: reset,
+  Escape: () => { toggleHelp(false); $("trees").hidden = true; },
+};
+
+function wireControls() {
+  for (const op of TONEMAP.names) $("tonemap").append(new Option(op, op));
+  for (const map of COLORMAP.names) $("colormap").append(new Option(map, map));
+  const compare = $("compare");
+  compare.append(new Option("the image", "a"), new Option("the reference", "b"));
+  for (const m of state.meta.metrics) compare.append(new Option(m.replaceAll("-", " "), m));
+  $("compare-label").hidden = !state.meta.reference;
+  compare.onchange = () => setCompare(compare.value);
+  $("tonemap").onchange = draw;
+  $("colormap").onchange = draw;
+  $("exposure").oninput = (e) => setExposure(Number(e.target.value));
+  $("fit").onclick = fit;
+  $("actual").onclick = actualSize;
+  $("help-button").onclick = () => toggleHelp();
+  $("help").onclick = () => toggleHelp(false);
+  const table = $("shortcuts");
+  for (const [keys, what] of SHORTCUTS) {
+    const tr = document.createElement("tr");
+    for (const t of [keys, what]) { const td = document.createElement("td"); td.textContent = t; tr.append(td); }
+    table.append(tr);
+  }
+  document.addEventListener("keydown", (e) => {
+    if (e.target.tagName === "INPUT" || e.target.tagName === "SELECT" || e.ctrlKey || e.metaKey || e.altKey) return;
+    const action = KEYS[e.key];
+    if (action) { e.preventDefault(); action(); }
+  });
+  const canvas = $("canvas");
+  const local = (e) => { const r = canvas.getBoundingClientRect(); return [e.clientX - r.left, e.clientY - r.top]; };
+  canvas.addEventListener("wheel", (e) => {
+    e.preventDefault();
+    const [cx, cy] = local(e);
+    zoomAt(cx, cy, Math.pow(2, -e.deltaY / 300));
+  }, { passive: false });
+  let drag = null;
+  canvas.addEventListener("mousedown", (e) => { drag = { at: local(e), moved: 0 }; });
+  window.addEventListener("mousemove", (e) => {
+    const [cx, cy] = local(e);
+    if (drag) {
+      const dx = cx - drag.at[0], dy = cy - drag.at[1];
+      drag.moved += Math.abs(dx) + Math.abs(dy);
+      drag.at = [cx, cy];
+      if (drag.moved > 3) { state.fitted = false; VIEWPORT.pan(state.view, dx, dy); draw(); }
+      return;
+    }
+    if (e.target !== canvas) return;
+    const [x, y] = VIEWPORT.imageAt(state.view, cx, cy), r = recipe(), px = new Float64Array(8);
+    if (x >= 0 && y >= 0 && x < state.meta.width && y < state.meta.height && gather(r, x, y, VIEWPORT.step(state.view), px))
+      showStatus([x, y, Array.from(px.slice(0, r.planes[0].picks.length), (v) => v.toPrecision(5)).join(", ")]);
+  });
+  window.addEventListener("mouseup", (e) => {
+    const click = drag && drag.moved <= 3 && e.target === canvas;
+    drag = null;
+    if (click) { const [x, y] = VIEWPORT.imageAt(state.view, ...local(e)); inspect(x, y); }
+  });
+  window.addEventListener("resize", () => draw());
+  $("reset").onclick = reset;
+  $("save").onclick = async () => {
+    const img = await fullImage();
+    const c = Object.assign(document.createElement("canvas"), { width: img.width, height: img.height });
+    c.getContext("2d").putImageData(img, 0, 0);
+    c.toBlob((blob) => {
       const a = Object.assign(document.createElement("a"), { href: URL.createObjectURL(blob), download: `${state.selected}.png` });
       a.click();
     });
   };
+}
+
+// ---- loading, and --watch ----
+async function load() {
+  state.meta = await getJson("/api/image");
+  state.version = state.meta.version;
+  TILES.size = state.meta.tile;
+  if (!info(state.selected)) state.selected = state.meta.layers[0].name;
+  if (state.meta.check) {
+    $("check-panel").hidden = false;
+    PANELS.check($("check"), await getJson("/api/check"), goTo);
+  }
+}
+
+/** Follows reloads (`--watch`): a new version drops everything fetched and draws again. */
+async function follow() {
+  for (;;) {
+    await new Promise((resolve) => setTimeout(resolve, 500));
+    try {
+      const v = await getJson("/api/version");
+      if (v.version !== state.version) {
+        TILES.clear();
+        state.stats = new Map();
+        await load();
+        await draw();
+        thumbnails();
+        if (state.trees) showTrees(...state.trees).catch(() => {});
+        window.whitted.reloads++;
+      } else if (v.problem !== state.meta.problem) {
+        state.meta.problem = v.problem;
+        showStatus();
+      }
+    } catch (e) {
+      $("status").textContent = `the viewer is not answering: ${e.message}`;
+    }
+  }
+}
+
+async function start() {
+  await load();
   // The controls are wired first: a layer that fails to load below leaves them working.
-  await draw().catch((e) => { document.getElementById("status").textContent = `error: ${e.message}`; });
-  await thumbnails();
+  wireControls();
+  relightPanel();
+  state.fitted = true;
+  await draw().catch((e) => { $("status").textContent = `error: ${e.message}`; });
   window.whitted.ready = true;
+  await thumbnails();
+  window.whitted.thumbnails = true;
+  follow();
 }
 
 // What the browser tests (and a curious user's console) drive: the same functions the
 // controls call.
 window.whitted = {
   ready: false,
+  thumbnails: false,
+  reloads: 0,
   probe,
+  select,
+  showTrees,
+  goTo,
+  valueAt,
+  setCompare,
+  setExposure,
+  zoomAt,
+  fit,
+  view: () => ({ ...state.view }),
+  imageAt: (cx, cy) => VIEWPORT.imageAt(state.view, cx, cy),
+  canvasAt: (x, y) => VIEWPORT.canvasAt(state.view, x, y),
   setGain(light, r, g, b) { state.gains[light] = [r, g, b]; return draw(); },
   setShadows(light, on) { state.shadows[light] = on; return draw(); },
-  setToneMap(op, ev) { document.getElementById("tonemap").value = op; document.getElementById("exposure").value = ev; return draw(); },
-  async pixels() { await draw(true); return Array.from(state.display); },
+  setToneMap(op, ev) { $("tonemap").value = op; return setExposure(ev); },
+  setColormap(map) { $("colormap").value = map; return draw(); },
+  async pixels() { const img = await fullImage(); state.display = img.data; return Array.from(img.data); },
 };
-start().catch((e) => { document.getElementById("status").textContent = `error: ${e.message}`; });
+start().catch((e) => { $("status").textContent = `error: ${e.message}`; });

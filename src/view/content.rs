@@ -1,0 +1,238 @@
+//! What the viewer shows, and where it comes from: the image, its reference, the ray tracer a
+//! click asks (when the scene is known) and, in check mode, the check's report. `Source`
+//! names the files; `Source::load` reads them, once at the start and again whenever
+//! `--watch` sees one change.
+
+use std::path::{Path, PathBuf};
+
+use serde_json::Value;
+
+use crate::check::{check_image, json::case_json, student_png};
+use crate::error::{Error, Result};
+use crate::fingerprint::fingerprint;
+use crate::frame::FrameSpec;
+use crate::input::{self, raster, Attribute, Image};
+use crate::mistakes::Mistakes;
+use crate::scene::{self, Scene};
+
+/// Where the viewer's images come from.
+#[derive(Debug, Clone)]
+pub enum Source {
+    /// `whitted view IMAGE [--reference REF] [-i SCENE]`.
+    View {
+        image: PathBuf,
+        reference: Option<PathBuf>,
+        scene: Option<PathBuf>,
+    },
+    /// `whitted check IMAGE.png [-i SCENE] --view`: the student's image against the reference
+    /// rendered at its size.
+    Check {
+        image: PathBuf,
+        scene: Option<PathBuf>,
+        bounces: u32,
+        tolerance: u8,
+    },
+}
+
+/// The scene and frame a pixel's ray tree is traced in, and the mistakes of the second tree
+/// (the check's top diagnosis; none outside check mode).
+#[derive(Debug, Clone)]
+pub struct Tracer {
+    pub scene: Scene,
+    pub frame: FrameSpec,
+    pub mistakes: Mistakes,
+}
+
+/// Everything one load read.
+pub struct Content {
+    pub main: Image,
+    pub reference: Option<Image>,
+    pub tracer: Option<Tracer>,
+    /// The check's report, as `whitted check --json` prints it.
+    pub check: Option<Value>,
+    /// The names the page shows for the image and the reference.
+    pub labels: [String; 2],
+}
+
+impl Source {
+    /// The files whose change means a reload.
+    pub fn watched(&self) -> Vec<PathBuf> {
+        match self {
+            Source::View {
+                image, reference, ..
+            } => std::iter::once(image).chain(reference).cloned().collect(),
+            Source::Check { image, .. } => vec![image.clone()],
+        }
+    }
+
+    /// Reads (and in check mode checks) the files.
+    pub fn load(&self) -> Result<Content> {
+        match self {
+            Source::View {
+                image,
+                reference,
+                scene,
+            } => load_view(image, reference.as_deref(), scene.as_deref()),
+            Source::Check {
+                image,
+                scene,
+                bounces,
+                tolerance,
+            } => load_check(image, scene.as_deref(), *bounces, *tolerance),
+        }
+    }
+}
+
+fn file_name(path: &Path) -> String {
+    path.display().to_string()
+}
+
+fn load_view(image: &Path, reference: Option<&Path>, scene: Option<&Path>) -> Result<Content> {
+    let main = input::read(image)?;
+    let other = reference.map(input::read).transpose()?;
+    if let (Some(other), Some(path)) = (&other, reference) {
+        comparable(&main, other).map_err(|why| {
+            Error::Usage(format!(
+                "{} cannot be compared with {}: {why}",
+                path.display(),
+                image.display()
+            ))
+        })?;
+    }
+    let tracer = recorded_tracer(&main, image, scene)?;
+    Ok(Content {
+        main,
+        reference: other,
+        tracer,
+        check: None,
+        labels: [
+            file_name(image),
+            reference.map_or_else(String::new, file_name),
+        ],
+    })
+}
+
+fn load_check(image: &Path, scene: Option<&Path>, bounces: u32, tolerance: u8) -> Result<Content> {
+    let input = scene::load_input(scene)?;
+    let student = student_png::read(image)?;
+    let case = check_image(&input.scene, &input.name, bounces, tolerance, student)?;
+    let (width, height) = (case.student.width, case.student.height);
+    let as_image = |bytes: &[u8]| raster::rgb8(width as usize, height as usize, bytes);
+    let mistakes = case
+        .diagnosis
+        .first()
+        .map_or(Mistakes::NONE, |d| d.mistakes);
+    let mut report = case_json(&case);
+    // What each named mistake is, for the panel (the JSON of `check` names them by id).
+    let named: serde_json::Map<String, Value> = case
+        .diagnosis
+        .iter()
+        .flat_map(|d| d.mistakes.bugs())
+        .map(|b| (b.id().to_string(), Value::from(b.description())))
+        .collect();
+    report["descriptions"] = Value::Object(named);
+    Ok(Content {
+        main: as_image(&case.student.bytes),
+        reference: Some(as_image(&case.reference.bytes)),
+        check: Some(report),
+        tracer: Some(Tracer {
+            scene: input.scene,
+            frame: tick_frame(width, height, bounces, true),
+            mistakes,
+        }),
+        labels: [file_name(image), format!("reference ({})", input.name)],
+    })
+}
+
+/// The frame of the course's render at this size: one sample at each pixel's centre.
+fn tick_frame(width: u32, height: u32, bounces: u32, shadows: bool) -> FrameSpec {
+    FrameSpec {
+        width,
+        height,
+        bounces,
+        shadows,
+        aovs: "beauty".into(),
+        ..FrameSpec::default()
+    }
+}
+
+fn text_attribute<'a>(image: &'a Image, name: &str) -> Option<&'a str> {
+    image.attributes.iter().find_map(|(n, a)| match a {
+        Attribute::Text(t) if n == name => Some(t.as_str()),
+        _ => None,
+    })
+}
+
+/// The tracer of a whitted EXR whose recorded scene (`render/scene`, a fingerprint of the
+/// scene file's bytes) is `scene`, or the embedded tick2 scene when none is given and it is
+/// that one. A scene that is not the recorded one is refused: its trees would explain another
+/// image. Files without the record (PNGs, other programs' EXRs) have no tracer unless a scene
+/// is given, and then only as a course render of that size.
+fn recorded_tracer(image: &Image, path: &Path, scene: Option<&Path>) -> Result<Option<Tracer>> {
+    let recorded = text_attribute(image, "render/scene");
+    let input = match (scene, recorded) {
+        (Some(scene), _) => scene::load_input(Some(scene))?,
+        (None, Some(print)) if print == fingerprint(&[scene::EMBEDDED_TICK2.as_bytes()]) => {
+            scene::load_input(None)?
+        }
+        (None, _) => return Ok(None),
+    };
+    if let Some(print) = recorded {
+        if print != fingerprint(&[&input.bytes]) {
+            return Err(Error::Usage(format!(
+                "{} was not rendered from {}: its recorded scene fingerprint is {print}",
+                path.display(),
+                input.name
+            )));
+        }
+    }
+    let bounces = image
+        .attributes
+        .iter()
+        .find_map(|(n, a)| match a {
+            Attribute::Integer(b) if n == "render/bounces" => u32::try_from(*b).ok(),
+            _ => None,
+        })
+        .unwrap_or(FrameSpec::default().bounces);
+    // The recorded command (`comments`) is the only place the shadow switch is written down.
+    let shadows = !text_attribute(image, "comments")
+        .is_some_and(|c| c.split_whitespace().any(|w| w == "--no-shadows"));
+    let window = image.display_window;
+    let side = |axis: usize| {
+        u32::try_from(window.max[axis] - window.min[axis] + 1)
+            .map_err(|_| Error::Usage(format!("{}: no render has that size", path.display())))
+    };
+    let frame = tick_frame(
+        side(0)?,
+        side(1)?,
+        bounces,
+        shadows,
+    );
+    crate::frame::Frame::new(&input.scene, &frame)?;
+    Ok(Some(Tracer {
+        scene: input.scene,
+        frame,
+        mistakes: Mistakes::NONE,
+    }))
+}
+
+/// Whether a reference can stand beside the image for A/B: the same size and the same layers.
+fn comparable(main: &Image, reference: &Image) -> std::result::Result<(), String> {
+    if (main.width, main.height) != (reference.width, reference.height) {
+        return Err(format!(
+            "it is {}x{}, the image {}x{}",
+            reference.width, reference.height, main.width, main.height
+        ));
+    }
+    let names =
+        |image: &Image| -> Vec<String> { image.layers().into_iter().map(|l| l.name).collect() };
+    let (ours, theirs) = (names(main), names(reference));
+    if ours != theirs {
+        let missing: Vec<&String> = ours.iter().filter(|n| !theirs.contains(n)).collect();
+        let extra: Vec<&String> = theirs.iter().filter(|n| !ours.contains(n)).collect();
+        return Err(format!(
+            "its layers differ (missing: {missing:?}; not in the image: {extra:?})"
+        ));
+    }
+    Ok(())
+}
