@@ -23,3 +23,4 @@ mod scenes;
 mod tonemap;
 mod view;
 mod view_hostile;
+mod view_page;

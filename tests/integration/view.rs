@@ -26,8 +26,22 @@ impl Viewer {
     }
 
     pub fn start_with(dir: &Path, args: &[&str]) -> Viewer {
+        let mut all = vec!["view"];
+        all.extend_from_slice(args);
+        Viewer::run(dir, &all)
+    }
+
+    /// `whitted check ARGS --view --no-browser`.
+    pub fn check(dir: &Path, args: &[&str]) -> Viewer {
+        let mut all = vec!["check"];
+        all.extend_from_slice(args);
+        all.push("--view");
+        Viewer::run(dir, &all)
+    }
+
+    /// Runs `whitted ARGS --no-browser` and reads the URL, which must be the first line.
+    fn run(dir: &Path, args: &[&str]) -> Viewer {
         let mut child = Command::new(env!("CARGO_BIN_EXE_whitted"))
-            .arg("view")
             .args(args)
             .arg("--no-browser")
             .current_dir(dir)
@@ -58,6 +72,30 @@ impl Viewer {
         self.child.wait().expect("wait").code()
     }
 
+    pub fn url(&self) -> &str {
+        &self.url
+    }
+
+    /// GET `path` (with the token) from the viewer: (status, body).
+    pub fn get(&self, path: &str) -> (u16, Vec<u8>) {
+        let sep = if path.contains('?') { '&' } else { '?' };
+        let host = format!("127.0.0.1:{}", self.port);
+        http(
+            self.port,
+            "GET",
+            &format!("{path}{sep}token={}", self.token()),
+            &host,
+            None,
+        )
+    }
+
+    /// GET `path` as JSON, asserting 200.
+    pub fn json(&self, path: &str) -> Value {
+        let (status, body) = self.get(path);
+        assert_eq!(status, 200, "{path}: {}", String::from_utf8_lossy(&body));
+        serde_json::from_slice(&body).expect("json")
+    }
+
     pub fn token(&self) -> &str {
         self.url.rsplit_once("token=").expect("a token").1
     }
@@ -78,7 +116,7 @@ impl Drop for Viewer {
 }
 
 /// One HTTP/1.1 exchange: (status, body).
-fn http(port: u16, method: &str, path: &str, host: &str, body: Option<&Value>) -> (u16, Vec<u8>) {
+pub fn http(port: u16, method: &str, path: &str, host: &str, body: Option<&Value>) -> (u16, Vec<u8>) {
     let mut stream = TcpStream::connect(("127.0.0.1", port)).expect("connect");
     stream
         .set_read_timeout(Some(Duration::from_secs(60)))
@@ -135,7 +173,7 @@ fn http(port: u16, method: &str, path: &str, host: &str, body: Option<&Value>) -
     (status, body)
 }
 
-fn small_render(dir: &Path) -> PathBuf {
+pub fn small_render(dir: &Path) -> PathBuf {
     render_exr(
         dir,
         &scene("tick2.xml"),
@@ -231,14 +269,14 @@ fn the_viewer_serves_only_its_images_to_loopback_with_the_token() {
 }
 
 /// A WebDriver session on a headless Chromium, ended (and its driver stopped) when dropped.
-struct Browser {
+pub struct Browser {
     driver: Child,
     port: u16,
     session: String,
 }
 
 impl Browser {
-    fn start() -> Browser {
+    pub fn start() -> Browser {
         let port = std::net::TcpListener::bind("127.0.0.1:0")
             .and_then(|l| l.local_addr())
             .map(|a| a.port())
@@ -278,7 +316,7 @@ impl Browser {
         browser
     }
 
-    fn call(&self, method: &str, path: &str, body: Option<Value>) -> Value {
+    pub fn call(&self, method: &str, path: &str, body: Option<Value>) -> Value {
         let host = format!("127.0.0.1:{}", self.port);
         let (status, bytes) = http(self.port, method, path, &host, body.as_ref());
         let reply: Value = serde_json::from_slice(&bytes).expect("WebDriver JSON");
@@ -286,16 +324,59 @@ impl Browser {
         reply["value"].clone()
     }
 
-    fn session(&self, method: &str, path: &str, body: Option<Value>) -> Value {
+    pub fn session(&self, method: &str, path: &str, body: Option<Value>) -> Value {
         self.call(method, &format!("/session/{}{path}", self.session), body)
     }
 
-    fn script(&self, script: &str, args: Value) -> Value {
+    pub fn script(&self, script: &str, args: Value) -> Value {
         self.session(
             "POST",
             "/execute/sync",
             Some(json!({"script": script, "args": args})),
         )
+    }
+
+    /// Opens `url` and waits until the page says it is ready.
+    pub fn open(&self, url: &str) {
+        self.session("POST", "/url", Some(json!({"url": url})));
+        self.wait_for("!!(window.whitted && window.whitted.ready)", "the page is ready");
+    }
+
+    /// Waits (up to a minute) until the JavaScript expression `condition` is true.
+    pub fn wait_for(&self, condition: &str, what: &str) {
+        let started = Instant::now();
+        while self.script(&format!("return {condition}"), json!([])) != json!(true) {
+            assert!(
+                started.elapsed() < Duration::from_secs(60),
+                "never true: {what} ({condition})"
+            );
+            std::thread::sleep(Duration::from_millis(100));
+        }
+    }
+
+    /// The page's canvas, as display bytes, RGBA row by row.
+    pub fn canvas_pixel(&self, x: f64, y: f64) -> [u8; 3] {
+        let v = self.script(
+            "const c = document.getElementById('canvas').getContext('2d'); \
+             return Array.from(c.getImageData(arguments[0], arguments[1], 1, 1).data)",
+            json!([x, y]),
+        );
+        let byte = |i: usize| v[i].as_u64().expect("a byte") as u8;
+        [byte(0), byte(1), byte(2)]
+    }
+
+    /// Saves a screenshot as `name` under target/, and under $WHITTED_SCREENSHOTS when set
+    /// (tools/screenshots sets it to docs/images, for the README).
+    pub fn screenshot(&self, name: &str) {
+        let shot = self.session("GET", "/screenshot", None);
+        let bytes = base64_decode(shot.as_str().expect("base64"));
+        assert!(bytes.starts_with(b"\x89PNG"), "a PNG screenshot");
+        let mut dirs = vec![root().join("target")];
+        dirs.extend(std::env::var_os("WHITTED_SCREENSHOTS").map(PathBuf::from));
+        for dir in dirs {
+            let out = dir.join(name);
+            std::fs::write(&out, &bytes).unwrap_or_else(|e| panic!("{}: {e}", out.display()));
+        }
     }
 }
 
@@ -316,7 +397,7 @@ impl Drop for Browser {
     }
 }
 
-fn base64_decode(text: &str) -> Vec<u8> {
+pub fn base64_decode(text: &str) -> Vec<u8> {
     let value = |c: u8| match c {
         b'A'..=b'Z' => c - b'A',
         b'a'..=b'z' => c - b'a' + 26,
@@ -346,19 +427,7 @@ fn the_page_probes_and_relights_like_the_command_line() {
     let exr = small_render(d);
     let viewer = Viewer::start(d, &exr);
     let browser = Browser::start();
-    browser.session("POST", "/url", Some(json!({"url": viewer.url})));
-    let started = Instant::now();
-    while browser.script(
-        "return !!(window.whitted && window.whitted.ready)",
-        json!([]),
-    ) != json!(true)
-    {
-        assert!(
-            started.elapsed() < Duration::from_secs(60),
-            "the page never became ready"
-        );
-        std::thread::sleep(Duration::from_millis(200));
-    }
+    browser.open(&viewer.url);
 
     // The probe shows the EXR's own values.
     let read = read_exr(&exr);
@@ -403,10 +472,7 @@ fn the_page_probes_and_relights_like_the_command_line() {
     assert!(worst <= 1, "the page differs from relight by {worst} LSB");
     assert!(pixels.iter().any(|&b| b > 0), "a blank canvas");
 
-    // A screenshot of the page (the README's picture is made this way).
-    let shot = browser.session("GET", "/screenshot", None);
-    let bytes = base64_decode(shot.as_str().expect("base64"));
-    assert!(bytes.starts_with(b"\x89PNG"), "a PNG screenshot");
-    let out = root().join("target/viewer-screenshot.png");
-    std::fs::write(&out, &bytes).unwrap_or_else(|e| panic!("{}: {e}", out.display()));
+    // The README's picture of the relit page is made here.
+    browser.wait_for("window.whitted.thumbnails", "the thumbnails are drawn");
+    browser.screenshot("viewer-relight.png");
 }

@@ -362,11 +362,11 @@ async function inspect(x, y) {
 }
 
 /** Centres the view on pixel (x, y) at a zoom its values show at, and inspects it. */
-function goTo(x, y) {
+async function goTo(x, y) {
   const stage = $("stage");
   state.fitted = false;
   Object.assign(state.view, { zoom: VALUE_ZOOM, x: x + 0.5 - stage.clientWidth / (2 * VALUE_ZOOM), y: y + 0.5 - stage.clientHeight / (2 * VALUE_ZOOM) });
-  draw();
+  await draw();
   return inspect(x, y);
 }
 
