@@ -474,5 +474,5 @@ fn the_page_probes_and_relights_like_the_command_line() {
 
     // The README's picture of the relit page is made here.
     browser.wait_for("window.whitted.thumbnails", "the thumbnails are drawn");
-    browser.screenshot("viewer-relight.png");
+    browser.screenshot("viewer.png");
 }

@@ -202,7 +202,7 @@ async function draw() {
   if (state.view.zoom >= VALUE_ZOOM) writeValues(ctx, done.r, cw, ch);
   const scaled = done.r.kind === "metric" || done.r.kind === "false";
   PANELS.scaleBar($("scale"), scaled ? done.r.map : null, done.range[0], done.range[1],
-    isMetric(state.compare) ? `${state.compare} of ${state.selected} (channel mean)` : state.selected);
+    isMetric(state.compare) ? `${state.compare.replaceAll("-", " ")} of ${state.selected} (mean of the channels)` : state.selected);
   showStatus();
   showStatistics();
 }
@@ -228,8 +228,12 @@ function writeValues(ctx, r, cw, ch) {
 
 function showStatus(hover) {
   const op = $("tonemap").value, ev = Number($("exposure").value);
-  const shown = state.compare === "a" ? state.meta.labels[0] : state.compare === "b" ? state.meta.labels[1] : `${state.compare}`;
-  let text = `${state.selected}${state.selected === "beauty" && relighting() && state.compare === "a" ? " (relit)" : ""} of ${shown}, ${op}, EV ${ev.toFixed(1)}, zoom ${state.view.zoom >= 1 ? state.view.zoom.toFixed(2) : `1/${(1 / state.view.zoom).toFixed(2)}`}`;
+  const [image, reference] = state.meta.labels;
+  const relit = state.selected === "beauty" && relighting() && state.compare === "a" ? " (relit)" : "";
+  const shown = state.compare === "a" ? `${state.selected}${relit} of ${image}`
+    : state.compare === "b" ? `${state.selected} of ${reference}`
+    : `${state.compare.replaceAll("-", " ")} of ${state.selected}: ${image} against ${reference}`;
+  let text = `${shown}, ${op}, EV ${ev.toFixed(1)}, zoom ${state.view.zoom >= 1 ? state.view.zoom.toFixed(2) : `1/${(1 / state.view.zoom).toFixed(2)}`}`;
   if (hover) text += `   (${hover[0]}, ${hover[1]}): ${hover[2]}`;
   if (state.meta.problem) text += `\nthe last reload failed: ${state.meta.problem}`;
   $("status").textContent = text;
@@ -361,13 +365,14 @@ async function inspect(x, y) {
   await Promise.all([probe(x, y), showTrees(x, y)]);
 }
 
-/** Centres the view on pixel (x, y) at a zoom its values show at, and inspects it. */
+/** Inspects pixel (x, y) and centres the view on it at a zoom its values show at (after the
+ * ray trees have opened below the image, so it is centred in what is left). */
 async function goTo(x, y) {
+  await inspect(x, y);
   const stage = $("stage");
   state.fitted = false;
   Object.assign(state.view, { zoom: VALUE_ZOOM, x: x + 0.5 - stage.clientWidth / (2 * VALUE_ZOOM), y: y + 0.5 - stage.clientHeight / (2 * VALUE_ZOOM) });
-  await draw();
-  return inspect(x, y);
+  return draw();
 }
 
 // ---- relight panel ----
@@ -470,6 +475,7 @@ function wireControls() {
   compare.append(new Option("the image", "a"), new Option("the reference", "b"));
   for (const m of state.meta.metrics) compare.append(new Option(m.replaceAll("-", " "), m));
   $("compare-label").hidden = !state.meta.reference;
+  compare.value = state.compare;
   compare.onchange = () => setCompare(compare.value);
   $("tonemap").onchange = draw;
   $("colormap").onchange = draw;
@@ -517,7 +523,12 @@ function wireControls() {
     drag = null;
     if (click) { const [x, y] = VIEWPORT.imageAt(state.view, ...local(e)); inspect(x, y); }
   });
-  window.addEventListener("resize", () => draw());
+  // The stage changes size with the window, and when the ray trees open below it.
+  let size = "";
+  new ResizeObserver(() => {
+    const now = `${$("stage").clientWidth}x${$("stage").clientHeight}`;
+    if (now !== size) { size = now; if (state.meta) draw(); }
+  }).observe($("stage"));
   $("reset").onclick = reset;
   $("save").onclick = async () => {
     const img = await fullImage();
@@ -568,6 +579,8 @@ async function follow() {
 
 async function start() {
   await load();
+  // A check opens on where the image differs, in false colour.
+  if (state.meta.check) state.compare = "absolute-error";
   // The controls are wired first: a layer that fails to load below leaves them working.
   wireControls();
   relightPanel();
