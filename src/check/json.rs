@@ -60,4 +60,3 @@ pub fn case_json(case: &CaseReport) -> Value {
     }
     object
 }
-

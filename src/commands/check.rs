@@ -5,9 +5,9 @@
 use serde_json::{json, Value};
 
 use crate::check::diagnose::Diagnosis;
+use crate::check::json::{case_json, diagnosis_json, name};
 use crate::check::program::{run_suite, CaseOutcome, Status, SuiteRun, HEIGHT, WIDTH};
 use crate::check::report::{contact_sheet, heat_map, ReportRow};
-use crate::check::json::{case_json, diagnosis_json, name};
 use crate::check::{check_image, student_png, CaseReport};
 use crate::cli::CheckArgs;
 use crate::error::Result;

@@ -77,8 +77,11 @@ pub fn respond(now: &Snapshot, request: &ApiRequest) -> Reply {
         ApiRequest::Stats { which, name } => match planes(content, *which, name) {
             Ok(planes) => {
                 let mut s = stats::statistics(&planes);
-                s["differing_pixels"] =
-                    json!(differing_pixels(&content.main, content.reference.as_ref(), name));
+                s["differing_pixels"] = json!(differing_pixels(
+                    &content.main,
+                    content.reference.as_ref(),
+                    name
+                ));
                 json_reply(&s)
             }
             Err(refusal) => refusal,
@@ -312,7 +315,10 @@ mod tests {
         assert_eq!(status, 200);
         let s: serde_json::Value = serde_json::from_slice(&body).expect("json");
         assert_eq!(s["differing_pixels"], 600);
-        assert_eq!(s["channels"][0]["max"], f64::from(Metric::Error.apply(0.2, 0.4)));
+        assert_eq!(
+            s["channels"][0]["max"],
+            f64::from(Metric::Error.apply(0.2, 0.4))
+        );
         assert_eq!(respond(&now, &ApiRequest::Trees { x: 0, y: 0 }).0, 404);
         assert_eq!(respond(&now, &ApiRequest::Check).0, 404);
         let missing = ApiRequest::Stats {

@@ -202,12 +202,7 @@ fn recorded_tracer(image: &Image, path: &Path, scene: Option<&Path>) -> Result<O
         u32::try_from(window.max[axis] - window.min[axis] + 1)
             .map_err(|_| Error::Usage(format!("{}: no render has that size", path.display())))
     };
-    let frame = tick_frame(
-        side(0)?,
-        side(1)?,
-        bounces,
-        shadows,
-    );
+    let frame = tick_frame(side(0)?, side(1)?, bounces, shadows);
     crate::frame::Frame::new(&input.scene, &frame)?;
     Ok(Some(Tracer {
         scene: input.scene,

@@ -21,8 +21,7 @@ pub fn statistics(planes: &Planes) -> Value {
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     let mut channels = Vec::new();
     for c in 0..planes.count() {
-        let (mut min, mut max, mut sum, mut finite) =
-            (f64::INFINITY, f64::NEG_INFINITY, 0.0, 0u64);
+        let (mut min, mut max, mut sum, mut finite) = (f64::INFINITY, f64::NEG_INFINITY, 0.0, 0u64);
         let (mut nan, mut inf) = (0u64, 0u64);
         for p in 0..pixels {
             let v = f64::from(planes.value(c, p));

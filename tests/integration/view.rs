@@ -116,7 +116,13 @@ impl Drop for Viewer {
 }
 
 /// One HTTP/1.1 exchange: (status, body).
-pub fn http(port: u16, method: &str, path: &str, host: &str, body: Option<&Value>) -> (u16, Vec<u8>) {
+pub fn http(
+    port: u16,
+    method: &str,
+    path: &str,
+    host: &str,
+    body: Option<&Value>,
+) -> (u16, Vec<u8>) {
     let mut stream = TcpStream::connect(("127.0.0.1", port)).expect("connect");
     stream
         .set_read_timeout(Some(Duration::from_secs(60)))
@@ -339,7 +345,10 @@ impl Browser {
     /// Opens `url` and waits until the page says it is ready.
     pub fn open(&self, url: &str) {
         self.session("POST", "/url", Some(json!({"url": url})));
-        self.wait_for("!!(window.whitted && window.whitted.ready)", "the page is ready");
+        self.wait_for(
+            "!!(window.whitted && window.whitted.ready)",
+            "the page is ready",
+        );
     }
 
     /// Waits (up to a minute) until the JavaScript expression `condition` is true.

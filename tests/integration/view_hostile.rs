@@ -242,3 +242,73 @@ fn a_student_png_opens_against_a_reference_png() {
     assert_eq!(refused.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&refused.stderr).contains("cannot be compared"));
 }
+
+#[test]
+fn the_new_routes_need_the_token_check_their_parameters_and_never_kill_the_viewer() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let exr = crate::view::small_render(d);
+    let mut viewer = Viewer::start_with(
+        d,
+        &[
+            exr.to_str().expect("utf-8"),
+            "--reference",
+            exr.to_str().expect("utf-8"),
+            "--watch",
+        ],
+    );
+    let host = format!("Host: 127.0.0.1:{}\r\n", viewer.port);
+    let get = |target: &str| {
+        let request = format!("GET {target} HTTP/1.1\r\n{host}Connection: close\r\n\r\n");
+        raw(&viewer, request.as_bytes())
+    };
+    let routes = [
+        "/api/version",
+        "/api/check",
+        "/api/stats?name=beauty",
+        "/api/trees?x=1&y=1",
+        "/api/layer?name=beauty&which=squared-error&tx=0&ty=0",
+    ];
+    for route in routes {
+        assert_eq!(get(route), Some(403), "{route} without the token");
+        let sep = if route.contains('?') { '&' } else { '?' };
+        let wrong = format!(
+            "GET {route}{sep}token={} HTTP/1.1\r\nHost: evil.example:{}\r\n\r\n",
+            viewer.token(),
+            viewer.port
+        );
+        assert_eq!(
+            raw(&viewer, wrong.as_bytes()),
+            Some(403),
+            "{route}: rebinding"
+        );
+    }
+    let token = viewer.token().to_string();
+    for (target, status) in [
+        ("/api/version", 200),
+        ("/api/check", 404),
+        ("/api/stats?name=beauty&which=relative-squared-error", 200),
+        ("/api/stats?name=nothing", 404),
+        ("/api/stats?name=beauty&which=%00", 400),
+        ("/api/stats", 400),
+        // tick2.xml is the embedded scene the EXR records: its trees are there.
+        ("/api/trees?x=1&y=1", 200),
+        ("/api/trees?x=160&y=0", 404),
+        ("/api/trees?x=99999999999999999999&y=1", 400),
+        ("/api/layer?name=beauty&which=error&tx=0&ty=0", 200),
+        ("/api/layer?name=beauty&tx=18446744073709551615&ty=0", 404),
+        ("/api/layer?name=beauty&tx=0&ty=0&step=65536", 200),
+        ("/api/layer?name=beauty&tx=1&ty=0&step=65536", 404),
+        ("/api/layer?name=beauty&tx=0", 400),
+        ("/api/pixel?x=159&y=119", 200),
+        ("/api/pixel?x=160&y=0", 404),
+    ] {
+        let sep = if target.contains('?') { '&' } else { '?' };
+        assert_eq!(
+            get(&format!("{target}{sep}token={token}")),
+            Some(status),
+            "{target}"
+        );
+    }
+    assert!(viewer.alive() && answers(&viewer), "after the new routes");
+}

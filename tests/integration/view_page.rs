@@ -19,6 +19,9 @@ fn bytes(v: &Value) -> Vec<u8> {
         .collect()
 }
 
+/// An error metric of image value a against reference value b, as docs/view.md defines it.
+type Metric = fn(f64, f64) -> f64;
+
 fn number(v: &Value) -> f64 {
     v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
 }
@@ -63,7 +66,10 @@ fn zooming_keeps_the_pixel_under_the_cursor_and_shows_each_pixels_values() {
         number(&before["y"]),
     );
     let under = |b: &Browser, cx: f64, cy: f64| {
-        b.script("return window.whitted.imageAt(arguments[0], arguments[1])", json!([cx, cy]))
+        b.script(
+            "return window.whitted.imageAt(arguments[0], arguments[1])",
+            json!([cx, cy]),
+        )
     };
     let (cx, cy) = (300.0, 200.0);
     let pixel_before = under(&browser, cx, cy);
@@ -86,7 +92,8 @@ fn zooming_keeps_the_pixel_under_the_cursor_and_shows_each_pixels_values() {
         let expected = json!([(x1 + px / z1).floor(), (y1 + py / z1).floor()]);
         let got = under(&browser, px, py);
         assert_eq!(
-            got.as_array().map(|a| a.iter().map(number).collect::<Vec<_>>()),
+            got.as_array()
+                .map(|a| a.iter().map(number).collect::<Vec<_>>()),
             expected.as_array().map(|a| a.iter().map(number).collect()),
             "the pixel under ({px}, {py})"
         );
@@ -142,7 +149,7 @@ fn each_error_metric_at_a_pixel_is_the_number_and_the_differing_pixels_are_count
     let viewer = Viewer::start_with(d, &[s(&exr), "--reference", s(&other)]);
     let browser = Browser::start();
     browser.open(viewer.url());
-    let metrics: [(&str, fn(f64, f64) -> f64); 5] = [
+    let metrics: [(&str, Metric); 5] = [
         ("error", |a, b| a - b),
         ("absolute-error", |a, b| (a - b).abs()),
         ("squared-error", |a, b| (a - b) * (a - b)),
@@ -161,7 +168,11 @@ fn each_error_metric_at_a_pixel_is_the_number_and_the_differing_pixels_are_count
         );
         for (i, c) in ["R", "G", "B"].iter().enumerate() {
             let expected = metric(f64::from(a.at(c, x, y)), f64::from(b.at(c, x, y))) as f32;
-            assert_eq!(number(&shown[i]), f64::from(expected), "{name} {c} at ({x}, {y})");
+            assert_eq!(
+                number(&shown[i]),
+                f64::from(expected),
+                "{name} {c} at ({x}, {y})"
+            );
         }
     }
     browser.wait_for(
@@ -182,10 +193,7 @@ fn each_error_metric_at_a_pixel_is_the_number_and_the_differing_pixels_are_count
         "return window.whitted.setCompare('relative-absolute-error')",
         json!([]),
     );
-    browser.wait_for(
-        "!document.getElementById('scale').hidden",
-        "the scale bar",
-    );
+    browser.wait_for("!document.getElementById('scale').hidden", "the scale bar");
     browser.screenshot("viewer_error.png");
 }
 
@@ -231,7 +239,10 @@ fn a_png_opens_with_its_own_bytes_and_the_tone_maps_are_the_clis() {
             .map(|(a, b)| a.abs_diff(*b))
             .max()
             .expect("bytes");
-        assert!(worst <= 1, "{op}: the page differs from the CLI by {worst} LSB");
+        assert!(
+            worst <= 1,
+            "{op}: the page differs from the CLI by {worst} LSB"
+        );
     }
 }
 
@@ -338,7 +349,10 @@ fn watch_reloads_a_rewritten_image_and_rechecks_it() {
     // A truncated file is reported, and the last good check stays.
     std::fs::write(&checked, b"\x89PNG\r\n\x1a\n").expect("truncate");
     while viewer.json("/api/version")["problem"].is_null() {
-        assert!(started.elapsed() < Duration::from_secs(60), "no problem reported");
+        assert!(
+            started.elapsed() < Duration::from_secs(60),
+            "no problem reported"
+        );
         std::thread::sleep(Duration::from_millis(100));
     }
     assert_eq!(viewer.json("/api/check")["verdict"], "identical");
@@ -374,9 +388,19 @@ fn an_exr_of_a_known_scene_shows_its_ray_tree_and_another_scene_is_refused() {
     // Another scene than the recorded one would explain another image.
     let refused = whitted(
         d,
-        &["view", s(&exr), "-i", s(&scene("cast_shadow.xml")), "--no-browser"],
+        &[
+            "view",
+            s(&exr),
+            "-i",
+            s(&scene("cast_shadow.xml")),
+            "--no-browser",
+        ],
     );
     assert_eq!(refused.status.code(), Some(2), "{}", stderr(&refused));
-    assert!(stderr(&refused).contains("was not rendered from"), "{}", stderr(&refused));
+    assert!(
+        stderr(&refused).contains("was not rendered from"),
+        "{}",
+        stderr(&refused)
+    );
     assert!(refused.stdout.is_empty());
 }
