@@ -295,7 +295,7 @@ mod tests {
         assert_eq!(layer(Which::Main, 2, Some((0, 0))).2.len(), 150 * 3 * 4);
         assert_eq!(layer(Which::Main, 2, Some((1, 0))).0, 404);
         assert_eq!(layer(Which::Main, 1, Some((usize::MAX, 0))).0, 404);
-        let squared = floats(&layer(Which::Metric(Metric::SquaredError), 1, Some((1, 1))).2);
+        let squared = floats(&layer(Which::Metric(Metric::SquaredError), 1, Some((1, 0))).2);
         let (a, b) = (51.0_f32 / 255.0, 102.0_f32 / 255.0);
         assert_eq!(squared[0], Metric::SquaredError.apply(a, b));
         let reference = floats(&layer(Which::Reference, 1, None).2);
