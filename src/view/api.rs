@@ -134,7 +134,8 @@ fn trees(content: &Content, x: usize, y: usize) -> Reply {
             "no scene to trace: give the scene with -i, or view a whitted EXR of the embedded scene",
         );
     };
-    let (Ok(x), Ok(y)) = (u32::try_from(x), u32::try_from(y)) else {
+    let at = |v: usize, origin: u32| u32::try_from(v).ok()?.checked_add(origin);
+    let (Some(x), Some(y)) = (at(x, tracer.origin[0]), at(y, tracer.origin[1])) else {
         return text(404, "no such pixel");
     };
     if x >= tracer.frame.width || y >= tracer.frame.height {

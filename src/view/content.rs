@@ -41,6 +41,9 @@ pub struct Tracer {
     pub scene: Scene,
     pub frame: FrameSpec,
     pub mistakes: Mistakes,
+    /// Where the image's pixel (0, 0) is in the frame: a farm node's region EXR holds a
+    /// part of it.
+    pub origin: [u32; 2],
 }
 
 /// Everything one load read.
@@ -89,16 +92,16 @@ fn file_name(path: &Path) -> String {
 
 fn load_view(image: &Path, reference: Option<&Path>, scene: Option<&Path>) -> Result<Content> {
     let main = input::read(image)?;
-    let other = reference.map(input::read).transpose()?;
-    if let (Some(other), Some(path)) = (&other, reference) {
-        comparable(&main, other).map_err(|why| {
+    let other = match reference {
+        None => None,
+        Some(path) => Some(conform(&main, input::read(path)?).map_err(|why| {
             Error::Usage(format!(
                 "{} cannot be compared with {}: {why}",
                 path.display(),
                 image.display()
             ))
-        })?;
-    }
+        })?),
+    };
     let tracer = recorded_tracer(&main, image, scene)?;
     Ok(Content {
         main,
@@ -139,6 +142,7 @@ fn load_check(image: &Path, scene: Option<&Path>, bounces: u32, tolerance: u8) -
             scene: input.scene,
             frame: tick_frame(width, height, bounces, true),
             mistakes,
+            origin: [0, 0],
         }),
         labels: [file_name(image), format!("reference ({})", input.name)],
     })
@@ -204,15 +208,26 @@ fn recorded_tracer(image: &Image, path: &Path, scene: Option<&Path>) -> Result<O
     };
     let frame = tick_frame(side(0)?, side(1)?, bounces, shadows);
     crate::frame::Frame::new(&input.scene, &frame)?;
+    let data = image.data_window;
+    let offset = |axis: usize| u32::try_from(data.min[axis] - window.min[axis]).ok();
+    let (Some(x), Some(y)) = (offset(0), offset(1)) else {
+        // Pixels outside the frame: no tree to show for them.
+        return Ok(None);
+    };
     Ok(Some(Tracer {
         scene: input.scene,
         frame,
         mistakes: Mistakes::NONE,
+        origin: [x, y],
     }))
 }
 
-/// Whether a reference can stand beside the image for A/B: the same size and the same layers.
-fn comparable(main: &Image, reference: &Image) -> std::result::Result<(), String> {
+/// The reference with the image's channels in the image's order, so that every layer the page
+/// asks for has one layout in both (the page reads the reference with the image's channel
+/// list). It must have the same size and the same layers; an alpha channel it lacks is 1 (a
+/// PNG without alpha is opaque), any other missing channel is refused, and its extra channels
+/// are not shown.
+fn conform(main: &Image, mut reference: Image) -> std::result::Result<Image, String> {
     if (main.width, main.height) != (reference.width, reference.height) {
         return Err(format!(
             "it is {}x{}, the image {}x{}",
@@ -221,7 +236,7 @@ fn comparable(main: &Image, reference: &Image) -> std::result::Result<(), String
     }
     let names =
         |image: &Image| -> Vec<String> { image.layers().into_iter().map(|l| l.name).collect() };
-    let (ours, theirs) = (names(main), names(reference));
+    let (ours, theirs) = (names(main), names(&reference));
     if ours != theirs {
         let missing: Vec<&String> = ours.iter().filter(|n| !theirs.contains(n)).collect();
         let extra: Vec<&String> = theirs.iter().filter(|n| !ours.contains(n)).collect();
@@ -229,5 +244,55 @@ fn comparable(main: &Image, reference: &Image) -> std::result::Result<(), String
             "its layers differ (missing: {missing:?}; not in the image: {extra:?})"
         ));
     }
-    Ok(())
+    let mut channels = Vec::with_capacity(main.channels.len());
+    for wanted in &main.channels {
+        let found = reference
+            .channels
+            .iter()
+            .position(|c| c.name == wanted.name);
+        let channel = match found {
+            Some(i) => reference.channels.swap_remove(i),
+            None if crate::input::suffix(&wanted.name) == "A" => crate::input::Channel {
+                name: wanted.name.clone(),
+                pixel_type: wanted.pixel_type,
+                values: vec![1.0; main.width * main.height],
+            },
+            None => return Err(format!("it has no channel {}", wanted.name)),
+        };
+        channels.push(channel);
+    }
+    reference.channels = channels;
+    Ok(reference)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_reference_takes_the_images_channel_layout() {
+        let mut rgba = raster::rgb8(1, 1, &[10, 20, 30]);
+        rgba.channels.push(crate::input::Channel {
+            name: "A".into(),
+            pixel_type: "uint8",
+            values: vec![0.5],
+        });
+        rgba.channels.swap(0, 2); // B G R A, as a file may store them
+        let rgb = raster::rgb8(1, 1, &[40, 50, 60]);
+        let conformed = conform(&rgba, rgb.clone()).expect("conforms");
+        let names: Vec<&str> = conformed.channels.iter().map(|c| c.name.as_str()).collect();
+        assert_eq!(names, ["B", "G", "R", "A"]);
+        assert_eq!(conformed.channels[0].values, [60.0 / 255.0]);
+        assert_eq!(conformed.channels[3].values, [1.0]);
+        // The other way round, the alpha is not shown.
+        assert_eq!(conform(&rgb, rgba).expect("conforms").channels.len(), 3);
+        let other_size = raster::rgb8(2, 1, &[0; 6]);
+        assert!(conform(&rgb, other_size).is_err());
+        let mut no_green = raster::rgb8(1, 1, &[1, 2, 3]);
+        no_green.channels.remove(1);
+        assert_eq!(
+            conform(&rgb, no_green).err().as_deref(),
+            Some("it has no channel G")
+        );
+    }
 }

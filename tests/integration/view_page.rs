@@ -116,6 +116,37 @@ fn zooming_keeps_the_pixel_under_the_cursor_and_shows_each_pixels_values() {
     });
     assert!(text_drawn, "the pixel's values are written in it");
     browser.screenshot("viewer_zoom.png");
+
+    // The shortcuts: `?` lists them, `f` fits again, `e` is half a stop up, `]` the next layer.
+    let key = |k: &str| {
+        browser.script(
+            "document.dispatchEvent(new KeyboardEvent('keydown', {key: arguments[0], bubbles: true}))",
+            json!([k]),
+        );
+    };
+    key("?");
+    let rows = browser.script(
+        "return document.getElementById('help').hidden ? -1 :            document.querySelectorAll('#shortcuts tr').length",
+        json!([]),
+    );
+    assert!(number(&rows) >= 10.0, "the ? overlay: {rows}");
+    key("Escape");
+    key("f");
+    browser.wait_for(
+        &format!("Math.abs(window.whitted.view().zoom - {z0}) < 1e-9"),
+        "f fits again",
+    );
+    key("e");
+    let exposure = browser.script(
+        "return document.getElementById('exposure').value",
+        json!([]),
+    );
+    assert_eq!(exposure, "0.5");
+    key("]");
+    browser.wait_for(
+        "document.querySelector('nav figure.selected').dataset.layer !== 'beauty'",
+        "] selects the next layer",
+    );
 }
 
 #[test]
@@ -384,6 +415,27 @@ fn an_exr_of_a_known_scene_shows_its_ray_tree_and_another_scene_is_refused() {
     let expected: Value = serde_json::from_slice(&explained.stdout).expect("explain --json");
     assert_eq!(trees["reference"], expected, "the tree is explain's");
     assert_eq!(viewer.get("/api/trees?x=80&y=0").0, 404);
+    drop(viewer);
+    // A farm node's region: its pixel (0, 0) is the frame's (20, 30).
+    let run = whitted(
+        d,
+        &[
+            "render",
+            "-q",
+            "--no-png",
+            "--exr",
+            "part.exr",
+            "--width",
+            "80",
+            "--height",
+            "60",
+            "--region",
+            "20,30,60,50",
+        ],
+    );
+    assert!(run.status.success(), "{}", stderr(&run));
+    let viewer = Viewer::start(d, &d.join("part.exr"));
+    assert_eq!(viewer.json("/api/trees?x=0&y=0")["reference"], expected);
     drop(viewer);
     // Another scene than the recorded one would explain another image.
     let refused = whitted(

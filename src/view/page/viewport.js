@@ -49,15 +49,17 @@ const TILES = (() => {
       const found = entries.get(k);
       if (found) { entries.delete(k); entries.set(k, found); return found.promise; }
       const entry = { data: undefined, promise: null };
+      const cache = entries; // a tile that arrives after clear() belongs to no cache
       entry.promise = fetchTile(which, name, step, tx, ty).then((data) => {
         entry.data = data;
+        if (cache !== entries) return data;
         bytes += data.byteLength;
         for (const [old, e] of entries) {
           if (bytes <= LIMIT) break;
           if (e.data && old !== k) { bytes -= e.data.byteLength; entries.delete(old); }
         }
         return data;
-      }, (error) => { entries.delete(k); throw error; });
+      }, (error) => { cache.delete(k); throw error; });
       entries.set(k, entry);
       return entry.promise;
     },
