@@ -90,13 +90,13 @@ function recipe() {
   if (l.role === "colour") {
     const terms = state.compare === "a" && state.selected === "beauty" && relighting()
       ? relightTerms() : [[state.selected, [1, 1, 1]]];
-    const planes = terms.map(([name, gain]) => ({ which, name, gain, picks: rgb(info(name)) }));
+    const planes = terms.map(([name, gain]) => ({ which, name, gain, picks: rgb(info(name)), n: info(name).channels.length }));
     const kind = isMetric(state.compare) ? "metric" : map ? "false" : "colour";
     return { planes, kind, map: map || "turbo", channels: ["R", "G", "B"] };
   }
   const picks = l.channels.map((_, i) => i);
   const kind = isMetric(state.compare) ? "metric" : map ? "false" : l.role;
-  return { planes: [{ which, name: l.name, gain: null, picks }], kind, map: map || "turbo", channels: l.channels };
+  return { planes: [{ which, name: l.name, gain: null, picks, n: l.channels.length }], kind, map: map || "turbo", channels: l.channels };
 }
 
 /** Paints the summed values `px` (as `recipe` picks them) into out[o..o+3]. */
@@ -131,15 +131,18 @@ function locate(x, y, step) {
 }
 
 /** Sums the planes at image pixel (x, y) into `px` from tiles already here; false if one is
- * missing. */
+ * missing. Each plane remembers the last tile it read (neighbouring pixels share it), so the
+ * cache is asked once per tile, not once per pixel. */
 function gather(r, x, y, step, px) {
   const [tx, ty, i] = locate(x, y, step);
   px.fill(0);
   for (const p of r.planes) {
-    const data = TILES.peek(p.which, p.name, step, tx, ty);
-    if (!data) return false;
-    const n = info(p.name).channels.length;
-    for (let c = 0; c < p.picks.length; c++) px[c] += data[i * n + p.picks[c]] * (p.gain ? p.gain[c] : 1);
+    if (p.tx !== tx || p.ty !== ty || p.step !== step) {
+      Object.assign(p, { tx, ty, step, data: TILES.peek(p.which, p.name, step, tx, ty) });
+    }
+    if (!p.data) return false;
+    const data = p.data, n = p.n, picks = p.picks, gain = p.gain;
+    for (let c = 0; c < picks.length; c++) px[c] += data[i * n + picks[c]] * (gain ? gain[c] : 1);
   }
   return true;
 }
