@@ -108,6 +108,21 @@ impl Default for FrameSpec {
     }
 }
 
+impl FrameSpec {
+    /// The tick PNG's frame at this size (the beauty only, one sample at each pixel's centre):
+    /// what `check` renders a student's image against and the viewer's ray trees trace.
+    pub fn tick(width: u32, height: u32, bounces: u32, shadows: bool) -> Self {
+        FrameSpec {
+            width,
+            height,
+            bounces,
+            shadows,
+            aovs: "beauty".into(),
+            ..FrameSpec::default()
+        }
+    }
+}
+
 /// A checked frame: what `render::render` runs. Its fields are private, so that nothing can
 /// change a frame after `Frame::new` checked it.
 #[derive(Debug, Clone, PartialEq)]

@@ -60,13 +60,7 @@ pub struct Renderer<'a> {
 
 impl<'a> Renderer<'a> {
     pub fn new(scene: &'a Scene, width: u32, height: u32, bounces: u32) -> Result<Self> {
-        let spec = FrameSpec {
-            width,
-            height,
-            bounces,
-            aovs: "beauty".into(),
-            ..FrameSpec::default()
-        };
+        let spec = FrameSpec::tick(width, height, bounces, true);
         Frame::new(scene, &spec)?;
         let every_pixel = (0..height)
             .flat_map(|y| (0..width).map(move |x| (x, y)))

@@ -140,24 +140,12 @@ fn load_check(image: &Path, scene: Option<&Path>, bounces: u32, tolerance: u8) -
         check: Some(report),
         tracer: Some(Tracer {
             scene: input.scene,
-            frame: tick_frame(width, height, bounces, true),
+            frame: FrameSpec::tick(width, height, bounces, true),
             mistakes,
             origin: [0, 0],
         }),
         labels: [file_name(image), format!("reference ({})", input.name)],
     })
-}
-
-/// The frame of the course's render at this size: one sample at each pixel's centre.
-fn tick_frame(width: u32, height: u32, bounces: u32, shadows: bool) -> FrameSpec {
-    FrameSpec {
-        width,
-        height,
-        bounces,
-        shadows,
-        aovs: "beauty".into(),
-        ..FrameSpec::default()
-    }
 }
 
 fn text_attribute<'a>(image: &'a Image, name: &str) -> Option<&'a str> {
@@ -206,7 +194,7 @@ fn recorded_tracer(image: &Image, path: &Path, scene: Option<&Path>) -> Result<O
         u32::try_from(window.max[axis] - window.min[axis] + 1)
             .map_err(|_| Error::Usage(format!("{}: no render has that size", path.display())))
     };
-    let frame = tick_frame(side(0)?, side(1)?, bounces, shadows);
+    let frame = FrameSpec::tick(side(0)?, side(1)?, bounces, shadows);
     crate::frame::Frame::new(&input.scene, &frame)?;
     let data = image.data_window;
     let offset = |axis: usize| u32::try_from(data.min[axis] - window.min[axis]).ok();

@@ -9,14 +9,7 @@ use whitted::scene;
 
 fn render_scene(name: &str, width: u32, height: u32, bounces: u32, shadows: bool) -> Film {
     let scene = scene::load(&crate::common::scene(name)).unwrap_or_else(|e| panic!("{e}"));
-    let spec = FrameSpec {
-        width,
-        height,
-        bounces,
-        shadows,
-        aovs: "beauty".into(),
-        ..FrameSpec::default()
-    };
+    let spec = FrameSpec::tick(width, height, bounces, shadows);
     render_frame(&scene, &spec).0
 }
 
