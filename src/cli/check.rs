@@ -55,7 +55,7 @@ pub struct CheckArgs {
 
     /// Open the check in the viewer: the image against the reference, the error maps, the
     /// diagnosis, and a click's two ray trees (the reference's and the top mistake's)
-    #[arg(long, conflicts_with_all = ["program", "json"])]
+    #[arg(long, conflicts_with_all = ["program", "json", "heatmap", "report"])]
     pub view: bool,
 
     #[command(flatten)]

@@ -190,8 +190,19 @@ async function render(view, cw, ch, generation) {
   return { img, r, range, step };
 }
 
-/** Draws the current view; a draw overtaken by a newer one while it waited is dropped. */
-async function draw() {
+/** Shows what went wrong where the status is; the page goes on working. */
+function fail(e) {
+  $("status").textContent = `error: ${e.message}`;
+  $("status").className = "problem";
+}
+
+/** Draws the current view; a draw overtaken by a newer one while it waited is dropped. A
+ * draw that fails (a layer the server cannot send) says so and leaves the page working. */
+function draw() {
+  return drawNow().catch(fail);
+}
+
+async function drawNow() {
   const generation = ++state.generation;
   const stage = $("stage"), canvas = $("canvas");
   const cw = Math.max(1, stage.clientWidth), ch = Math.max(1, stage.clientHeight);
@@ -365,7 +376,7 @@ async function showTrees(x, y) {
 async function inspect(x, y) {
   const { width, height } = state.meta;
   if (x < 0 || y < 0 || x >= width || y >= height) return;
-  await Promise.all([probe(x, y), showTrees(x, y)]);
+  await Promise.all([probe(x, y), showTrees(x, y)]).catch(fail);
 }
 
 /** Inspects pixel (x, y) and centres the view on it at a zoom its values show at (after the
@@ -588,7 +599,7 @@ async function start() {
   wireControls();
   relightPanel();
   state.fitted = true;
-  await draw().catch((e) => { $("status").textContent = `error: ${e.message}`; });
+  await draw();
   window.whitted.ready = true;
   await thumbnails();
   window.whitted.thumbnails = true;
@@ -619,4 +630,4 @@ window.whitted = {
   setColormap(map) { $("colormap").value = map; return draw(); },
   async pixels() { const img = await fullImage(); state.display = img.data; return Array.from(img.data); },
 };
-start().catch((e) => { $("status").textContent = `error: ${e.message}`; });
+start().catch(fail);
