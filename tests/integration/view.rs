@@ -363,7 +363,13 @@ impl Browser {
         }
     }
 
-    /// The page's canvas, as display bytes, RGBA row by row.
+    /// Asserts that the page has had no uncaught error or unhandled rejection.
+    pub fn assert_no_errors(&self) {
+        let errors = self.script("return window.whitted.errors", json!([]));
+        assert_eq!(errors, json!([]), "errors on the page");
+    }
+
+    /// The display bytes of the page's canvas at (x, y).
     pub fn canvas_pixel(&self, x: f64, y: f64) -> [u8; 3] {
         let v = self.script(
             "const c = document.getElementById('canvas').getContext('2d'); \
@@ -484,4 +490,5 @@ fn the_page_probes_and_relights_like_the_command_line() {
     // The README's picture of the relit page is made here.
     browser.wait_for("window.whitted.thumbnails", "the thumbnails are drawn");
     browser.screenshot("viewer.png");
+    browser.assert_no_errors();
 }

@@ -147,6 +147,7 @@ fn zooming_keeps_the_pixel_under_the_cursor_and_shows_each_pixels_values() {
         "document.querySelector('nav figure.selected').dataset.layer !== 'beauty'",
         "] selects the next layer",
     );
+    browser.assert_no_errors();
 }
 
 #[test]
@@ -226,6 +227,7 @@ fn each_error_metric_at_a_pixel_is_the_number_and_the_differing_pixels_are_count
     );
     browser.wait_for("!document.getElementById('scale').hidden", "the scale bar");
     browser.screenshot("viewer_error.png");
+    browser.assert_no_errors();
 }
 
 #[test]
@@ -275,6 +277,7 @@ fn a_png_opens_with_its_own_bytes_and_the_tone_maps_are_the_clis() {
             "{op}: the page differs from the CLI by {worst} LSB"
         );
     }
+    browser.assert_no_errors();
 }
 
 #[test]
@@ -341,6 +344,7 @@ fn check_view_serves_the_check_and_a_click_shows_both_ray_trees() {
         "a shadow row differs: {keys:?}"
     );
     browser.screenshot("viewer_check.png");
+    browser.assert_no_errors();
 }
 
 /// Replaces `path` by `new` as a program that writes its output elsewhere and renames it does.
@@ -363,6 +367,7 @@ fn watch_reloads_a_rewritten_image_and_rechecks_it() {
     std::fs::write(&shown, std::fs::read(&new).expect("read")).expect("rewrite");
     browser.wait_for("window.whitted.reloads >= 1", "the page reloads");
     assert_eq!(page_rgb(&browser), expected);
+    browser.assert_no_errors();
     drop(viewer);
 
     // In check mode the check runs again: the wrong image, then the right one.

@@ -28,6 +28,8 @@ const state = {
   generation: 0, // of the latest draw: an older draw that finishes late is dropped
   trees: null, // [x, y] of the pixel whose trees are shown
 };
+// Every field is declared above: in strict mode, assigning one that is not throws.
+Object.seal(state);
 
 // ---- data ----
 async function fetchOk(path) {
@@ -80,8 +82,14 @@ function relightTerms() {
   return terms;
 }
 
-/** What the current settings show: the planes summed into each pixel (which, layer, gain,
- * the channels picked) and how the sum is painted. */
+/** One plane of a recipe: values `which` of layer `name` (n channels a sample), the channels
+ * `picks` summed with `gain` (null: 1), and the last tile `gather` read from it. */
+function plane(which, name, gain, picks) {
+  return Object.seal({ which, name, gain, picks, n: info(name).channels.length, tx: -1, ty: -1, step: 0, data: undefined });
+}
+
+/** What the current settings show: the planes summed into each pixel and how the sum is
+ * painted. */
 function recipe() {
   const l = info(state.selected);
   const which = whichOf(state.compare);
@@ -90,13 +98,13 @@ function recipe() {
   if (l.role === "colour") {
     const terms = state.compare === "a" && state.selected === "beauty" && relighting()
       ? relightTerms() : [[state.selected, [1, 1, 1]]];
-    const planes = terms.map(([name, gain]) => ({ which, name, gain, picks: rgb(info(name)), n: info(name).channels.length }));
+    const planes = terms.map(([name, gain]) => plane(which, name, gain, rgb(info(name))));
     const kind = isMetric(state.compare) ? "metric" : map ? "false" : "colour";
     return { planes, kind, map: map || "turbo", channels: ["R", "G", "B"] };
   }
   const picks = l.channels.map((_, i) => i);
   const kind = isMetric(state.compare) ? "metric" : map ? "false" : l.role;
-  return { planes: [{ which, name: l.name, gain: null, picks, n: l.channels.length }], kind, map: map || "turbo", channels: l.channels };
+  return { planes: [plane(which, l.name, null, picks)], kind, map: map || "turbo", channels: l.channels };
 }
 
 /** Paints the summed values `px` (as `recipe` picks them) into out[o..o+3]. */
@@ -138,7 +146,8 @@ function gather(r, x, y, step, px) {
   px.fill(0);
   for (const p of r.planes) {
     if (p.tx !== tx || p.ty !== ty || p.step !== step) {
-      Object.assign(p, { tx, ty, step, data: TILES.peek(p.which, p.name, step, tx, ty) });
+      p.tx = tx; p.ty = ty; p.step = step;
+      p.data = TILES.peek(p.which, p.name, step, tx, ty);
     }
     if (!p.data) return false;
     const data = p.data, n = p.n, picks = p.picks, gain = p.gain;
@@ -610,6 +619,8 @@ async function start() {
 // controls call.
 window.whitted = {
   ready: false,
+  errors: [], // every uncaught error and unhandled rejection, which the browser tests read
+
   thumbnails: false,
   reloads: 0,
   probe,
@@ -630,4 +641,6 @@ window.whitted = {
   setColormap(map) { $("colormap").value = map; return draw(); },
   async pixels() { const img = await fullImage(); state.display = img.data; return Array.from(img.data); },
 };
+window.addEventListener("error", (e) => window.whitted.errors.push(e.message));
+window.addEventListener("unhandledrejection", (e) => window.whitted.errors.push(String(e.reason)));
 start().catch(fail);
