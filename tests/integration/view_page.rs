@@ -285,7 +285,9 @@ fn check_view_serves_the_check_and_a_click_shows_both_ray_trees() {
     let dir = tempfile::tempdir().expect("tempdir");
     let d = dir.path();
     let student = tick_png(d, "student.png", &["--no-shadows"]);
-    let viewer = Viewer::check(d, &[s(&student)]);
+    let tick2 = scene("tick2.xml");
+    // `whitted check student.png -i tick2.xml --view --no-browser`: the URL is the first line.
+    let viewer = Viewer::check(d, &[s(&student), "-i", s(&tick2)]);
     // The token is needed; the report names the mistake.
     let host = format!("127.0.0.1:{}", viewer.port);
     let bare = |path: &str| crate::view::http(viewer.port, "GET", path, &host, None).0;
