@@ -19,12 +19,15 @@ use crate::model::Tick;
 const PAGE: &str = include_str!("page/index.html");
 const STYLE: &str = include_str!("page/style.css");
 /// The page's script, one concept a file, in the order they depend on each other.
-const SCRIPTS: [&str; 6] = [
+const SCRIPTS: [&str; 9] = [
     include_str!("page/tonemap.js"),
     include_str!("page/colormap.js"),
     include_str!("page/viewport.js"),
     include_str!("page/panels.js"),
     include_str!("page/trees.js"),
+    include_str!("page/state.js"),
+    include_str!("page/pixels.js"),
+    include_str!("page/controls.js"),
     include_str!("page/app.js"),
 ];
 

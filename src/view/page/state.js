@@ -1,0 +1,64 @@
+// ---- the page's state and what it fetches ----
+"use strict";
+
+const token = new URLSearchParams(location.search).get("token");
+const api = (path) => `${path}${path.includes("?") ? "&" : "?"}token=${token}`;
+const $ = (id) => document.getElementById(id);
+
+/** Canvas pixels an image pixel must cover before its values are written in it. */
+const VALUE_ZOOM = 48;
+
+const state = {
+  meta: null,
+  version: 0,
+  selected: "beauty",
+  compare: "a", // "a" the image, "b" the reference, or an error metric's name
+  view: { zoom: 1, x: 0, y: 0 },
+  fitted: false, // whether the view still follows the window (until the user zooms or pans)
+  gains: {}, // light -> [r, g, b]
+  shadows: {}, // light -> false when shown without its shadows
+  ambient: 1,
+  background: 1,
+  stats: new Map(), // "which\0name" -> the promise of /api/stats
+  display: null, // Uint8ClampedArray RGBA of the last full-resolution render (pixels())
+  generation: 0, // of the latest draw: an older draw that finishes late is dropped
+  trees: null, // [x, y] of the pixel whose trees are shown
+};
+// Every field is declared above: in strict mode, assigning one that is not throws.
+Object.seal(state);
+
+// ---- data ----
+async function fetchOk(path) {
+  const response = await fetch(api(path));
+  if (!response.ok) throw new Error(`${path.split("?")[0]}: ${response.status} ${await response.text()}`);
+  return response;
+}
+const getJson = async (path) => (await fetchOk(path)).json();
+async function fetchTile(which, name, step, tx, ty) {
+  const q = `name=${encodeURIComponent(name)}&which=${which}&step=${step}&tx=${tx}&ty=${ty}`;
+  return new Float32Array(await (await fetchOk(`/api/layer?${q}`)).arrayBuffer());
+}
+async function wholeLayer(name, which, step) {
+  const q = `name=${encodeURIComponent(name)}&which=${which}&step=${step}`;
+  return new Float32Array(await (await fetchOk(`/api/layer?${q}`)).arrayBuffer());
+}
+const info = (name) => state.meta.layers.find((l) => l.name === name);
+const isMetric = (compare) => compare !== "a" && compare !== "b";
+const whichOf = (compare) => (compare === "a" ? "main" : compare === "b" ? "reference" : compare);
+function stats(which, name) {
+  const key = `${which}\u0000${name}`;
+  if (!state.stats.has(key)) {
+    const p = getJson(`/api/stats?name=${encodeURIComponent(name)}&which=${which}`);
+    p.catch(() => state.stats.delete(key));
+    state.stats.set(key, p);
+  }
+  return state.stats.get(key);
+}
+/** The range a layer is shown over in false colour: its finite values short of the 1e10 a
+ * miss stores in Z (the server's `range`), symmetric about 0 for the signed error. */
+function rangeOf(s, compare) {
+  const [lo, hi] = s.range || [0, 1];
+  if (compare === "error") { const m = Math.max(Math.abs(lo), Math.abs(hi)) || 1; return [-m, m]; }
+  return lo < hi ? [lo, hi] : [lo, lo + 1];
+}
+
