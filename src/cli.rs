@@ -82,7 +82,7 @@ pub enum Command {
     /// Test a Tick 2 image (or program) against the reference, and name the mistake that made
     /// it differ.
     Check(CheckArgs),
-    /// A local web viewer for an EXR (or PNG, JPEG, TIFF, HDR): layers, tone maps, probe, relighting, A/B.
+    /// A local web viewer for an EXR (or PNG, JPEG, TIFF, HDR): layers, zoom, tone maps, error metrics, ray trees, relighting.
     View(ViewArgs),
     /// Recombine an EXR's light layers with new gains (light groups), without re-rendering.
     Relight(RelightArgs),
