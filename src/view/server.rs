@@ -8,7 +8,9 @@
 //! - a connection lives at most `CONNECTION_TIME`, whatever it does (a client that never
 //!   reads a layer is cut off then);
 //! - at most `MAX_CONNECTIONS` at once; others are closed at once, and a failed accept (out
-//!   of descriptors) is waited out, never a panic.
+//!   of descriptors) is waited out, never a panic;
+//! - each reply is computed on one of `WORKERS` blocking threads, so that a slow one (a 4K
+//!   layer's statistics) does not hold up the others, nor the accept loop.
 
 use std::convert::Infallible;
 use std::sync::Arc;
@@ -29,6 +31,7 @@ const MAX_HEAD: usize = 16 * 1024;
 const HEAD_TIMEOUT: Duration = Duration::from_secs(10);
 const CONNECTION_TIME: Duration = Duration::from_secs(120);
 const MAX_CONNECTIONS: usize = 64;
+const WORKERS: usize = 4;
 /// How often the accept loop looks for Ctrl-C.
 const POLL: Duration = Duration::from_millis(100);
 
@@ -37,6 +40,7 @@ pub fn run(listener: std::net::TcpListener, served: Arc<Served>) -> Result<()> {
     let runtime = tokio::runtime::Builder::new_current_thread()
         .enable_io()
         .enable_time()
+        .max_blocking_threads(WORKERS)
         .build()
         .map_err(|e| Error::io("127.0.0.1", "cannot start the viewer's runtime", e))?;
     runtime.block_on(async move {
@@ -66,8 +70,13 @@ pub fn run(listener: std::net::TcpListener, served: Arc<Served>) -> Result<()> {
             tokio::spawn(async move {
                 let _permit = permit;
                 let service = hyper::service::service_fn(move |request| {
-                    let reply = answer(&served, &request);
-                    async move { Ok::<_, Infallible>(reply) }
+                    let served = served.clone();
+                    async move {
+                        let reply = tokio::task::spawn_blocking(move || answer(&served, &request))
+                            .await
+                            .unwrap_or_else(|_| internal_error());
+                        Ok::<_, Infallible>(reply)
+                    }
                 });
                 let connection = hyper::server::conn::http1::Builder::new()
                     .timer(TokioTimer::new())
@@ -79,6 +88,13 @@ pub fn run(listener: std::net::TcpListener, served: Arc<Served>) -> Result<()> {
             });
         }
     })
+}
+
+/// The reply when computing one failed (a panic in it, which only costs that request).
+fn internal_error() -> Response<Full<Bytes>> {
+    let mut response = Response::new(Full::new(Bytes::from_static(b"internal error")));
+    *response.status_mut() = hyper::StatusCode::INTERNAL_SERVER_ERROR;
+    response
 }
 
 /// The reply to one request, as hyper wants it.
