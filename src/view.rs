@@ -12,8 +12,8 @@
 //! by a pure function (`view/api.rs`).
 
 mod api;
-pub mod content;
-pub mod metric;
+mod content;
+mod metric;
 mod planes;
 mod request;
 mod server;
@@ -28,7 +28,6 @@ use crate::error::{Error, Result};
 
 pub use api::{respond, Snapshot};
 pub use content::{Content, Source};
-pub use planes::Which;
 pub use request::{parse, ApiRequest, Incoming};
 
 /// A reply: status, content type, body.

@@ -53,7 +53,7 @@ pub fn to_json(image: &Image, file: &str) -> serde_json::Value {
                 "min": finite_or_null(stats.min),
                 "max": finite_or_null(stats.max),
                 "mean": finite_or_null(stats.mean),
-                "non_finite": stats.non_finite,
+                "non_finite": stats.non_finite(),
             })
         })
         .collect();
@@ -110,7 +110,7 @@ fn table(image: &Image, file: &str) -> String {
             number(stats.min),
             number(stats.max),
             number(stats.mean),
-            stats.non_finite
+            stats.non_finite()
         );
     }
     if !image.attributes.is_empty() {

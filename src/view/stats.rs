@@ -5,6 +5,7 @@ use serde_json::{json, Value};
 
 use super::planes::Planes;
 use crate::numbers::finite_or_null;
+use crate::stats::Stats;
 
 /// Bins of the histogram.
 pub const BINS: usize = 64;
@@ -13,47 +14,38 @@ pub const BINS: usize = 64;
 /// (docs/aovs.md), which would otherwise squeeze every hit into one colour.
 const SENTINEL: f64 = 1e10;
 
-/// Min, max and mean of the finite values of each channel, NaN and infinity counts, the
-/// display range (the finite values short of the Z miss value, over every channel), and a
-/// histogram of every channel over that range.
+/// Min, max and mean of the finite values of each channel (`null` when there are none), NaN
+/// and infinity counts, the display range (the finite values short of the Z miss value, over
+/// every channel), and a histogram of every channel over that range.
 pub fn statistics(planes: &Planes) -> Value {
     let pixels = planes.width * planes.height;
-    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    let mut channels = Vec::new();
-    for c in 0..planes.count() {
-        let (mut min, mut max, mut sum, mut finite) = (f64::INFINITY, f64::NEG_INFINITY, 0.0, 0u64);
-        let (mut nan, mut inf) = (0u64, 0u64);
-        for p in 0..pixels {
-            let v = f64::from(planes.value(c, p));
-            if v.is_nan() {
-                nan += 1;
-            } else if v.is_infinite() {
-                inf += 1;
-            } else {
-                min = min.min(v);
-                max = max.max(v);
-                sum += v;
-                finite += 1;
-                if v.abs() < SENTINEL {
-                    lo = lo.min(v);
-                    hi = hi.max(v);
+    let channel = |c: usize| (0..pixels).map(move |p| planes.value(c, p));
+    let channels: Vec<Value> = (0..planes.count())
+        .map(|c| {
+            let s = Stats::of_values(channel(c));
+            let finite = |v: f64| {
+                if s.finite > 0 {
+                    finite_or_null(v)
+                } else {
+                    Value::Null
                 }
-            }
-        }
-        let mean = if finite > 0 {
-            sum / finite as f64
-        } else {
-            f64::NAN
-        };
-        channels.push(json!({
-            "name": planes.names[c],
-            "min": finite_or_null(min),
-            "max": finite_or_null(max),
-            "mean": finite_or_null(mean),
-            "nan": nan,
-            "inf": inf,
-        }));
-    }
+            };
+            json!({
+                "name": planes.names[c],
+                "min": finite(s.min),
+                "max": finite(s.max),
+                "mean": finite(s.mean),
+                "nan": s.nan,
+                "inf": s.inf,
+            })
+        })
+        .collect();
+    let shown = (0..planes.count()).flat_map(channel).map(f64::from);
+    let (lo, hi) = shown
+        .filter(|v| v.abs() < SENTINEL)
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
     let bins: Vec<Vec<u64>> = (0..planes.count())
         .map(|c| histogram(planes, c, lo, hi))
         .collect();

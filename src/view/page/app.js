@@ -168,7 +168,7 @@ async function thumbnails() {
     try {
       const l = info(name), small = await wholeLayer(name, "main", step), n = l.channels.length;
       let lo = Infinity, hi = -Infinity;
-      for (const x of small) if (Number.isFinite(x) && Math.abs(x) < 1e10) { lo = Math.min(lo, x); hi = Math.max(hi, x); }
+      for (const x of small) if (shownInRange(x)) { lo = Math.min(lo, x); hi = Math.max(hi, x); }
       const rgb = ["R", "G", "B"].map((ch) => l.channels.indexOf(ch));
       const picks = l.role === "colour" ? rgb : l.channels.map((_, i) => i);
       const paint = painter({ planes: [{ picks }], kind: l.role === "colour" ? "colour" : l.role }, [lo, hi > lo ? hi : lo + 1]);

@@ -58,7 +58,7 @@ function painter(r, range) {
     default: return (px, out, o) => {
       for (let c = 0; c < 3; c++) {
         const x = px[Math.min(c, n - 1)];
-        out[o + c] = Number.isFinite(x) && Math.abs(x) < 1e10 ? Math.round(255 * TONEMAP.clamp01((x - lo) / (hi - lo))) : 0;
+        out[o + c] = shownInRange(x) ? Math.round(255 * TONEMAP.clamp01((x - lo) / (hi - lo))) : 0;
       }
     };
   }

@@ -7,6 +7,11 @@ const $ = (id) => document.getElementById(id);
 
 /** Canvas pixels an image pixel must cover before its values are written in it. */
 const VALUE_ZOOM = 48;
+/** What a miss stores in Z (docs/aovs.md): values this large are left out of display ranges,
+ * as the server's statistics leave them out. */
+const SENTINEL = 1e10;
+/** Whether x counts towards a display range. */
+const shownInRange = (x) => Number.isFinite(x) && Math.abs(x) < SENTINEL;
 
 const state = {
   meta: null,
