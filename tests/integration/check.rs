@@ -142,8 +142,13 @@ fn every_mistake_of_the_java_program_is_named_first() {
                         .map(|&id| {
                             let bug = Bug::from_id(id).expect("id");
                             let case = separating_case(Mistakes::of(&[bug]));
-                            let png = java_render(d, &case, &[id], &format!("{id}.png"));
-                            let json = check_json(d, &png, &case);
+                            // A directory per mistake: both threads write a case's scene
+                            // under the same file name, and one must not truncate the
+                            // other's while it is read.
+                            let d = d.join(id);
+                            std::fs::create_dir(&d).expect("case directory");
+                            let png = java_render(&d, &case, &[id], &format!("{id}.png"));
+                            let json = check_json(&d, &png, &case);
                             assert_eq!(json["verdict"], "differs", "{id} on {}", case.name());
                             let top = names(&json["diagnosis"][0]);
                             (id.to_string(), top)
