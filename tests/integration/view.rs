@@ -286,6 +286,11 @@ pub struct Browser {
 
 impl Browser {
     pub fn start() -> Browser {
+        Browser::start_scaled(1.0)
+    }
+
+    /// A browser whose screen has `ratio` device pixels per CSS pixel (a HiDPI screen at 2).
+    pub fn start_scaled(ratio: f64) -> Browser {
         let port = std::net::TcpListener::bind("127.0.0.1:0")
             .and_then(|l| l.local_addr())
             .map(|a| a.port())
@@ -309,7 +314,8 @@ impl Browser {
             "goog:chromeOptions": {
                 "binary": tool("chromium").to_str().expect("utf-8"),
                 "args": ["--headless=new", "--no-sandbox", "--disable-gpu",
-                         "--disable-dev-shm-usage", "--window-size=1400,800"]
+                         "--disable-dev-shm-usage", "--window-size=1400,800",
+                         format!("--force-device-scale-factor={ratio}")]
             }
         }}});
         let mut browser = Browser {

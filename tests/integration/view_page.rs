@@ -1,7 +1,7 @@
-//! The viewer's page in headless Chromium, feature by feature: zoom about the cursor, the
-//! error metrics against the numbers, a PNG, the tone maps against the CLI, a check's two ray
-//! trees on a click, and --watch. The README's viewer pictures are the screenshots these
-//! tests take (tools/figures sets WHITTED_SCREENSHOTS to docs/).
+//! The viewer's page in headless Chromium, feature by feature: zoom about the cursor (and on a
+//! HiDPI screen), the error metrics against the numbers, a PNG, the tone maps against the CLI,
+//! a check's two ray trees on a click, and --watch. The README's viewer pictures are the
+//! screenshots these tests take (tools/figures sets WHITTED_SCREENSHOTS to docs/).
 
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -147,6 +147,96 @@ fn zooming_keeps_the_pixel_under_the_cursor_and_shows_each_pixels_values() {
         "document.querySelector('nav figure.selected').dataset.layer !== 'beauty'",
         "] selects the next layer",
     );
+    browser.assert_no_errors();
+}
+
+#[test]
+fn a_hidpi_screen_gets_one_image_pixel_per_screen_pixel_at_one_to_one() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let exr = small_render(dir.path());
+    let viewer = Viewer::start(dir.path(), &exr);
+    let browser = Browser::start_scaled(2.0);
+    browser.open(viewer.url());
+    // The canvas holds the screen's pixels: twice its CSS size, nothing scaled by the browser.
+    let sizes = browser.script(
+        "const c = document.getElementById('canvas'), b = c.getBoundingClientRect(); \
+         return [window.devicePixelRatio, c.width, b.width, c.height, b.height]",
+        json!([]),
+    );
+    let s: Vec<f64> = sizes
+        .as_array()
+        .expect("sizes")
+        .iter()
+        .map(number)
+        .collect();
+    assert_eq!(s[0], 2.0, "the screen's pixel ratio");
+    assert!(
+        (s[1] - 2.0 * s[2]).abs() <= 1.0 && (s[3] - 2.0 * s[4]).abs() <= 1.0,
+        "{s:?}"
+    );
+
+    // 1:1 is exactly one image pixel per screen pixel: neighbouring canvas pixels show
+    // neighbouring image pixels, each its own colour.
+    browser.script("return window.whitted.actualSize()", json!([]));
+    let view = browser.script("return window.whitted.view()", json!([]));
+    assert_eq!(number(&view["zoom"]), 1.0);
+    let full = page_rgb(&browser);
+    let under = |cx: f64, cy: f64| {
+        let p = browser.script(
+            "return window.whitted.imageAt(arguments[0], arguments[1])",
+            json!([cx, cy]),
+        );
+        (number(&p[0]) as usize, number(&p[1]) as usize)
+    };
+    let (x0, y0) = under(s[1] / 2.0 + 0.5, s[3] / 2.0 + 0.5);
+    for (dx, dy) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (7.0, 5.0)] {
+        let (cx, cy) = (s[1] / 2.0 + dx, s[3] / 2.0 + dy);
+        let (x, y) = under(cx + 0.5, cy + 0.5);
+        assert_eq!(
+            (x, y),
+            (x0 + dx as usize, y0 + dy as usize),
+            "canvas ({cx}, {cy})"
+        );
+        let expected = &full[(y * 160 + x) * 3..][..3];
+        assert_eq!(
+            &browser.canvas_pixel(cx, cy)[..],
+            expected,
+            "image pixel ({x}, {y})"
+        );
+    }
+
+    // The wheel, at a CSS point, zooms about the screen pixel under it.
+    let (css_x, css_y) = (150.0, 100.0);
+    let before = under(2.0 * css_x, 2.0 * css_y);
+    browser.script(
+        "const c = document.getElementById('canvas'), r = c.getBoundingClientRect(); \
+         return new Promise((done) => { c.dispatchEvent(new WheelEvent('wheel', {clientX: \
+           r.left + arguments[0], clientY: r.top + arguments[1], deltaY: -600, bubbles: true, \
+           cancelable: true})); setTimeout(done, 0); })",
+        json!([css_x, css_y]),
+    );
+    assert_eq!(
+        number(&browser.script("return window.whitted.view().zoom", json!([]))),
+        4.0
+    );
+    assert_eq!(under(2.0 * css_x, 2.0 * css_y), before);
+
+    // Values are written from 48 CSS pixels an image pixel: 96 screen pixels here.
+    browser.script("return window.whitted.goTo(40, 70)", json!([]));
+    let zoom = number(&browser.script("return window.whitted.view().zoom", json!([])));
+    assert_eq!(zoom, 96.0);
+    let centre = browser.script("return window.whitted.canvasAt(40, 70)", json!([]));
+    let (cx, cy) = (number(&centre[0]), number(&centre[1]));
+    let expected = &full[(70 * 160 + 40) * 3..][..3];
+    assert_eq!(
+        &browser.canvas_pixel(cx - 0.45 * zoom, cy - 0.45 * zoom)[..],
+        expected
+    );
+    let text_drawn = (-20..=20).any(|d| {
+        browser.canvas_pixel(cx + f64::from(d), cy)[..] != *expected
+            || browser.canvas_pixel(cx + f64::from(d), cy - 16.0)[..] != *expected
+    });
+    assert!(text_drawn, "the pixel's values are written in it");
     browser.assert_no_errors();
 }
 

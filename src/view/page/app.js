@@ -50,16 +50,17 @@ function draw() {
 
 async function drawNow() {
   const generation = ++state.generation;
-  const stage = $("stage"), canvas = $("canvas");
-  const cw = Math.max(1, stage.clientWidth), ch = Math.max(1, stage.clientHeight);
+  const canvas = $("canvas"), [cw, ch] = VIEWPORT.canvasSize($("stage"));
   if (state.fitted) VIEWPORT.fit(state.view, cw, ch, state.meta.width, state.meta.height);
   const done = await render(state.view, cw, ch, generation);
   if (!done) return;
   canvas.width = cw;
   canvas.height = ch;
+  canvas.style.width = `${cw / VIEWPORT.ratio()}px`;
+  canvas.style.height = `${ch / VIEWPORT.ratio()}px`;
   const ctx = canvas.getContext("2d");
   ctx.putImageData(done.img, 0, 0);
-  if (state.view.zoom >= VALUE_ZOOM) writeValues(ctx, done.r, cw, ch);
+  if (state.view.zoom >= valueZoom()) writeValues(ctx, done.r, cw, ch);
   const scaled = done.r.kind === "metric" || done.r.kind === "false";
   PANELS.scaleBar($("scale"), scaled ? done.r.map : null, done.range[0], done.range[1],
     isMetric(state.compare) ? `${state.compare.replaceAll("-", " ")} of ${state.selected} (mean of the channels)` : state.selected);
@@ -71,7 +72,7 @@ async function drawNow() {
 function writeValues(ctx, r, cw, ch) {
   const view = state.view, px = new Float64Array(8), n = r.planes[0].picks.length;
   const [x0, y0] = VIEWPORT.imageAt(view, 0, 0), [x1, y1] = VIEWPORT.imageAt(view, cw, ch);
-  const size = Math.min(14, Math.floor(view.zoom / (n + 1)));
+  const size = Math.min(14 * VIEWPORT.ratio(), Math.floor(view.zoom / (n + 1)));
   ctx.font = `${size}px ui-monospace, monospace`;
   ctx.textAlign = "center";
   ctx.textBaseline = "middle";
@@ -229,9 +230,9 @@ async function inspect(x, y) {
  * ray trees have opened below the image, so it is centred in what is left). */
 async function goTo(x, y) {
   await inspect(x, y);
-  const stage = $("stage");
+  const [cw, ch] = VIEWPORT.canvasSize($("stage")), zoom = valueZoom();
   state.fitted = false;
-  Object.assign(state.view, { zoom: VALUE_ZOOM, x: x + 0.5 - stage.clientWidth / (2 * VALUE_ZOOM), y: y + 0.5 - stage.clientHeight / (2 * VALUE_ZOOM) });
+  Object.assign(state.view, { zoom, x: x + 0.5 - cw / (2 * zoom), y: y + 0.5 - ch / (2 * zoom) });
   return draw();
 }
 
@@ -303,6 +304,7 @@ window.whitted = {
   setExposure,
   zoomAt,
   fit,
+  actualSize,
   view: () => ({ ...state.view }),
   imageAt: (cx, cy) => VIEWPORT.imageAt(state.view, cx, cy),
   canvasAt: (x, y) => VIEWPORT.canvasAt(state.view, x, y),

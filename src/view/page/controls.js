@@ -51,13 +51,17 @@ function setCompare(mode) {
 function fit() { state.fitted = true; return draw(); }
 function actualSize() {
   state.fitted = false;
-  VIEWPORT.actual(state.view, $("stage").clientWidth, $("stage").clientHeight);
+  VIEWPORT.actual(state.view, ...VIEWPORT.canvasSize($("stage")));
   return draw();
 }
 function zoomAt(cx, cy, factor) {
   state.fitted = false;
   VIEWPORT.zoomAt(state.view, cx, cy, factor);
   return draw();
+}
+function zoomAtCentre(factor) {
+  const [cw, ch] = VIEWPORT.canvasSize($("stage"));
+  return zoomAt(cw / 2, ch / 2, factor);
 }
 function reset() {
   Object.assign(state, { gains: {}, shadows: {}, ambient: 1, background: 1 });
@@ -86,9 +90,9 @@ const KEYS = {
   },
   f: fit,
   1: actualSize,
-  "+": () => zoomAt($("stage").clientWidth / 2, $("stage").clientHeight / 2, 2),
-  "=": () => zoomAt($("stage").clientWidth / 2, $("stage").clientHeight / 2, 2),
-  "-": () => zoomAt($("stage").clientWidth / 2, $("stage").clientHeight / 2, 0.5),
+  "+": () => zoomAtCentre(2),
+  "=": () => zoomAtCentre(2),
+  "-": () => zoomAtCentre(0.5),
   r: reset,
   Escape: () => { toggleHelp(false); $("trees").hidden = true; },
 };
@@ -121,7 +125,7 @@ function wireControls() {
     if (action) { e.preventDefault(); action(); }
   });
   const canvas = $("canvas");
-  const local = (e) => { const r = canvas.getBoundingClientRect(); return [e.clientX - r.left, e.clientY - r.top]; };
+  const local = (e) => VIEWPORT.local(canvas, e);
   canvas.addEventListener("wheel", (e) => {
     e.preventDefault();
     const [cx, cy] = local(e);
@@ -148,12 +152,18 @@ function wireControls() {
     drag = null;
     if (click) { const [x, y] = VIEWPORT.imageAt(state.view, ...local(e)); inspect(x, y); }
   });
-  // The stage changes size with the window, and when the ray trees open below it.
+  // The stage changes size with the window, and when the ray trees open below it; the
+  // pixel ratio changes when the window moves to another screen (or the page is zoomed).
   let size = "";
-  new ResizeObserver(() => {
-    const now = `${$("stage").clientWidth}x${$("stage").clientHeight}`;
+  const resized = () => {
+    const now = VIEWPORT.canvasSize($("stage")).join("x");
     if (now !== size) { size = now; if (state.meta) draw(); }
-  }).observe($("stage"));
+  };
+  new ResizeObserver(resized).observe($("stage"));
+  const followRatio = () => {
+    matchMedia(`(resolution: ${VIEWPORT.ratio()}dppx)`).addEventListener("change", () => { resized(); followRatio(); }, { once: true });
+  };
+  followRatio();
   $("reset").onclick = reset;
   $("save").onclick = async () => {
     const img = await fullImage();

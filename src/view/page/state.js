@@ -5,8 +5,10 @@ const token = new URLSearchParams(location.search).get("token");
 const api = (path) => `${path}${path.includes("?") ? "&" : "?"}token=${token}`;
 const $ = (id) => document.getElementById(id);
 
-/** Canvas pixels an image pixel must cover before its values are written in it. */
+/** CSS pixels an image pixel must cover before its values are written in it (on a HiDPI
+ * screen, that many times devicePixelRatio canvas pixels: the text needs the same room). */
 const VALUE_ZOOM = 48;
+const valueZoom = () => VALUE_ZOOM * VIEWPORT.ratio();
 /** What a miss stores in Z (docs/aovs.md): values this large are left out of display ranges,
  * as the server's statistics leave them out. */
 const SENTINEL = 1e10;
