@@ -1,7 +1,8 @@
 //! `whitted view`: the HTTP rules (loopback Host, token, nothing but the images), and the page
 //! in a real headless Chromium driven over WebDriver (Debian's `chromium` and
 //! `chromium-driver`, which `tools/test` installs): the probe reads the EXR's values, and
-//! relighting in the page gives `whitted relight`'s PNG to within 1 LSB.
+//! relighting in the page gives `whitted relight`'s PNG to within 1 LSB; TIFF, HDR and JPEG
+//! open with their own values.
 
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
@@ -500,4 +501,79 @@ fn the_page_probes_and_relights_like_the_command_line() {
     browser.wait_for("window.whitted.thumbnails", "the thumbnails are drawn");
     browser.screenshot("viewer.png");
     browser.assert_no_errors();
+}
+
+/// The little-endian f32s of a layer the viewer sends.
+fn floats(bytes: &[u8]) -> Vec<f32> {
+    bytes
+        .chunks_exact(4)
+        .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+        .collect()
+}
+
+#[test]
+fn tiff_hdr_and_jpeg_open_with_their_own_values() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let exr = small_render(d);
+    // The beauty as a float TIFF, a Radiance HDR and an 8-bit JPEG, written by OpenImageIO.
+    for (out, extra) in [
+        ("beauty.tif", &["-d", "float"][..]),
+        ("beauty.hdr", &[][..]),
+        ("beauty.jpg", &["-d", "uint8"][..]),
+    ] {
+        let mut args = vec![s(&exr), "--ch", "R,G,B"];
+        args.extend_from_slice(extra);
+        args.extend_from_slice(&["-o", out]);
+        let run = run_tool("oiiotool", &args, d);
+        assert!(run.status.success(), "{out}: {}", stderr(&run));
+    }
+    let read = read_exr(&exr);
+    let viewer = Viewer::start_with(d, &["beauty.tif", "--reference", "beauty.hdr"]);
+    let meta = viewer.json("/api/image");
+    assert_eq!(
+        (&meta["width"], &meta["height"]),
+        (&json!(160), &json!(120))
+    );
+    let name = meta["layers"][0]["name"]
+        .as_str()
+        .expect("a layer")
+        .to_string();
+    assert_eq!(meta["layers"][0]["channels"], json!(["R", "G", "B"]));
+    let layer = |which: &str| {
+        let (status, body) = viewer.get(&format!("/api/layer?name={name}&which={which}"));
+        assert_eq!(status, 200, "{which}");
+        floats(&body)
+    };
+    let (tiff, hdr) = (layer("main"), layer("reference"));
+    assert_eq!((tiff.len(), hdr.len()), (160 * 120 * 3, 160 * 120 * 3));
+    for (i, (&t, &h)) in tiff.iter().zip(&hdr).enumerate() {
+        let (x, y, c) = (i / 3 % 160, i / 3 / 160, ["R", "G", "B"][i % 3]);
+        let exact = read.at(c, x, y);
+        // A float TIFF holds the EXR's own floats.
+        assert_eq!(t, exact, "TIFF ({x}, {y}) {c}");
+        // RGBE keeps 8 bits of mantissa under the pixel's largest channel.
+        let largest = (0..3).map(|k| tiff[i / 3 * 3 + k]).fold(0.0f32, f32::max);
+        assert!(
+            (h - exact).abs() <= largest / 128.0,
+            "HDR ({x}, {y}) {c}: {h} vs {exact}"
+        );
+    }
+    // The two differ only by RGBE's rounding, and the viewer counts where.
+    let stats = viewer.json(&format!("/api/stats?name={name}&which=absolute-error"));
+    assert!(
+        stats["differing_pixels"].as_u64().expect("a count") > 0,
+        "{stats}"
+    );
+
+    // A JPEG opens too, as its decoded bytes.
+    let jpeg = Viewer::start_with(d, &["beauty.jpg"]);
+    let meta = jpeg.json("/api/image");
+    assert_eq!(
+        (&meta["width"], &meta["height"]),
+        (&json!(160), &json!(120))
+    );
+    let (status, body) = jpeg.get(&format!("/api/layer?name={name}&which=main"));
+    assert_eq!((status, body.len()), (200, 160 * 120 * 3 * 4));
+    assert!(floats(&body).iter().all(|v| (0.0..=1.0).contains(v)));
 }
