@@ -432,9 +432,15 @@ fn ctrl_c_stops_the_suite_and_leaves_nothing_behind() {
         .stderr(std::process::Stdio::piped())
         .spawn()
         .expect("whitted runs");
-    std::thread::sleep(std::time::Duration::from_millis(700));
-    let running = std::fs::read_dir(&tmp).expect("tmp").count();
-    assert_eq!(running, 2, "two cases at a time");
+    // The suite's first two cases start (each in its own directory); a loaded machine may
+    // take a while, so this waits for them rather than for a fixed time.
+    let count = || std::fs::read_dir(&tmp).expect("tmp").count();
+    let waiting = std::time::Instant::now();
+    while count() < 2 && waiting.elapsed() < std::time::Duration::from_secs(30) {
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    std::thread::sleep(std::time::Duration::from_millis(300));
+    assert_eq!(count(), 2, "two cases at a time");
     let sent = std::time::Instant::now();
     let kill = Command::new("kill")
         .args(["-INT", &child.id().to_string()])
