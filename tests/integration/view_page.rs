@@ -174,6 +174,17 @@ fn a_hidpi_screen_gets_one_image_pixel_per_screen_pixel_at_one_to_one() {
         (s[1] - 2.0 * s[2]).abs() <= 1.0 && (s[3] - 2.0 * s[4]).abs() <= 1.0,
         "{s:?}"
     );
+    // So does the histogram.
+    browser.wait_for(
+        "!!document.querySelector('canvas.histogram')",
+        "the histogram",
+    );
+    let histogram = browser.script(
+        "const c = document.querySelector('canvas.histogram'); \
+         return [c.width, c.getBoundingClientRect().width]",
+        json!([]),
+    );
+    assert_eq!(histogram, json!([512, 256]));
 
     // 1:1 is exactly one image pixel per screen pixel: neighbouring canvas pixels show
     // neighbouring image pixels, each its own colour.

@@ -29,17 +29,20 @@ const PANELS = (() => {
         }
         table.append(tr);
       }
-      const canvas = Object.assign(document.createElement("canvas"), { width: 256, height: 80, className: "histogram" });
+      // 256 x 80 CSS pixels (style.css), drawn at the screen's own resolution.
+      const [w, h, ratio] = [256, 80, VIEWPORT.ratio()];
+      const canvas = Object.assign(document.createElement("canvas"), { width: Math.round(w * ratio), height: Math.round(h * ratio), className: "histogram" });
       const ctx = canvas.getContext("2d");
+      ctx.scale(canvas.width / w, canvas.height / h);
       const bins = stats.histogram.bins;
       const peak = Math.max(1, ...bins.flat());
       bins.forEach((counts, c) => {
         ctx.strokeStyle = CHANNEL_COLOURS[Math.min(c, 3)];
         ctx.beginPath();
         counts.forEach((n, i) => {
-          const x = (i + 0.5) * (canvas.width / counts.length);
+          const x = (i + 0.5) * (w / counts.length);
           // Square-root counts, so a few outliers still show beside a large flat area.
-          const y = canvas.height - 2 - (canvas.height - 4) * Math.sqrt(n / peak);
+          const y = h - 2 - (h - 4) * Math.sqrt(n / peak);
           if (i === 0) ctx.moveTo(x, y); else ctx.lineTo(x, y);
         });
         ctx.stroke();
