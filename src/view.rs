@@ -5,7 +5,9 @@
 //! their error metrics and statistics, a pixel's ray trees, the check's report. The page
 //! (`view/page/`, plain files compiled into the binary: no build chain, no CDN) does the tone
 //! mapping, zoom, false colour, relighting and A/B comparison in the browser. With `--watch`,
-//! a thread reloads the files when they change (`view/watch.rs`) and the page follows.
+//! a thread reloads the files when they change (`view/watch.rs`) and the page follows. A
+//! first load that takes longer than `OPEN_WAIT` (a 4K EXR of 53 layers: 10 s) does not keep
+//! the URL back: the page opens and says what is being read until it is there.
 //!
 //! The server is hyper behind a thin adapter (`view/server.rs`, which says why and with which
 //! limits); every request is parsed into a closed set first (`view/request.rs`) and answered
@@ -22,11 +24,13 @@ mod token;
 mod watch;
 
 use std::io::Write;
+use std::sync::mpsc::RecvTimeoutError;
 use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
 
 use crate::error::{Error, Result};
 
-pub use api::{respond, Snapshot};
+pub use api::{respond, Snapshot, State};
 pub use content::{Content, Source};
 pub use request::{parse, ApiRequest, Incoming};
 
@@ -42,6 +46,11 @@ fn text(status: u16, message: &str) -> Reply {
     )
 }
 
+/// How long the first load may run before the URL is printed anyway. A load that ends within
+/// it behaves as if it had not been waited for (a file refused is refused before any URL); a
+/// longer one gets a page at once that says what it is reading, not a silent terminal.
+const OPEN_WAIT: Duration = Duration::from_secs(1);
+
 /// What the viewer serves: the latest load, and the token and port every request is checked
 /// against.
 pub struct Served {
@@ -49,34 +58,90 @@ pub struct Served {
     pub token: String,
     /// The port it listens on, for the Host check.
     pub port: u16,
-    current: Mutex<Snapshot>,
+    current: Mutex<State>,
+    /// Whether the first load has ended, either way: what requests that need its content
+    /// wait for.
+    settled: tokio::sync::watch::Sender<bool>,
+    /// The first load's failure, which the server stops with.
+    failure: Mutex<Option<Error>>,
 }
 
 impl Served {
-    pub fn new(content: Content, token: String, port: u16) -> Served {
+    /// Serving `content`, loaded before the server started.
+    pub fn open(content: Content, token: String, port: u16) -> Served {
+        let snapshot = Snapshot {
+            content: Arc::new(content),
+            version: 1,
+            problem: None,
+        };
+        Served::holding(State::Open(snapshot), true, token, port)
+    }
+
+    /// Serving the page while `what` is read, since `started` (then `opened` gives what it
+    /// held).
+    pub fn opening(what: String, started: Instant, token: String, port: u16) -> Served {
+        let state = State::Opening { what, started };
+        Served::holding(state, false, token, port)
+    }
+
+    fn holding(state: State, settled: bool, token: String, port: u16) -> Served {
         Served {
             token,
             port,
-            current: Mutex::new(Snapshot {
-                content: Arc::new(content),
-                version: 1,
-                problem: None,
-            }),
+            current: Mutex::new(state),
+            settled: tokio::sync::watch::Sender::new(settled),
+            failure: Mutex::new(None),
         }
     }
 
     /// The latest load, for one request (a reload meanwhile does not change it under it).
-    pub fn now(&self) -> Snapshot {
-        // A poisoned lock still holds a whole snapshot: they are only ever replaced whole.
-        self.current
+    pub fn now(&self) -> State {
+        self.state().clone()
+    }
+
+    /// A poisoned lock still holds a whole state: states are only ever replaced whole.
+    fn state(&self) -> std::sync::MutexGuard<'_, State> {
+        self.current.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// Whether the first load has ended, as a receiver to wait on.
+    pub fn settled(&self) -> tokio::sync::watch::Receiver<bool> {
+        self.settled.subscribe()
+    }
+
+    /// The first load's outcome: the content to serve, or the failure to stop with.
+    pub fn opened(&self, outcome: Result<Content>) {
+        match outcome {
+            Ok(content) => {
+                *self.state() = State::Open(Snapshot {
+                    content: Arc::new(content),
+                    version: 1,
+                    problem: None,
+                })
+            }
+            Err(e) => self.fail(e),
+        }
+        self.settled.send_replace(true);
+    }
+
+    fn fail(&self, e: Error) {
+        *self.failure.lock().unwrap_or_else(|e| e.into_inner()) = Some(e);
+    }
+
+    /// The failure the server must stop with, if there is one (given once).
+    pub fn take_failure(&self) -> Option<Error> {
+        self.failure
             .lock()
             .unwrap_or_else(|e| e.into_inner())
-            .clone()
+            .take()
     }
 
     /// A reload's outcome: the new content, or why there is none (the old one stays).
     fn reloaded(&self, outcome: Result<Content>) {
-        let mut current = self.current.lock().unwrap_or_else(|e| e.into_inner());
+        let mut state = self.state();
+        let State::Open(current) = &mut *state else {
+            return; // reloads start only once the first load has ended
+        };
         match outcome {
             Ok(content) => {
                 current.content = Arc::new(content);
@@ -92,23 +157,73 @@ impl Served {
 /// browser unless `no_browser`, and serves until a signal stops it; with `watch`, reloading
 /// the source whenever one of its files changes.
 pub fn serve(source: Source, port: u16, no_browser: bool, watch: bool) -> Result<()> {
-    let content = source.load()?;
+    let (done, first_load) = std::sync::mpsc::channel();
+    let (reading, started) = (source.clone(), Instant::now());
+    std::thread::Builder::new()
+        .name("load".into())
+        .spawn(move || {
+            let _ = done.send(reading.load());
+        })
+        .map_err(|e| Error::Environment(format!("cannot start the loading thread: {e}")))?;
+    let loaded = match first_load.recv_timeout(OPEN_WAIT) {
+        Ok(outcome) => Some(outcome?),
+        Err(RecvTimeoutError::Timeout) => None,
+        Err(RecvTimeoutError::Disconnected) => return Err(load_stopped()),
+    };
+    crate::interrupt::check()?;
     let listener = std::net::TcpListener::bind(("127.0.0.1", port))
         .map_err(|e| Error::Environment(format!("cannot listen on 127.0.0.1:{port}: {e}")))?;
     let port = listener
         .local_addr()
         .map_err(|e| Error::io("127.0.0.1", "cannot listen", e))?
         .port();
-    let served = Arc::new(Served::new(content, token::new(), port));
+    let already_open = loaded.is_some();
+    let served = Arc::new(match loaded {
+        Some(content) => Served::open(content, token::new(), port),
+        None => Served::opening(source.describe(), started, token::new(), port),
+    });
     let url = format!("http://127.0.0.1:{port}/?token={}", served.token);
     crate::output::stdout::print_line(&url)?;
     let _ = std::io::stdout().flush();
-    if watch {
-        watch::start(source, served.clone())?;
+    if already_open {
+        if watch {
+            watch::start(source, served.clone())?;
+        }
+    } else {
+        finish_opening(first_load, source, served.clone(), watch)?;
     }
     // Kept until the server stops, so the browser can still read it.
     let _opener = if no_browser { None } else { open_browser(&url) };
     server::run(listener, served)
+}
+
+/// Hands the first load's outcome to `served` when it comes (the server stops with a
+/// failure), and starts watching after it.
+fn finish_opening(
+    first_load: std::sync::mpsc::Receiver<Result<Content>>,
+    source: Source,
+    served: Arc<Served>,
+    watch: bool,
+) -> Result<()> {
+    std::thread::Builder::new()
+        .name("open".into())
+        .spawn(move || {
+            let outcome = first_load.recv().unwrap_or_else(|_| Err(load_stopped()));
+            let ok = outcome.is_ok();
+            served.opened(outcome);
+            if ok && watch {
+                if let Err(e) = watch::start(source, served.clone()) {
+                    served.fail(e);
+                }
+            }
+        })
+        .map(drop)
+        .map_err(|e| Error::Environment(format!("cannot start the loading thread: {e}")))
+}
+
+/// The loading thread ended without an outcome (it panicked: a bug, reported as one line).
+fn load_stopped() -> Error {
+    Error::Environment("reading the files stopped unexpectedly".into())
 }
 
 /// Best effort: opens the URL in a desktop browser through a file only this user can read,
@@ -133,4 +248,53 @@ fn open_browser(url: &str) -> Option<tempfile::TempPath> {
         .stderr(std::process::Stdio::null())
         .spawn();
     Some(path)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn content() -> Content {
+        Content {
+            main: crate::input::raster::rgb8(2, 2, &[0; 12]),
+            reference: None,
+            tracer: None,
+            check: None,
+            labels: ["a.png".into(), String::new()],
+        }
+    }
+
+    #[test]
+    fn a_first_load_opens_the_content_or_stops_the_server_once() {
+        let served = Served::opening("a.png".into(), Instant::now(), "t".into(), 1);
+        assert!(matches!(served.now(), State::Opening { .. }));
+        assert!(!*served.settled().borrow());
+        // A reload before the first load ends is not taken.
+        served.reloaded(Ok(content()));
+        assert!(matches!(served.now(), State::Opening { .. }));
+        served.opened(Ok(content()));
+        assert!(*served.settled().borrow());
+        let State::Open(snapshot) = served.now() else {
+            panic!("not open");
+        };
+        assert_eq!(
+            (snapshot.version, served.take_failure().is_none()),
+            (1, true)
+        );
+        served.reloaded(Err(Error::Usage("truncated".into())));
+        let State::Open(snapshot) = served.now() else {
+            panic!("not open");
+        };
+        assert_eq!(snapshot.problem.as_deref(), Some("truncated"));
+
+        let failed = Served::opening("b.exr".into(), Instant::now(), "t".into(), 1);
+        failed.opened(Err(Error::Usage("b.exr: not an image".into())));
+        assert!(*failed.settled().borrow());
+        assert!(matches!(failed.now(), State::Opening { .. }));
+        assert_eq!(
+            failed.take_failure().map(|e| e.to_string()).as_deref(),
+            Some("b.exr: not an image")
+        );
+        assert!(failed.take_failure().is_none(), "given once");
+    }
 }

@@ -2,6 +2,8 @@
 //! image's, the reference's or an error metric's), statistics, a pixel's values and ray trees,
 //! the check's report, for a request already parsed and checked (`view::request`). A pure
 //! function from what is loaded and the request to the reply; nothing is read from disk.
+//! While the first load still runs, only the page and the version (with what is being read)
+//! are answered.
 
 use serde_json::json;
 
@@ -34,6 +36,17 @@ const SCRIPTS: [&str; 9] = [
 /// Samples a side of a tile: 256 x 256 x 4 channels is 1 MiB of f32s.
 pub const TILE: usize = 256;
 
+/// What the server holds: its first load still running, or what the latest load gave.
+#[derive(Clone)]
+pub enum State {
+    /// Reading `what` since `started` (a large EXR takes seconds: the page shows this meanwhile).
+    Opening {
+        what: String,
+        started: std::time::Instant,
+    },
+    Open(Snapshot),
+}
+
 /// What one load gave, and how many loads there were.
 #[derive(Clone)]
 pub struct Snapshot {
@@ -47,20 +60,29 @@ fn json_reply(value: &serde_json::Value) -> Reply {
     (200, "application/json", value.to_string().into_bytes())
 }
 
+/// One document with its style and script inline: every request carries the token.
+fn page() -> Reply {
+    (
+        200,
+        "text/html; charset=utf-8",
+        PAGE.replace("/*STYLE*/", STYLE)
+            .replace("/*SCRIPT*/", &SCRIPTS.concat())
+            .into_bytes(),
+    )
+}
+
 /// The reply to `request`.
-pub fn respond(now: &Snapshot, request: &ApiRequest) -> Reply {
+pub fn respond(state: &State, request: &ApiRequest) -> Reply {
+    let now = match state {
+        State::Open(now) => now,
+        State::Opening { what, started } => return opening(what, *started, request),
+    };
     let content = &now.content;
     match request {
-        // One document with its style and script inline: every request carries the token.
-        ApiRequest::Page => (
-            200,
-            "text/html; charset=utf-8",
-            PAGE.replace("/*STYLE*/", STYLE)
-                .replace("/*SCRIPT*/", &SCRIPTS.concat())
-                .into_bytes(),
-        ),
+        ApiRequest::Page => page(),
         ApiRequest::Image => json_reply(&describe(now)),
         ApiRequest::Version => json_reply(&json!({
+            "open": true,
             "version": now.version,
             "problem": now.problem,
         })),
@@ -101,6 +123,22 @@ pub fn respond(now: &Snapshot, request: &ApiRequest) -> Reply {
             }
         }
         ApiRequest::Trees { x, y } => trees(content, *x, *y),
+    }
+}
+
+/// The reply while the first load runs (the server holds other requests until it ends, so
+/// this 503 is only for one that waited its limit out).
+fn opening(what: &str, started: std::time::Instant, request: &ApiRequest) -> Reply {
+    match request {
+        ApiRequest::Page => page(),
+        ApiRequest::Version => json_reply(&json!({
+            "open": false,
+            "version": 0,
+            "problem": null,
+            "reading": what,
+            "seconds": started.elapsed().as_secs_f64(),
+        })),
+        _ => text(503, &format!("still reading {what}: ask again shortly")),
     }
 }
 
@@ -256,10 +294,10 @@ mod tests {
     use super::*;
     use crate::input::raster;
 
-    fn snapshot() -> Snapshot {
+    fn snapshot() -> State {
         let main = raster::rgb8(300, 2, &vec![51; 300 * 2 * 3]);
         let reference = raster::rgb8(300, 2, &vec![102; 300 * 2 * 3]);
-        Snapshot {
+        State::Open(Snapshot {
             content: std::sync::Arc::new(Content {
                 main,
                 reference: Some(reference),
@@ -269,7 +307,7 @@ mod tests {
             }),
             version: 1,
             problem: None,
-        }
+        })
     }
 
     fn floats(bytes: &[u8]) -> Vec<f32> {
@@ -330,5 +368,34 @@ mod tests {
             name: "nothing".into(),
         };
         assert_eq!(respond(&now, &missing).0, 404);
+    }
+
+    #[test]
+    fn while_the_first_load_runs_only_the_page_and_the_version_answer() {
+        let opening = State::Opening {
+            what: "big.exr".into(),
+            started: std::time::Instant::now(),
+        };
+        assert_eq!(respond(&opening, &ApiRequest::Page).0, 200);
+        let (status, _, body) = respond(&opening, &ApiRequest::Version);
+        assert_eq!(status, 200);
+        let v: serde_json::Value = serde_json::from_slice(&body).expect("json");
+        assert_eq!(
+            (&v["open"], &v["reading"]),
+            (&json!(false), &json!("big.exr"))
+        );
+        for request in [
+            ApiRequest::Image,
+            ApiRequest::Check,
+            ApiRequest::Pixel { x: 0, y: 0 },
+            ApiRequest::Trees { x: 0, y: 0 },
+        ] {
+            let (status, _, body) = respond(&opening, &request);
+            assert_eq!(status, 503);
+            assert!(String::from_utf8_lossy(&body).contains("still reading big.exr"));
+        }
+        let (_, _, body) = respond(&snapshot(), &ApiRequest::Version);
+        let v: serde_json::Value = serde_json::from_slice(&body).expect("json");
+        assert_eq!((&v["open"], &v["version"]), (&json!(true), &json!(1)));
     }
 }

@@ -68,6 +68,23 @@ impl Source {
         }
     }
 
+    /// What a load reads, for the page to say while it runs.
+    pub fn describe(&self) -> String {
+        match self {
+            Source::View {
+                image,
+                reference: None,
+                ..
+            } => file_name(image),
+            Source::View {
+                image,
+                reference: Some(reference),
+                ..
+            } => format!("{} and {}", file_name(image), file_name(reference)),
+            Source::Check { image, .. } => format!("{} (and checking it)", file_name(image)),
+        }
+    }
+
     /// Reads (and in check mode checks) the files.
     pub fn load(&self) -> Result<Content> {
         match self {

@@ -12,7 +12,8 @@ pub enum ApiRequest {
     Page,
     /// The image's size, layers and lights, and what else there is (JSON).
     Image,
-    /// How many times the files were (re)loaded, and the last reload's failure (JSON).
+    /// How many times the files were (re)loaded, and the last reload's failure; while the
+    /// first load runs, what it reads (JSON).
     Version,
     /// The check's report (JSON), in check mode.
     Check,
@@ -30,6 +31,14 @@ pub enum ApiRequest {
     Pixel { x: usize, y: usize },
     /// One pixel's ray trees: the reference's and the top mistake's (JSON).
     Trees { x: usize, y: usize },
+}
+
+impl ApiRequest {
+    /// Whether the answer needs what the files hold (the page and the version do not: they
+    /// answer while the first load runs).
+    pub fn needs_content(&self) -> bool {
+        !matches!(self, ApiRequest::Page | ApiRequest::Version)
+    }
 }
 
 /// The parts of an HTTP request the viewer looks at, as the server library hands them over.

@@ -10,7 +10,10 @@
 //! - at most `MAX_CONNECTIONS` at once; others are closed at once, and a failed accept (out
 //!   of descriptors) is waited out, never a panic;
 //! - each reply is computed on one of `WORKERS` blocking threads, so that a slow one (a 4K
-//!   layer's statistics) does not hold up the others, nor the accept loop.
+//!   layer's statistics) does not hold up the others, nor the accept loop;
+//! - while the first load runs, a request that needs its content (any but the page and the
+//!   version) waits for it as a task, holding no worker, for at most `OPEN_TIMEOUT` (then
+//!   503), so that a client asking at once gets the answer it would have got later.
 
 use std::convert::Infallible;
 use std::sync::Arc;
@@ -22,8 +25,8 @@ use hyper::header::{HeaderValue, CONTENT_LENGTH, HOST, TRANSFER_ENCODING};
 use hyper::{Request, Response};
 use hyper_util::rt::{TokioIo, TokioTimer};
 
-use super::request::{parse, Incoming};
-use super::{api, Served};
+use super::request::{parse, ApiRequest, Incoming};
+use super::{api, text, Reply, Served};
 use crate::error::{Error, Result};
 use crate::interrupt;
 
@@ -32,10 +35,11 @@ const HEAD_TIMEOUT: Duration = Duration::from_secs(10);
 const CONNECTION_TIME: Duration = Duration::from_secs(120);
 const MAX_CONNECTIONS: usize = 64;
 const WORKERS: usize = 4;
+const OPEN_TIMEOUT: Duration = Duration::from_secs(60);
 /// How often the accept loop looks for Ctrl-C.
 const POLL: Duration = Duration::from_millis(100);
 
-/// Serves `served` on `listener` until a signal stops the process.
+/// Serves `served` on `listener` until a signal stops the process, or the first load fails.
 pub fn run(listener: std::net::TcpListener, served: Arc<Served>) -> Result<()> {
     let runtime = tokio::runtime::Builder::new_current_thread()
         .enable_io()
@@ -52,6 +56,9 @@ pub fn run(listener: std::net::TcpListener, served: Arc<Served>) -> Result<()> {
         let permits = Arc::new(tokio::sync::Semaphore::new(MAX_CONNECTIONS));
         loop {
             interrupt::check()?;
+            if let Some(failure) = served.take_failure() {
+                return Err(failure);
+            }
             let accepted = match tokio::time::timeout(POLL, listener.accept()).await {
                 Err(_) => continue,
                 Ok(accepted) => accepted,
@@ -69,13 +76,23 @@ pub fn run(listener: std::net::TcpListener, served: Arc<Served>) -> Result<()> {
             let served = served.clone();
             tokio::spawn(async move {
                 let _permit = permit;
-                let service = hyper::service::service_fn(move |request| {
+                let service = hyper::service::service_fn(move |request: Request<Body>| {
                     let served = served.clone();
                     async move {
-                        let reply = tokio::task::spawn_blocking(move || answer(&served, &request))
-                            .await
-                            .unwrap_or_else(|_| internal_error());
-                        Ok::<_, Infallible>(reply)
+                        let head = request.method() == hyper::Method::HEAD;
+                        let parsed = checked(&served, &request);
+                        if parsed.as_ref().is_ok_and(ApiRequest::needs_content) {
+                            let mut settled = served.settled();
+                            let _ =
+                                tokio::time::timeout(OPEN_TIMEOUT, settled.wait_for(|&s| s)).await;
+                        }
+                        let reply = tokio::task::spawn_blocking(move || match parsed {
+                            Ok(api_request) => api::respond(&served.now(), &api_request),
+                            Err(refusal) => refusal,
+                        })
+                        .await
+                        .unwrap_or_else(|_| text(500, "internal error"));
+                        Ok::<_, Infallible>(response(reply, head))
                     }
                 });
                 let connection = hyper::server::conn::http1::Builder::new()
@@ -90,15 +107,8 @@ pub fn run(listener: std::net::TcpListener, served: Arc<Served>) -> Result<()> {
     })
 }
 
-/// The reply when computing one failed (a panic in it, which only costs that request).
-fn internal_error() -> Response<Full<Bytes>> {
-    let mut response = Response::new(Full::new(Bytes::from_static(b"internal error")));
-    *response.status_mut() = hyper::StatusCode::INTERNAL_SERVER_ERROR;
-    response
-}
-
-/// The reply to one request, as hyper wants it.
-fn answer(served: &Served, request: &Request<Body>) -> Response<Full<Bytes>> {
+/// The request parsed and checked (token, Host, no body), or the refusal.
+fn checked(served: &Served, request: &Request<Body>) -> std::result::Result<ApiRequest, Reply> {
     let headers = request.headers();
     let announced = headers
         .get(CONTENT_LENGTH)
@@ -115,15 +125,12 @@ fn answer(served: &Served, request: &Request<Body>) -> Response<Full<Bytes>> {
             .collect(),
         has_body: announced,
     };
-    let (status, kind, body) = match parse(&incoming, &served.token, served.port) {
-        Ok(api_request) => api::respond(&served.now(), &api_request),
-        Err(refusal) => refusal,
-    };
-    let body = if request.method() == hyper::Method::HEAD {
-        Vec::new()
-    } else {
-        body
-    };
+    parse(&incoming, &served.token, served.port)
+}
+
+/// A reply as hyper wants it (without its body for a HEAD request).
+fn response((status, kind, body): Reply, head: bool) -> Response<Full<Bytes>> {
+    let body = if head { Vec::new() } else { body };
     let mut response = Response::new(Full::new(Bytes::from(body)));
     *response.status_mut() =
         hyper::StatusCode::from_u16(status).unwrap_or(hyper::StatusCode::INTERNAL_SERVER_ERROR);

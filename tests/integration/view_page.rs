@@ -575,3 +575,44 @@ fn an_exr_of_a_known_scene_shows_its_ray_tree_and_another_scene_is_refused() {
     );
     assert!(refused.stdout.is_empty());
 }
+
+#[test]
+fn a_long_first_load_opens_the_page_at_once_and_says_what_it_reads() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    // A 4K student image with one bounce too few: checking it (the reference and the
+    // diagnosis, at 4K) takes seconds, longer than the viewer keeps its URL back.
+    let run = whitted(
+        d,
+        &[
+            "-q", "-o", "big.png", "-b", "1", "--width", "3840", "--height", "2160",
+        ],
+    );
+    assert!(run.status.success(), "{}", stderr(&run));
+    let browser = Browser::start();
+    let viewer = Viewer::check(d, &["big.png"]);
+    let version = viewer.json("/api/version");
+    assert_eq!(
+        version["open"], false,
+        "the URL came before the check: {version}"
+    );
+    assert_eq!(version["reading"], "big.png (and checking it)");
+    browser.session("POST", "/url", Some(json!({"url": viewer.url()})));
+    browser.wait_for(
+        "document.getElementById('status').textContent.startsWith('reading big.png')",
+        "the page says what it reads",
+    );
+    // A request that needs the check waits for it, and gets what it would have got later.
+    let image = viewer.json("/api/image");
+    assert_eq!(
+        (&image["width"], &image["check"]),
+        (&json!(3840), &json!(true))
+    );
+    assert_eq!(viewer.json("/api/version")["open"], true);
+    assert_eq!(viewer.json("/api/check")["verdict"], "differs");
+    browser.wait_for(
+        "!!(window.whitted && window.whitted.ready)",
+        "the page is ready",
+    );
+    browser.assert_no_errors();
+}

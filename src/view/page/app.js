@@ -272,7 +272,26 @@ async function follow() {
   }
 }
 
+/** While the server's first load runs (a large EXR takes seconds), says what it reads. A
+ * file that turns out unreadable stops the viewer, with the reason on its terminal. */
+async function opened() {
+  let reading = null;
+  for (;;) {
+    let v;
+    try {
+      v = await getJson("/api/version");
+    } catch (e) {
+      throw reading ? new Error(`the viewer stopped while reading ${reading} (its terminal says why)`) : e;
+    }
+    if (v.open) return;
+    reading = v.reading;
+    $("status").textContent = `reading ${v.reading}: ${Math.floor(v.seconds)} s so far`;
+    await new Promise((resolve) => setTimeout(resolve, 250));
+  }
+}
+
 async function start() {
+  await opened();
   await load();
   // A check opens on where the image differs, in false colour.
   if (state.meta.check) state.compare = "absolute-error";
