@@ -590,7 +590,7 @@ fn a_long_first_load_opens_the_page_at_once_and_says_what_it_reads() {
     );
     assert!(run.status.success(), "{}", stderr(&run));
     let browser = Browser::start();
-    let viewer = Viewer::check(d, &["big.png"]);
+    let viewer = Viewer::check(d, &["big.png", "--watch"]);
     let version = viewer.json("/api/version");
     assert_eq!(
         version["open"], false,
@@ -613,6 +613,18 @@ fn a_long_first_load_opens_the_page_at_once_and_says_what_it_reads() {
     browser.wait_for(
         "!!(window.whitted && window.whitted.ready)",
         "the page is ready",
+    );
+    // --watch starts once the first load has ended: the image rewritten is checked again.
+    std::fs::copy(d.join("big.png"), d.join("again.png")).expect("copy");
+    replace(&d.join("again.png"), &d.join("big.png"));
+    let started = Instant::now();
+    while viewer.json("/api/version")["version"] != 2 {
+        assert!(started.elapsed() < Duration::from_secs(60), "no reload");
+        std::thread::sleep(Duration::from_millis(200));
+    }
+    browser.wait_for(
+        "window.whitted.reloads === 1",
+        "the page follows the reload",
     );
     browser.assert_no_errors();
 }
