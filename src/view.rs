@@ -153,9 +153,10 @@ impl Served {
     }
 }
 
-/// Loads `source`, listens on 127.0.0.1:`port` (0 for any free port), prints the URL, opens a
-/// browser unless `no_browser`, and serves until a signal stops it; with `watch`, reloading
-/// the source whenever one of its files changes.
+/// Loads `source` (waiting at most `OPEN_WAIT` for it before serving the page meanwhile),
+/// listens on 127.0.0.1:`port` (0 for any free port), prints the URL, opens a browser unless
+/// `no_browser`, and serves until a signal or the first load's failure stops it; with
+/// `watch`, reloading the source whenever one of its files changes.
 pub fn serve(source: Source, port: u16, no_browser: bool, watch: bool) -> Result<()> {
     let (done, first_load) = std::sync::mpsc::channel();
     let (reading, started) = (source.clone(), Instant::now());
