@@ -30,9 +30,8 @@ use std::time::{Duration, Instant};
 
 use crate::error::{Error, Result};
 
-pub use api::{respond, Snapshot, State};
+pub use api::{Snapshot, State};
 pub use content::{Content, Source};
-pub use request::{parse, ApiRequest, Incoming};
 
 /// A reply: status, content type, body.
 pub type Reply = (u16, &'static str, Vec<u8>);
@@ -58,10 +57,8 @@ pub struct Served {
     pub token: String,
     /// The port it listens on, for the Host check.
     pub port: u16,
-    current: Mutex<State>,
-    /// Whether the first load has ended, either way: what requests that need its content
-    /// wait for.
-    settled: tokio::sync::watch::Sender<bool>,
+    /// What is served, watched: requests that need the content wait for it to be open.
+    current: tokio::sync::watch::Sender<State>,
     /// The first load's failure, which the server stops with.
     failure: Mutex<Option<Error>>,
 }
@@ -69,59 +66,43 @@ pub struct Served {
 impl Served {
     /// Serving `content`, loaded before the server started.
     pub fn open(content: Content, token: String, port: u16) -> Served {
-        let snapshot = Snapshot {
-            content: Arc::new(content),
-            version: 1,
-            problem: None,
-        };
-        Served::holding(State::Open(snapshot), true, token, port)
+        Served::holding(State::Open(Snapshot::first(content)), token, port)
     }
 
     /// Serving the page while `what` is read, since `started` (then `opened` gives what it
     /// held).
     pub fn opening(what: String, started: Instant, token: String, port: u16) -> Served {
-        let state = State::Opening { what, started };
-        Served::holding(state, false, token, port)
+        Served::holding(State::Opening { what, started }, token, port)
     }
 
-    fn holding(state: State, settled: bool, token: String, port: u16) -> Served {
+    fn holding(state: State, token: String, port: u16) -> Served {
         Served {
             token,
             port,
-            current: Mutex::new(state),
-            settled: tokio::sync::watch::Sender::new(settled),
+            current: tokio::sync::watch::Sender::new(state),
             failure: Mutex::new(None),
         }
     }
 
     /// The latest load, for one request (a reload meanwhile does not change it under it).
     pub fn now(&self) -> State {
-        self.state().clone()
+        self.current.borrow().clone()
     }
 
-    /// A poisoned lock still holds a whole state: states are only ever replaced whole.
-    fn state(&self) -> std::sync::MutexGuard<'_, State> {
-        self.current.lock().unwrap_or_else(|e| e.into_inner())
-    }
-
-    /// Whether the first load has ended, as a receiver to wait on.
-    pub fn settled(&self) -> tokio::sync::watch::Receiver<bool> {
-        self.settled.subscribe()
+    /// What is served, as a receiver to wait on.
+    pub fn changes(&self) -> tokio::sync::watch::Receiver<State> {
+        self.current.subscribe()
     }
 
     /// The first load's outcome: the content to serve, or the failure to stop with.
     pub fn opened(&self, outcome: Result<Content>) {
         match outcome {
             Ok(content) => {
-                *self.state() = State::Open(Snapshot {
-                    content: Arc::new(content),
-                    version: 1,
-                    problem: None,
-                })
+                self.current
+                    .send_replace(State::Open(Snapshot::first(content)));
             }
             Err(e) => self.fail(e),
         }
-        self.settled.send_replace(true);
     }
 
     fn fail(&self, e: Error) {
@@ -138,18 +119,19 @@ impl Served {
 
     /// A reload's outcome: the new content, or why there is none (the old one stays).
     fn reloaded(&self, outcome: Result<Content>) {
-        let mut state = self.state();
-        let State::Open(current) = &mut *state else {
-            return; // reloads start only once the first load has ended
-        };
-        match outcome {
-            Ok(content) => {
-                current.content = Arc::new(content);
-                current.version += 1;
-                current.problem = None;
+        self.current.send_modify(|state| {
+            let State::Open(current) = state else {
+                return; // reloads start only once the first load has ended
+            };
+            match outcome {
+                Ok(content) => {
+                    current.content = Arc::new(content);
+                    current.version += 1;
+                    current.problem = None;
+                }
+                Err(e) => current.problem = Some(e.to_string()),
             }
-            Err(e) => current.problem = Some(e.to_string()),
-        }
+        });
     }
 }
 
@@ -178,20 +160,21 @@ pub fn serve(source: Source, port: u16, no_browser: bool, watch: bool) -> Result
         .local_addr()
         .map_err(|e| Error::io("127.0.0.1", "cannot listen", e))?
         .port();
-    let already_open = loaded.is_some();
-    let served = Arc::new(match loaded {
-        Some(content) => Served::open(content, token::new(), port),
-        None => Served::opening(source.describe(), started, token::new(), port),
-    });
+    let (served, pending) = match loaded {
+        Some(content) => (Served::open(content, token::new(), port), None),
+        None => (
+            Served::opening(source.describe(), started, token::new(), port),
+            Some(first_load),
+        ),
+    };
+    let served = Arc::new(served);
     let url = format!("http://127.0.0.1:{port}/?token={}", served.token);
     crate::output::stdout::print_line(&url)?;
     let _ = std::io::stdout().flush();
-    if already_open {
-        if watch {
-            watch::start(source, served.clone())?;
-        }
-    } else {
-        finish_opening(first_load, source, served.clone(), watch)?;
+    match pending {
+        Some(first_load) => finish_opening(first_load, source, served.clone(), watch)?,
+        None if watch => watch::start(source, served.clone())?,
+        None => {}
     }
     // Kept until the server stops, so the browser can still read it.
     let _opener = if no_browser { None } else { open_browser(&url) };
@@ -269,12 +252,15 @@ mod tests {
     fn a_first_load_opens_the_content_or_stops_the_server_once() {
         let served = Served::opening("a.png".into(), Instant::now(), "t".into(), 1);
         assert!(matches!(served.now(), State::Opening { .. }));
-        assert!(!*served.settled().borrow());
+        let changes = served.changes();
         // A reload before the first load ends is not taken.
         served.reloaded(Ok(content()));
         assert!(matches!(served.now(), State::Opening { .. }));
         served.opened(Ok(content()));
-        assert!(*served.settled().borrow());
+        assert!(
+            matches!(*changes.borrow(), State::Open(_)),
+            "waiters see it open"
+        );
         let State::Open(snapshot) = served.now() else {
             panic!("not open");
         };
@@ -290,7 +276,6 @@ mod tests {
 
         let failed = Served::opening("b.exr".into(), Instant::now(), "t".into(), 1);
         failed.opened(Err(Error::Usage("b.exr: not an image".into())));
-        assert!(*failed.settled().borrow());
         assert!(matches!(failed.now(), State::Opening { .. }));
         assert_eq!(
             failed.take_failure().map(|e| e.to_string()).as_deref(),

@@ -105,6 +105,12 @@ impl Image {
         self.channels.iter().find(|c| c.name == name)
     }
 
+    pub fn attribute(&self, name: &str) -> Option<&Attribute> {
+        self.attributes
+            .iter()
+            .find_map(|(n, a)| (n == name).then_some(a))
+    }
+
     /// The channels grouped into layers, in name order with `beauty` first.
     pub fn layers(&self) -> Vec<Layer> {
         // Indexed by name, so that files with many channels take linear time.

@@ -56,6 +56,17 @@ pub struct Snapshot {
     pub problem: Option<String>,
 }
 
+impl Snapshot {
+    /// The first load's.
+    pub fn first(content: Content) -> Snapshot {
+        Snapshot {
+            content: std::sync::Arc::new(content),
+            version: 1,
+            problem: None,
+        }
+    }
+}
+
 fn json_reply(value: &serde_json::Value) -> Reply {
     (200, "application/json", value.to_string().into_bytes())
 }

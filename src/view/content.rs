@@ -166,10 +166,10 @@ fn load_check(image: &Path, scene: Option<&Path>, bounces: u32, tolerance: u8) -
 }
 
 fn text_attribute<'a>(image: &'a Image, name: &str) -> Option<&'a str> {
-    image.attributes.iter().find_map(|(n, a)| match a {
-        Attribute::Text(t) if n == name => Some(t.as_str()),
+    match image.attribute(name)? {
+        Attribute::Text(t) => Some(t.as_str()),
         _ => None,
-    })
+    }
 }
 
 /// The tracer of a whitted EXR whose recorded scene (`render/scene`, a fingerprint of the
@@ -195,14 +195,11 @@ fn recorded_tracer(image: &Image, path: &Path, scene: Option<&Path>) -> Result<O
             )));
         }
     }
-    let bounces = image
-        .attributes
-        .iter()
-        .find_map(|(n, a)| match a {
-            Attribute::Integer(b) if n == "render/bounces" => u32::try_from(*b).ok(),
-            _ => None,
-        })
-        .unwrap_or(FrameSpec::default().bounces);
+    let bounces = match image.attribute("render/bounces") {
+        Some(Attribute::Integer(b)) => u32::try_from(*b).ok(),
+        _ => None,
+    }
+    .unwrap_or(FrameSpec::default().bounces);
     // The recorded command (`comments`) is the only place the shadow switch is written down.
     let shadows = !text_attribute(image, "comments")
         .is_some_and(|c| c.split_whitespace().any(|w| w == "--no-shadows"));

@@ -13,7 +13,8 @@
 //!   layer's statistics) does not hold up the others, nor the accept loop;
 //! - while the first load runs, a request that needs its content (any but the page and the
 //!   version) waits for it as a task, holding no worker, for at most `OPEN_TIMEOUT` (then
-//!   503), so that a client asking at once gets the answer it would have got later.
+//!   503; a failed first load stops the server sooner), so that a client asking at once gets
+//!   the answer it would have got later.
 
 use std::convert::Infallible;
 use std::sync::Arc;
@@ -26,7 +27,7 @@ use hyper::{Request, Response};
 use hyper_util::rt::{TokioIo, TokioTimer};
 
 use super::request::{parse, ApiRequest, Incoming};
-use super::{api, text, Reply, Served};
+use super::{api, text, Reply, Served, State};
 use crate::error::{Error, Result};
 use crate::interrupt;
 
@@ -82,9 +83,9 @@ pub fn run(listener: std::net::TcpListener, served: Arc<Served>) -> Result<()> {
                         let head = request.method() == hyper::Method::HEAD;
                         let parsed = checked(&served, &request);
                         if parsed.as_ref().is_ok_and(ApiRequest::needs_content) {
-                            let mut settled = served.settled();
-                            let _ =
-                                tokio::time::timeout(OPEN_TIMEOUT, settled.wait_for(|&s| s)).await;
+                            let mut changes = served.changes();
+                            let open = changes.wait_for(|s| matches!(s, State::Open(_)));
+                            let _ = tokio::time::timeout(OPEN_TIMEOUT, open).await;
                         }
                         let reply = tokio::task::spawn_blocking(move || match parsed {
                             Ok(api_request) => api::respond(&served.now(), &api_request),

@@ -239,7 +239,7 @@ fn the_viewer_serves_only_its_images_to_loopback_with_the_token() {
     let (status, bytes) = get(&format!("/api/layer?name=direct&token={token}"), &host);
     assert_eq!((status, bytes.len()), (200, 160 * 120 * 3 * 4));
     let read = read_exr(&exr);
-    let first = f32::from_le_bytes([bytes[0], bytes[1], bytes[2], bytes[3]]);
+    let first = floats(&bytes)[0];
     assert_eq!(first, read.at("direct.R", 0, 0));
     // Ctrl-C stops it.
     let mut viewer = viewer;
@@ -274,7 +274,7 @@ fn the_viewer_serves_only_its_images_to_loopback_with_the_token() {
     let path = format!("/api/layer?name=beauty&which=reference&token={token}");
     let (status, bytes) = http(viewer.port, "GET", &path, &host, None);
     assert_eq!((status, bytes.len()), (200, 160 * 120 * 4 * 4));
-    let first = f32::from_le_bytes([bytes[0], bytes[1], bytes[2], bytes[3]]);
+    let first = floats(&bytes)[0];
     assert_eq!(first, read_exr(&other).at("R", 0, 0));
 }
 

@@ -251,7 +251,7 @@ async function load() {
 /** Follows reloads (`--watch`): a new version drops everything fetched and draws again. */
 async function follow() {
   for (;;) {
-    await new Promise((resolve) => setTimeout(resolve, 500));
+    await sleep(500);
     try {
       const v = await getJson("/api/version");
       if (v.version !== state.version) {
@@ -286,7 +286,7 @@ async function opened() {
     if (v.open) return;
     reading = v.reading;
     $("status").textContent = `reading ${v.reading}: ${Math.floor(v.seconds)} s so far`;
-    await new Promise((resolve) => setTimeout(resolve, 250));
+    await sleep(250);
   }
 }
 

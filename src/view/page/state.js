@@ -4,6 +4,7 @@
 const token = new URLSearchParams(location.search).get("token");
 const api = (path) => `${path}${path.includes("?") ? "&" : "?"}token=${token}`;
 const $ = (id) => document.getElementById(id);
+const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
 
 /** CSS pixels an image pixel must cover before its values are written in it (on a HiDPI
  * screen, that many times devicePixelRatio canvas pixels: the text needs the same room). */
