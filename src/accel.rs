@@ -126,6 +126,12 @@ impl Accelerator {
         }
     }
 
+    /// Whether every object is tested in order on every ray (no sphere is in the hierarchy):
+    /// exact for any model's rules.
+    pub fn is_exhaustive(&self) -> bool {
+        self.spheres.is_empty()
+    }
+
     /// The nearest hit along `ray` under `model`'s rules, exactly as
     /// `model::search::closest_hit` finds it over every object. The hierarchy is only correct
     /// for models it is exact for (`Model::hierarchy_exact`); others use `brute_force`.

@@ -1,33 +1,156 @@
 //! `whitted check`: the tester a student runs at home (docs/check.md). It renders the
 //! reference at the student's image size, compares every byte, and, where they differ, names
-//! the catalogued mistake (or pair of mistakes) that reproduces the student's image best
-//! (`check::diagnose`), or else the terms of the model the difference lives in
-//! (`check::terms`). `--program` runs the student's own program over a suite of scenes.
+//! the catalogue entries (mistakes and unfinished stages, up to three at once) that reproduce
+//! the student's images best (`check::diagnose`), or else the terms of the model
+//! (`check::terms`) or the wrong number (`check::numbers`) the difference lives in, and where
+//! the student is in the handout (`check::progress`). `--program` runs the student's own
+//! program over a suite of scenes and diagnoses every case at once.
 
+pub mod case;
 pub mod diagnose;
 pub mod difference;
 pub mod json;
+pub mod numbers;
 pub mod program;
+pub mod progress;
+pub mod renderer;
 pub mod report;
+pub mod score;
 pub mod student_png;
+pub mod summary;
 pub mod suite;
 pub mod terms;
 
-use crate::accel::Accelerator;
-use crate::check::diagnose::{analyse, rank, spread, CaseAnalysis, Diagnosis, Renderer, SAMPLE};
-use crate::check::difference::{difference, pixel_difference, Difference};
+use crate::check::case::Case;
+use crate::check::diagnose::{Diagnosis, Search};
+use crate::check::difference::{difference, Difference};
+use crate::check::numbers::NumberFit;
+use crate::check::progress::{Evidence, Progress};
+use crate::check::renderer::Renderer;
 use crate::check::student_png::Rgb8;
-use crate::check::terms::TermFit;
+use crate::check::terms::{TermCase, TermFit};
 use crate::error::Result;
-use crate::frame::{Frame, FrameSpec};
-use crate::model::Tick;
-use crate::render::trace_pixels;
-use crate::sample::Sample;
+use crate::mistakes::Mistakes;
 use crate::scene::Scene;
 
 /// Below this share of differing pixels explained, the best catalogued candidate is not a
-/// good explanation and the term fit is reported too.
-const GOOD_EXPLANATION: f64 = 0.9;
+/// good explanation: the term and number fits run, and the report says so first.
+pub const GOOD_EXPLANATION: f64 = 0.9;
+
+/// What the diagnosis found over one or more cases.
+#[derive(Debug, Clone)]
+pub struct Findings {
+    /// Best first; empty when every image is identical or nothing explains them better than
+    /// the reference does.
+    pub diagnosis: Vec<Diagnosis>,
+    /// Per case, the candidates counted over that case whole, ranked there.
+    pub per_case: Vec<Vec<Diagnosis>>,
+    /// Where no candidate explains the images well: the model's terms they differ in.
+    pub terms: Vec<TermFit>,
+    /// Where no candidate explains the images well: the model's numbers that do.
+    pub parameters: Vec<NumberFit>,
+    pub progress: Progress,
+}
+
+impl Findings {
+    /// Whether no catalogued candidate explains `GOOD_EXPLANATION` of the differing pixels.
+    pub fn weak(&self) -> bool {
+        self.diagnosis
+            .first()
+            .is_none_or(|d| d.explained < GOOD_EXPLANATION)
+    }
+
+    /// Nothing found: no images, or every one identical.
+    fn nothing(cases: usize, evidence: Evidence) -> Findings {
+        Findings {
+            diagnosis: Vec::new(),
+            per_case: vec![Vec::new(); cases],
+            terms: Vec::new(),
+            parameters: Vec::new(),
+            progress: Progress::of(&evidence),
+        }
+    }
+}
+
+/// Diagnoses `cases` together; `all_pass` says whether every case (of the suite, including
+/// those with no image) passed.
+pub fn find(cases: &[Case], all_pass: bool) -> Result<Findings> {
+    if cases.is_empty() {
+        return Ok(Findings::nothing(0, Evidence::Nothing));
+    }
+    if cases.iter().all(Case::identical) {
+        let evidence = if all_pass {
+            Evidence::AllCorrect
+        } else {
+            Evidence::Nothing
+        };
+        return Ok(Findings::nothing(cases.len(), evidence));
+    }
+    let search = Search::run(cases)?;
+    let diagnosis = search.diagnosis(cases, None);
+    let per_case = (0..cases.len())
+        .map(|i| match cases[i].identical() {
+            true => Vec::new(),
+            false => search.diagnosis(cases, Some(i)),
+        })
+        .collect();
+    let mut findings = Findings {
+        diagnosis,
+        per_case,
+        terms: Vec::new(),
+        parameters: Vec::new(),
+        progress: Progress::of(&Evidence::Nothing),
+    };
+    if findings.weak() {
+        findings.terms = fit_terms(cases)?;
+        let mut bases = vec![Mistakes::NONE];
+        bases.extend(findings.diagnosis.first().map(|d| d.mistakes));
+        findings.parameters = numbers::fit(cases, &bases)?;
+    }
+    findings.progress = Progress::of(&evidence(&findings, all_pass));
+    Ok(findings)
+}
+
+/// The best explanation found, for the progress.
+fn evidence(findings: &Findings, all_pass: bool) -> Evidence {
+    let top = findings.diagnosis.first();
+    let number = findings.parameters.first();
+    let by_number = number.filter(|n| top.is_none_or(|d| n.explained > d.explained));
+    match (top, by_number) {
+        (_, Some(n)) => Evidence::Explained {
+            mistakes: n.with,
+            number: Some(n.parameter),
+            explained: n.explained,
+        },
+        (Some(d), None) => Evidence::Explained {
+            mistakes: d.mistakes,
+            number: None,
+            explained: d.explained,
+        },
+        (None, None) if all_pass => Evidence::AllCorrect,
+        (None, None) => Evidence::Unexplained,
+    }
+}
+
+/// The term fit over the sampled differing pixels of every case, a factor shared by all.
+fn fit_terms(cases: &[Case]) -> Result<Vec<TermFit>> {
+    let term_cases: Vec<TermCase> = cases
+        .iter()
+        .filter(|c| !c.identical())
+        .map(|c| {
+            let pixels = &c.sample.positions[..c.sample.wrong];
+            let samples = c.renderer.layers_at(pixels)?;
+            Ok(TermCase::new(
+                c.renderer.scene,
+                c.renderer.bounces(),
+                &samples,
+                pixels,
+                &c.student,
+            ))
+        })
+        .collect::<Result<_>>()?;
+    Ok(terms::fit(&term_cases))
+}
 
 /// Everything known about one student image of one scene.
 #[derive(Debug, Clone)]
@@ -36,14 +159,33 @@ pub struct CaseReport {
     pub bounces: u32,
     pub tolerance: u8,
     pub difference: Difference,
-    pub analysis: CaseAnalysis,
-    /// Best first; empty when the image is identical or nothing explains it better than the
-    /// reference does.
+    /// This case's own ranking of the candidates (best first).
     pub diagnosis: Vec<Diagnosis>,
-    /// Where no candidate explains the image well: the model's terms it differs in.
-    pub terms: Vec<TermFit>,
     pub student: Rgb8,
     pub reference: Rgb8,
+}
+
+/// One case ready to diagnose, and its report without a diagnosis yet.
+pub fn prepare<'a>(
+    scene: &'a Scene,
+    scene_name: &str,
+    bounces: u32,
+    tolerance: u8,
+    student: Rgb8,
+    cases: usize,
+) -> Result<(Case<'a>, CaseReport)> {
+    let renderer = Renderer::new(scene, student.width, student.height, bounces)?;
+    let case = Case::new(renderer, student, cases)?;
+    let report = CaseReport {
+        scene_name: scene_name.to_string(),
+        bounces,
+        tolerance,
+        difference: difference(&case.student, &case.reference, tolerance),
+        diagnosis: Vec::new(),
+        student: case.student.clone(),
+        reference: case.reference.clone(),
+    };
+    Ok((case, report))
 }
 
 /// Checks `student` against `scene` rendered at its size with `bounces` bounces.
@@ -53,195 +195,13 @@ pub fn check_image(
     bounces: u32,
     tolerance: u8,
     student: Rgb8,
-) -> Result<CaseReport> {
-    let renderer = Renderer::new(scene, student.width, student.height, bounces)?;
-    let reference = renderer.reference()?;
-    let difference = difference(&student, &reference, tolerance);
-    let analysis = analyse(&renderer, &student, &reference)?;
-    let diagnosis = match difference.differing_pixels {
-        0 => Vec::new(),
-        _ => rank(&[&analysis]),
-    };
-    let poorly_explained = diagnosis
-        .first()
-        .is_none_or(|d| d.explained < GOOD_EXPLANATION);
-    let terms = if difference.differing_pixels > 0 && poorly_explained {
-        fit_terms(scene, bounces, &student, &reference)?
-    } else {
-        Vec::new()
-    };
-    Ok(CaseReport {
-        scene_name: scene_name.to_string(),
-        bounces,
-        tolerance,
-        difference,
-        analysis,
-        diagnosis,
-        terms,
-        student,
-        reference,
-    })
-}
-
-/// The term fit over a sample of the differing pixels.
-fn fit_terms(
-    scene: &Scene,
-    bounces: u32,
-    student: &Rgb8,
-    reference: &Rgb8,
-) -> Result<Vec<TermFit>> {
-    let width = student.width as usize;
-    let wrong: Vec<(u32, u32)> = (0..student.bytes.len() / 3)
-        .filter(|&i| pixel_difference(&student.bytes, &reference.bytes, i) > 0)
-        .map(|i| ((i % width) as u32, (i / width) as u32))
-        .collect();
-    let pixels = spread(&wrong, SAMPLE);
-    let spec = FrameSpec {
-        width: student.width,
-        height: student.height,
-        bounces,
-        ..FrameSpec::default()
-    };
-    let frame = Frame::new(scene, &spec)?;
-    let accel = Accelerator::build(&scene.objects);
-    let samples = trace_pixels::<true, _>(&Tick, scene, &accel, &frame, &pixels, Sample::clone);
-    crate::interrupt::check()?;
-    Ok(terms::fit(scene, bounces, &samples, &pixels, student))
+) -> Result<(CaseReport, Findings)> {
+    let (case, mut report) = prepare(scene, scene_name, bounces, tolerance, student, 1)?;
+    let passes = report.difference.verdict.passes();
+    let findings = find(std::slice::from_ref(&case), passes)?;
+    report.diagnosis = findings.diagnosis.clone();
+    Ok((report, findings))
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::check::diagnose::Renderer;
-    use crate::check::suite::{cases, SuiteCase};
-    use crate::mistakes::{Bug, Mistakes};
-
-    /// The first suite case on which `mistakes` fails, each of its mistakes showing, with its
-    /// image.
-    fn failing_case(mistakes: Mistakes) -> (SuiteCase, Scene, Rgb8) {
-        for case in cases() {
-            let scene = crate::scene::parse_str(case.file, case.xml).expect("scene");
-            let r = Renderer::new(&scene, 640, 480, case.bounces).expect("renderer");
-            let image = r.image(mistakes).expect("image");
-            let fails =
-                difference(&image, &r.reference().expect("reference"), 2).beyond_tolerance > 0;
-            let members = mistakes.bugs();
-            let each_shows = members.len() == 1
-                || members
-                    .iter()
-                    .all(|&b| r.image(Mistakes::of(&[b])).expect("image") != image);
-            if fails && each_shows {
-                return (case, scene, image);
-            }
-        }
-        panic!("{mistakes:?} fails no case");
-    }
-
-    /// Whether `wanted` is the top diagnosis or indistinguishable from it.
-    fn named_first(report: &CaseReport, wanted: Mistakes) -> bool {
-        report
-            .diagnosis
-            .first()
-            .is_some_and(|d| d.mistakes == wanted || d.indistinguishable_from.contains(&wanted))
-    }
-
-    #[test]
-    fn every_mistake_is_named_first_on_its_own_render() {
-        for bug in Bug::ALL {
-            let wanted = Mistakes::of(&[bug]);
-            let (case, scene, image) = failing_case(wanted);
-            let report = check_image(&scene, case.file, case.bounces, 2, image).expect("check");
-            assert!(
-                named_first(&report, wanted),
-                "{}: {:?}",
-                bug.id(),
-                report.diagnosis.first()
-            );
-            let top = &report.diagnosis[0];
-            assert_eq!(
-                (top.explained, top.wrongly_changed_pixels),
-                (1.0, 0),
-                "{}",
-                bug.id()
-            );
-        }
-    }
-
-    #[test]
-    fn pairs_are_found_in_the_top_three() {
-        let pairs = [
-            [Bug::NoAmbient, Bug::ReflectUnclamped],
-            [Bug::NoShadowBias, Bug::ViewFlipped],
-            [Bug::FirstLightOnly, Bug::BouncesPlusOne],
-            [Bug::SpecularObjectColour, Bug::NoReflectionBias],
-        ];
-        for pair in pairs {
-            let wanted = Mistakes::of(&pair);
-            let (case, scene, image) = failing_case(wanted);
-            let report = check_image(&scene, case.file, case.bounces, 2, image).expect("check");
-            let top3: Vec<Mistakes> = report
-                .diagnosis
-                .iter()
-                .take(3)
-                .map(|d| d.mistakes)
-                .collect();
-            assert!(top3.contains(&wanted), "{pair:?}: {top3:?}");
-        }
-    }
-
-    #[test]
-    fn rounding_noise_is_not_a_mistake() {
-        let scene =
-            crate::scene::parse_str("tick2.xml", crate::scene::EMBEDDED_TICK2).expect("scene");
-        let r = Renderer::new(&scene, 640, 480, 2).expect("renderer");
-        let mut image = r.reference().expect("reference");
-        // A student's pow rounding the other way in a few pixels.
-        for i in (0..image.bytes.len()).step_by(9973) {
-            image.bytes[i] = image.bytes[i].saturating_add(1);
-        }
-        let report = check_image(&scene, "tick2.xml", 2, 2, image).expect("check");
-        assert_eq!(
-            report.difference.verdict,
-            difference::Verdict::WithinTolerance
-        );
-        assert!(
-            report.diagnosis.is_empty(),
-            "{:?}",
-            report.diagnosis.first()
-        );
-    }
-
-    #[test]
-    fn mistakes_beyond_the_catalogue_are_located_in_the_terms() {
-        let scene =
-            crate::scene::parse_str("tick2.xml", crate::scene::EMBEDDED_TICK2).expect("scene");
-        let spec = FrameSpec {
-            bounces: 0,
-            ..FrameSpec::default()
-        };
-        let frame = Frame::new(&scene, &spec).expect("frame");
-        let accel = Accelerator::build(&scene.objects);
-        let every: Vec<(u32, u32)> = (0..480)
-            .flat_map(|y| (0..640).map(move |x| (x, y)))
-            .collect();
-        let samples = trace_pixels::<true, _>(&Tick, &scene, &accel, &frame, &every, Sample::clone);
-        let render = |f: &dyn Fn(&crate::sample::Sample) -> glam::DVec3| Rgb8 {
-            width: 640,
-            height: 480,
-            bytes: crate::output::png::tick_bytes(&samples.iter().map(f).collect::<Vec<_>>()),
-        };
-        let half_ambient = render(&|s| s.beauty - s.ambient * 0.5);
-        let report = check_image(&scene, "tick2.xml", 0, 2, half_ambient).expect("check");
-        let top = report.terms.first().expect("a term");
-        assert_eq!(top.layer, "ambient");
-        assert!((top.factor - 0.5).abs() < 0.05, "{top:?}");
-        let unshadowed = render(&|s| s.beauty - s.lights[1].shadowed + s.lights[1].unshadowed);
-        let report = check_image(&scene, "tick2.xml", 0, 2, unshadowed).expect("check");
-        let top = report.terms.first().expect("a term");
-        assert_eq!(
-            (top.layer.as_str(), top.replaces.as_deref()),
-            ("unshadowed_1", Some("light_1"))
-        );
-        assert!(top.explained > 0.9, "{top:?}");
-    }
-}
+mod tests;

@@ -64,7 +64,12 @@ impl Ray {
     /// A ray leaving `point` along `direction`, started `EPSILON` along it so that it does not
     /// find the surface it leaves.
     pub fn offset_from(point: DVec3, direction: DVec3) -> Self {
-        Ray::new(point + direction * EPSILON, direction)
+        Ray::offset_by(point, direction, EPSILON)
+    }
+
+    /// A ray leaving `point` along `direction`, started `epsilon` along it.
+    pub fn offset_by(point: DVec3, direction: DVec3, epsilon: f64) -> Self {
+        Ray::new(point + direction * epsilon, direction)
     }
 }
 

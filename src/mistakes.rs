@@ -1,18 +1,20 @@
-//! The catalogue of classic Tick 2 mistakes (docs/check.md): each is one rule of the model
-//! done wrong, with a stable id. [`Mistakes`] is a set of them and a [`Model`] that breaks
-//! exactly those rules; every other rule is the course's own ([`Tick`]'s default). Sets, not
-//! one type per mistake, because students often have two at once and the diagnosis ranks
-//! every pair: one monomorphised model whose rules test a bit, instead of 21 x 21 types.
+//! The catalogue of docs/check.md: the classic Tick 2 mistakes and the unfinished stages of
+//! the handout, each one rule of the model done wrong (or not yet done), with a stable id.
+//! [`Mistakes`] is a set of them; [`Variant`] is the model a program with such a set (and
+//! perhaps one wrong number) renders. Sets, not one type per mistake, because students often
+//! have two or three at once and the diagnosis ranks combinations: one monomorphised model
+//! whose rules test a bit, instead of a type per combination.
 
-use glam::DVec3;
+mod catalogue;
+mod variant;
+
+pub use variant::{Number, Parameter, Variant};
 
 use crate::frame::limits::MAX_BOUNCES;
 use crate::frame::{Acceleration, FrameSpec};
-use crate::geometry::{normalise, sphere_far_hit, Ray, SphereTerms};
-use crate::model::{mirror_direction, Model, Tick};
-use crate::scene::PointLight;
 
-/// One catalogued mistake. The order is the catalogue's (`whitted check --list-bugs`).
+/// One catalogue entry: a mistake in written code or a stage not written yet. The order is
+/// the catalogue's (`whitted check --list-bugs`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Bug {
     ReflectUnclamped,
@@ -36,11 +38,42 @@ pub enum Bug {
     BouncesMinusOne,
     PlaneBehind,
     SphereFarRoot,
+    PlanesMissing,
+    LightsMissing,
+    ReflectionMissing,
+    ReflectionIgnored,
+}
+
+/// A stage of the handout: the code a student writes, in the order they write it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Stage {
+    /// `Plane.intersectionWith` (and the intersection rules a student can break).
+    Planes,
+    /// `Renderer.illuminate`: ambient, diffuse and specular per light.
+    Lights,
+    /// The shadow test inside `illuminate`.
+    Shadows,
+    /// `Renderer.trace`: reflected rays and the bounce count.
+    Reflection,
+}
+
+impl Stage {
+    pub const ALL: [Stage; 4] = [Stage::Planes, Stage::Lights, Stage::Shadows, Stage::Reflection];
+
+    /// The key of the `progress` object (docs/check.md).
+    pub fn key(self) -> &'static str {
+        match self {
+            Stage::Planes => "planes",
+            Stage::Lights => "lights",
+            Stage::Shadows => "shadows",
+            Stage::Reflection => "reflection",
+        }
+    }
 }
 
 impl Bug {
-    /// Every mistake, in catalogue order.
-    pub const ALL: [Bug; 21] = [
+    /// Every entry, in catalogue order: the mistakes, then the unfinished stages.
+    pub const ALL: [Bug; 25] = [
         Bug::ReflectUnclamped,
         Bug::SpecularGated,
         Bug::ViewFromRayOrigin,
@@ -62,47 +95,56 @@ impl Bug {
         Bug::BouncesMinusOne,
         Bug::PlaneBehind,
         Bug::SphereFarRoot,
+        Bug::PlanesMissing,
+        Bug::LightsMissing,
+        Bug::ReflectionMissing,
+        Bug::ReflectionIgnored,
     ];
 
     /// The stable id of docs/check.md.
     pub fn id(self) -> &'static str {
-        self.entry().0
+        catalogue::entry(self).id
     }
 
-    /// The mistake in one line, stated against docs/rendering.md.
+    /// The entry in one line, stated against docs/rendering.md.
     pub fn description(self) -> &'static str {
-        self.entry().1
+        catalogue::entry(self).description
     }
 
-    fn entry(self) -> (&'static str, &'static str) {
-        match self {
-            Bug::ReflectUnclamped => ("reflect-unclamped", "specular mirror direction R built from the unclamped N.L (the plain reflection of L)"),
-            Bug::SpecularGated => ("specular-gated", "specular added only where N.L > 0"),
-            Bug::ViewFromRayOrigin => ("view-from-ray-origin", "V points to the ray's origin, not to the camera, for reflected rays"),
-            Bug::ViewFlipped => ("view-flipped", "V = normalise(P) instead of normalise(-P)"),
-            Bug::LightUnnormalised => ("light-unnormalised", "L = light position - P, not normalised (in N.L and R)"),
-            Bug::NoFalloff => ("no-falloff", "light intensity without the 1/(4 pi d^2) falloff"),
-            Bug::NoAmbient => ("no-ambient", "ambient term missing"),
-            Bug::DiffuseNoColour => ("diffuse-no-colour", "diffuse term not multiplied by the object colour"),
-            Bug::SpecularObjectColour => ("specular-object-colour", "specular term multiplied by the object colour"),
-            Bug::FirstLightOnly => ("first-light-only", "only the first point light is used"),
-            Bug::LastLightWins => ("last-light-wins", "each light replaces the colour (ambient + its terms) instead of adding to it"),
-            Bug::NoShadows => ("no-shadows", "shadow rays never cast"),
-            Bug::NoShadowBias => ("no-shadow-bias", "shadow ray starts at P, without the EPSILON offset (shadow acne)"),
-            Bug::ShadowAnyHit => ("shadow-any-hit", "in shadow whenever the shadow ray hits anything, even beyond the light"),
-            Bug::NoReflectionBias => ("no-reflection-bias", "reflected ray starts at P, without the EPSILON offset"),
-            Bug::ReflectionWrongSign => ("reflection-wrong-sign", "reflected direction is D mirrored in N, without negating D first"),
-            Bug::ReflectionUnweighted => ("reflection-unweighted", "returns direct + reflectivity * reflected (direct not scaled by 1 - r)"),
-            Bug::BouncesPlusOne => ("bounces-plus-one", "one more reflection bounce than --bounces"),
-            Bug::BouncesMinusOne => ("bounces-minus-one", "one bounce fewer than --bounces"),
-            Bug::PlaneBehind => ("plane-behind", "plane hits with s < 0 accepted (planes behind the ray's origin)"),
-            Bug::SphereFarRoot => ("sphere-far-root", "the sphere takes the far root when the near one is not > 0, so a ray from inside hits it"),
-        }
+    /// The stage of the handout whose code this entry is in.
+    pub fn stage(self) -> Stage {
+        catalogue::entry(self).stage
     }
 
-    /// The mistake with this id.
+    /// Whether this entry is a stage not written yet rather than a mistake in written code.
+    pub fn is_unfinished(self) -> bool {
+        catalogue::entry(self).unfinished
+    }
+
+    /// The entry with this id.
     pub fn from_id(id: &str) -> Option<Bug> {
         Bug::ALL.into_iter().find(|b| b.id() == id)
+    }
+
+    /// Whether a program cannot have both: an unfinished stage has none of the code its
+    /// mistakes are made in, and the bounce count is off one way or the other.
+    pub fn excludes(self, other: Bug) -> bool {
+        let one_way = |a: Bug, b: Bug| match a {
+            Bug::PlanesMissing => b == Bug::PlaneBehind,
+            // No light is shaded, so no shadow ray is cast either.
+            Bug::LightsMissing => matches!(b.stage(), Stage::Lights | Stage::Shadows) && b != a,
+            Bug::NoShadows => b.stage() == Stage::Shadows && b != a,
+            // The skeleton's trace still weights direct by 1 - r and stops at the bounce
+            // count: only the reflected ray's own code is missing.
+            Bug::ReflectionMissing => matches!(
+                b,
+                Bug::NoReflectionBias | Bug::ReflectionWrongSign | Bug::ReflectionUnweighted
+            ),
+            Bug::ReflectionIgnored => b.stage() == Stage::Reflection && b != a,
+            Bug::BouncesPlusOne => b == Bug::BouncesMinusOne,
+            _ => false,
+        };
+        one_way(self, other) || one_way(other, self)
     }
 
     fn bit(self) -> u32 {
@@ -110,8 +152,10 @@ impl Bug {
     }
 }
 
-/// A set of mistakes, and the model that makes exactly those. The empty set is the course's
-/// model (the same bits as [`Tick`], a little slower: every rule tests its bit).
+// Every entry is one bit of `Mistakes`.
+const _: () = assert!(Bug::ALL.len() <= u32::BITS as usize);
+
+/// A set of catalogue entries. The empty set is the course's program.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, PartialOrd, Ord)]
 pub struct Mistakes(u32);
 
@@ -130,7 +174,22 @@ impl Mistakes {
         self.0 == 0
     }
 
-    /// The mistakes in catalogue order.
+    /// How many entries the set holds.
+    pub fn len(self) -> usize {
+        self.0.count_ones() as usize
+    }
+
+    /// The set with `bug` added.
+    pub fn with(self, bug: Bug) -> Self {
+        Mistakes(self.0 | bug.bit())
+    }
+
+    /// Whether `bug` can join the set: not in it, and excluded by none of its members.
+    pub fn admits(self, bug: Bug) -> bool {
+        !self.has(bug) && self.bugs().iter().all(|&m| !m.excludes(bug))
+    }
+
+    /// The entries in catalogue order.
     pub fn bugs(self) -> Vec<Bug> {
         Bug::ALL.into_iter().filter(|&b| self.has(b)).collect()
     }
@@ -138,6 +197,16 @@ impl Mistakes {
     /// The ids, in catalogue order.
     pub fn ids(self) -> Vec<&'static str> {
         self.bugs().into_iter().map(Bug::id).collect()
+    }
+
+    /// `a+b` for a pair.
+    pub fn name(self) -> String {
+        self.ids().join("+")
+    }
+
+    /// Whether the hierarchy's exactness argument covers these rules (`Model::hierarchy_exact`).
+    pub fn hierarchy_exact(self) -> bool {
+        !self.has(Bug::PlaneBehind) && !self.has(Bug::SphereFarRoot)
     }
 
     /// The frame a program with these mistakes renders when asked for `spec`: the
@@ -152,172 +221,18 @@ impl Mistakes {
         if self.has(Bug::BouncesMinusOne) {
             bounces = bounces.saturating_sub(1);
         }
+        if self.has(Bug::ReflectionIgnored) {
+            bounces = 0;
+        }
         FrameSpec {
             bounces,
-            shadows: spec.shadows && !self.has(Bug::NoShadows),
+            shadows: spec.shadows && !self.has(Bug::NoShadows) && !self.has(Bug::LightsMissing),
             acceleration: if self.hierarchy_exact() {
                 spec.acceleration
             } else {
                 Acceleration::BruteForce
             },
             ..spec.clone()
-        }
-    }
-}
-
-impl Model for Mistakes {
-    fn hierarchy_exact(&self) -> bool {
-        !self.has(Bug::PlaneBehind) && !self.has(Bug::SphereFarRoot)
-    }
-
-    fn sphere_root(
-        &self,
-        ray: &Ray,
-        terms: &SphereTerms,
-        centre: DVec3,
-        radius_squared: f64,
-    ) -> Option<f64> {
-        // The handout read literally: the near root if positive, else the far one.
-        let near = Tick.sphere_root(ray, terms, centre, radius_squared);
-        if self.has(Bug::SphereFarRoot) {
-            near.or_else(|| sphere_far_hit(ray, terms, centre, radius_squared))
-        } else {
-            near
-        }
-    }
-
-    fn plane_accepts(&self, s: f64) -> bool {
-        if self.has(Bug::PlaneBehind) {
-            s.is_finite()
-        } else {
-            Tick.plane_accepts(s)
-        }
-    }
-
-    fn lights<'a>(&self, lights: &'a [PointLight]) -> &'a [PointLight] {
-        if self.has(Bug::FirstLightOnly) {
-            &lights[..lights.len().min(1)]
-        } else {
-            lights
-        }
-    }
-
-    fn illumination(&self, light: &PointLight, d: f64) -> DVec3 {
-        if self.has(Bug::NoFalloff) {
-            light.colour * light.intensity
-        } else {
-            Tick.illumination(light, d)
-        }
-    }
-
-    fn to_light(&self, to_light: DVec3, d: f64) -> DVec3 {
-        if self.has(Bug::LightUnnormalised) {
-            to_light
-        } else {
-            Tick.to_light(to_light, d)
-        }
-    }
-
-    fn view(&self, p: DVec3, ray_origin: DVec3) -> DVec3 {
-        if self.has(Bug::ViewFlipped) {
-            normalise(p)
-        } else if self.has(Bug::ViewFromRayOrigin) {
-            normalise(ray_origin - p)
-        } else {
-            Tick.view(p, ray_origin)
-        }
-    }
-
-    fn specular_mirror(&self, n: DVec3, l: DVec3, n_dot_l: f64) -> DVec3 {
-        if self.has(Bug::ReflectUnclamped) {
-            n * (2.0 * n.dot(l)) - l
-        } else {
-            Tick.specular_mirror(n, l, n_dot_l)
-        }
-    }
-
-    fn ambient(&self, ambient_light: DVec3, colour: DVec3) -> DVec3 {
-        if self.has(Bug::NoAmbient) {
-            DVec3::ZERO
-        } else {
-            Tick.ambient(ambient_light, colour)
-        }
-    }
-
-    fn diffuse(&self, colour: DVec3, illumination: DVec3, kd: f64, n_dot_l: f64) -> DVec3 {
-        if self.has(Bug::DiffuseNoColour) {
-            (illumination * kd) * n_dot_l
-        } else {
-            Tick.diffuse(colour, illumination, kd, n_dot_l)
-        }
-    }
-
-    fn specular(
-        &self,
-        illumination: DVec3,
-        ks: f64,
-        phong: f64,
-        colour: DVec3,
-        n_dot_l: f64,
-    ) -> DVec3 {
-        // The clamped N.L is 0 where the raw one is <= 0; a NaN one adds no specular either.
-        let lit = n_dot_l.partial_cmp(&0.0) == Some(std::cmp::Ordering::Greater);
-        let gated = self.has(Bug::SpecularGated) && !lit;
-        let specular = if gated {
-            DVec3::ZERO
-        } else {
-            Tick.specular(illumination, ks, phong, colour, n_dot_l)
-        };
-        if self.has(Bug::SpecularObjectColour) {
-            specular * colour
-        } else {
-            specular
-        }
-    }
-
-    fn shadow_ray(&self, p: DVec3, l: DVec3) -> Ray {
-        if self.has(Bug::NoShadowBias) {
-            Ray::new(p, l)
-        } else {
-            Tick.shadow_ray(p, l)
-        }
-    }
-
-    fn shadow_reach(&self, d: f64) -> f64 {
-        if self.has(Bug::ShadowAnyHit) {
-            f64::INFINITY
-        } else {
-            Tick.shadow_reach(d)
-        }
-    }
-
-    fn add_light(&self, colour: DVec3, ambient: DVec3, diffuse: DVec3, specular: DVec3) -> DVec3 {
-        let base = if self.has(Bug::LastLightWins) {
-            ambient
-        } else {
-            colour
-        };
-        Tick.add_light(base, ambient, diffuse, specular)
-    }
-
-    fn mirror_ray(&self, p: DVec3, d: DVec3, n: DVec3) -> Ray {
-        let direction = if self.has(Bug::ReflectionWrongSign) {
-            normalise(n * (2.0 * n.dot(d)) - d)
-        } else {
-            mirror_direction(d, n)
-        };
-        if self.has(Bug::NoReflectionBias) {
-            Ray::new(p, direction)
-        } else {
-            Ray::offset_from(p, direction)
-        }
-    }
-
-    fn blend(&self, direct: DVec3, reflected: DVec3, r: f64) -> DVec3 {
-        if self.has(Bug::ReflectionUnweighted) {
-            direct + reflected * r
-        } else {
-            Tick.blend(direct, reflected, r)
         }
     }
 }
@@ -335,7 +250,7 @@ mod tests {
         }
         ids.sort_unstable();
         ids.dedup();
-        assert_eq!(ids.len(), 21);
+        assert_eq!(ids.len(), Bug::ALL.len());
     }
 
     #[test]
@@ -344,6 +259,8 @@ mod tests {
         assert_eq!(set.bugs(), vec![Bug::NoAmbient, Bug::SphereFarRoot]);
         assert!(!set.hierarchy_exact());
         assert!(Mistakes::NONE.is_empty() && Mistakes::NONE.hierarchy_exact());
+        assert_eq!(set.len(), 2);
+        assert_eq!(set.name(), "no-ambient+sphere-far-root");
     }
 
     #[test]
@@ -363,15 +280,5 @@ mod tests {
         );
         let far = Mistakes::of(&[Bug::SphereFarRoot]).frame_spec(&spec);
         assert_eq!(far.acceleration, Acceleration::BruteForce);
-    }
-
-    #[test]
-    fn the_far_root_is_taken_from_inside() {
-        let ray = Ray::new(DVec3::new(0.0, 0.0, 5.0), DVec3::Z);
-        let terms = SphereTerms::of(&ray);
-        let centre = DVec3::new(0.0, 0.0, 5.0);
-        assert_eq!(Tick.sphere_root(&ray, &terms, centre, 1.0), None);
-        let far = Mistakes::of(&[Bug::SphereFarRoot]).sphere_root(&ray, &terms, centre, 1.0);
-        assert_eq!(far, Some(1.0));
     }
 }

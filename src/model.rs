@@ -11,7 +11,7 @@ pub mod search;
 
 use glam::DVec3;
 
-use crate::geometry::{divide_by_length, normalise, sphere_hit, Ray, SphereTerms};
+use crate::geometry::{divide_by_length, normalise, sphere_hit, Ray, SphereTerms, EPSILON};
 use crate::scene::PointLight;
 
 /// The course's rules, one method each. Each default is the rule of docs/rendering.md in its
@@ -66,6 +66,21 @@ pub trait Model: Sync {
         n * (2.0 * n_dot_l) - l
     }
 
+    /// The offset along a shadow or reflected ray at which it starts: `EPSILON`.
+    fn epsilon(&self) -> f64 {
+        EPSILON
+    }
+
+    /// The specular exponent used for a material whose exponent is `n`: `n` itself.
+    fn specular_exponent(&self, n: f64) -> f64 {
+        n
+    }
+
+    /// The reflectivity used for a material whose reflectivity is `r`: `r` itself.
+    fn reflectivity(&self, r: f64) -> f64 {
+        r
+    }
+
     /// The ambient term `I_a * C`.
     fn ambient(&self, ambient_light: DVec3, colour: DVec3) -> DVec3 {
         ambient_light * colour
@@ -91,7 +106,7 @@ pub trait Model: Sync {
 
     /// The shadow ray towards a light along `l` from `p`: started `EPSILON` along `l`.
     fn shadow_ray(&self, p: DVec3, l: DVec3) -> Ray {
-        Ray::offset_from(p, l)
+        Ray::offset_by(p, l, self.epsilon())
     }
 
     /// How far along the shadow ray a hit shadows the point: up to the light, `d`.
@@ -107,7 +122,7 @@ pub trait Model: Sync {
     /// The reflected ray at `p` with normal `n` for a ray along `d`: `-d` mirrored about `n`,
     /// started `EPSILON` along it.
     fn mirror_ray(&self, p: DVec3, d: DVec3, n: DVec3) -> Ray {
-        Ray::offset_from(p, mirror_direction(d, n))
+        Ray::offset_by(p, mirror_direction(d, n), self.epsilon())
     }
 
     /// A mirror's colour from its own shading and what it reflects:

@@ -259,6 +259,12 @@ pub fn trace_pixels<const LAYERS: bool, T>(
     pixels: &[(u32, u32)],
     keep: impl Fn(&Sample) -> T,
 ) -> Vec<T> {
+    // A model the hierarchy is not exact for would get wrong hits, silently: a bug in the
+    // caller, never an input's fault.
+    assert!(
+        model.hierarchy_exact() || accel.is_exhaustive(),
+        "a model the hierarchy is not exact for was traced with the hierarchy"
+    );
     let mut sample = Sample::empty(scene.lights.len(), frame.trace().bounces);
     pixels
         .iter()

@@ -107,9 +107,10 @@ pub fn trace_observed<const LAYERS: bool>(
         let material = &object.material;
         let point = ray.at(hit.distance);
         let normal = object.shape.normal_at(point);
-        let continues = k < options.bounces && material.reflectivity != 0.0;
+        let reflectivity = model.reflectivity(material.reflectivity);
+        let continues = k < options.bounces && reflectivity != 0.0;
         let weight = if continues {
-            throughput * (1.0 - material.reflectivity)
+            throughput * (1.0 - reflectivity)
         } else {
             throughput
         };
@@ -155,11 +156,11 @@ pub fn trace_observed<const LAYERS: bool>(
                 object: hit.object,
             });
         }
-        chain.push((colour, continues.then_some(material.reflectivity)));
+        chain.push((colour, continues.then_some(reflectivity)));
         let Some(next) = spawned else {
             break;
         };
-        throughput *= material.reflectivity;
+        throughput *= reflectivity;
         ray = next;
     }
     sample.beauty =
@@ -255,7 +256,7 @@ fn light_terms<O: Observer>(
     let r = model.specular_mirror(n, l, n_dot_l);
     let diffuse = model.diffuse(m.colour, illumination, m.kd, n_dot_l);
     let r_dot_v = java_max_zero(r.dot(v));
-    let phong = phong_power(r_dot_v, m.n);
+    let phong = phong_power(r_dot_v, model.specular_exponent(m.n));
     let specular = model.specular(illumination, m.ks, phong, m.colour, n_dot_l);
     let shadow_ray = model.shadow_ray(p, l);
     let reach = model.shadow_reach(d);

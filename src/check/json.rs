@@ -1,16 +1,17 @@
-//! One checked image as JSON: what `whitted check --json` prints (docs/check.md) and what the
-//! viewer's check panel shows.
+//! A check as JSON: what `whitted check --json` prints (docs/check.md) and what the viewer's
+//! check panel shows.
 
 use serde_json::{json, Value};
 
 use super::diagnose::Diagnosis;
+use super::numbers::NumberFit;
+use super::progress::Progress;
 use super::terms::TermFit;
-use super::CaseReport;
-use crate::mistakes::Mistakes;
+use super::{summary, CaseReport, Findings};
 
-/// `a+b` for a pair.
-pub fn name(m: Mistakes) -> String {
-    m.ids().join("+")
+/// A share rounded to three decimals.
+fn share(x: f64) -> f64 {
+    (x * 1000.0).round() / 1000.0
 }
 
 pub fn diagnosis_json(list: &[Diagnosis]) -> Value {
@@ -18,10 +19,10 @@ pub fn diagnosis_json(list: &[Diagnosis]) -> Value {
         .iter()
         .map(|d| json!({
             "bugs": d.mistakes.ids(),
-            "explained": (d.explained * 1000.0).round() / 1000.0,
+            "explained": share(d.explained),
             "unexplained_pixels": d.unexplained_pixels,
             "wrongly_changed_pixels": d.wrongly_changed_pixels,
-            "indistinguishable_from": d.indistinguishable_from.iter().map(|&m| name(m)).collect::<Vec<_>>(),
+            "indistinguishable_from": d.indistinguishable_from.iter().map(|&m| m.name()).collect::<Vec<_>>(),
             "exact": d.exact,
         }))
         .collect::<Vec<_>>())
@@ -33,13 +34,51 @@ pub fn terms_json(terms: &[TermFit]) -> Value {
         .map(|t| json!({
             "layer": t.layer,
             "replaces": t.replaces,
-            "factor": (t.factor * 1000.0).round() / 1000.0,
-            "explained": (t.explained * 1000.0).round() / 1000.0,
+            "factor": share(t.factor),
+            "explained": share(t.explained),
         }))
         .collect::<Vec<_>>())
 }
 
-pub fn case_json(case: &CaseReport) -> Value {
+pub fn parameters_json(parameters: &[NumberFit]) -> Value {
+    json!(parameters
+        .iter()
+        .map(|p| json!({
+            "name": p.parameter.name(),
+            "course": p.parameter.course(),
+            "fitted": p.fitted,
+            "with": p.with.ids(),
+            "explained": share(p.explained),
+            "wrongly_changed_pixels": p.wrongly_changed_pixels,
+            "exact": p.exact,
+        }))
+        .collect::<Vec<_>>())
+}
+
+pub fn progress_json(progress: &Progress) -> Value {
+    let object: serde_json::Map<String, Value> = progress
+        .stages
+        .iter()
+        .map(|(stage, state)| (stage.key().to_string(), json!(state.name())))
+        .collect();
+    Value::Object(object)
+}
+
+/// What the diagnosis found, as the fields of the check's object.
+pub fn add_findings(object: &mut Value, findings: &Findings) {
+    object["diagnosis"] = diagnosis_json(&findings.diagnosis);
+    object["progress"] = progress_json(&findings.progress);
+    if !findings.terms.is_empty() {
+        object["terms"] = terms_json(&findings.terms);
+    }
+    if !findings.parameters.is_empty() {
+        object["parameters"] = parameters_json(&findings.parameters);
+    }
+    object["summary"] = json!(summary::opening(findings));
+}
+
+/// One case; with `findings` when it is a check of one image (not a suite's case).
+pub fn case_json(case: &CaseReport, findings: Option<&Findings>) -> Value {
     let d = &case.difference;
     let mut object = json!({
         "verdict": d.verdict.name(),
@@ -55,8 +94,8 @@ pub fn case_json(case: &CaseReport) -> Value {
         "bounds": d.bounds.map(|(x0, y0, x1, y1)| json!([x0, y0, x1, y1])),
         "diagnosis": diagnosis_json(&case.diagnosis),
     });
-    if !case.terms.is_empty() {
-        object["terms"] = terms_json(&case.terms);
+    if let Some(findings) = findings {
+        add_findings(&mut object, findings);
     }
     object
 }

@@ -8,16 +8,16 @@
 use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, ExitStatus, Stdio};
+use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
-use crate::check::diagnose::{rank, Diagnosis};
 use crate::check::student_png::{self, Rgb8};
 use crate::check::suite::{cases, SuiteCase};
-use crate::check::{check_image, CaseReport};
+use crate::check::{find, prepare, CaseReport, Findings};
 use crate::error::{Error, Result};
 use crate::interrupt;
-use crate::scene;
+use crate::scene::{self, Scene};
 
 /// The image size the course's program always writes.
 pub const WIDTH: u32 = 640;
@@ -31,6 +31,11 @@ const POLL: Duration = Duration::from_millis(20);
 
 /// Bytes of a program's standard error kept: its end, where the exception is.
 const STDERR_TAIL: usize = 4096;
+
+/// How long the standard error reader may take to reach the pipe's end once the case's
+/// processes are killed: a descendant that left the process group can hold the pipe open
+/// for ever, and then the tail read so far is all there is.
+const STDERR_GRACE: Duration = Duration::from_millis(200);
 
 /// How one case ended.
 #[derive(Debug, Clone)]
@@ -79,8 +84,8 @@ impl CaseOutcome {
 pub struct SuiteRun {
     pub program: String,
     pub cases: Vec<CaseOutcome>,
-    /// One diagnosis over every case that produced an image.
-    pub diagnosis: Vec<Diagnosis>,
+    /// One diagnosis over every case that produced an image, all at once.
+    pub findings: Findings,
 }
 
 impl SuiteRun {
@@ -105,42 +110,58 @@ pub fn run_suite(program: &str, tolerance: u8, timeout: u64) -> Result<SuiteRun>
     let words = words(program)?;
     let suite = cases();
     let finished = run_programs(&words, &suite, Duration::from_secs(timeout))?;
-    let mut outcomes = Vec::new();
-    for (case, (result, stderr_tail)) in suite.iter().zip(finished) {
-        let status = match result {
+    let mut statuses: Vec<Option<Status>> = Vec::new();
+    let mut tails = Vec::new();
+    let mut scenes: Vec<(usize, Scene)> = Vec::new();
+    let mut images: Vec<Rgb8> = Vec::new();
+    for (i, (case, (result, stderr_tail))) in suite.iter().zip(finished).enumerate() {
+        tails.push(stderr_tail);
+        match result {
             Ran::Image(image) => {
-                let scene = scene::parse_str(case.file, case.xml)?;
-                let report = check_image(&scene, case.file, case.bounces, tolerance, image)?;
-                interrupt::check()?;
-                Status::Ok(Box::new(report))
+                scenes.push((i, scene::parse_str(case.file, case.xml)?));
+                images.push(image);
+                statuses.push(None);
             }
-            Ran::Failed(status) => status,
-        };
-        outcomes.push(CaseOutcome {
-            name: case.name(),
-            status,
-            stderr_tail,
-        });
+            Ran::Failed(status) => statuses.push(Some(status)),
+        }
     }
-    let analyses: Vec<_> = outcomes
+    let count = scenes.len();
+    let mut prepared = Vec::new();
+    let mut reports = Vec::new();
+    for ((i, scene), image) in scenes.iter().zip(images) {
+        let case = &suite[*i];
+        let (c, report) = prepare(scene, case.file, case.bounces, tolerance, image, count)?;
+        interrupt::check()?;
+        prepared.push(c);
+        reports.push(report);
+    }
+    let all_pass = statuses.iter().all(Option::is_none)
+        && reports.iter().all(|r| r.difference.verdict.passes());
+    let findings = find(&prepared, all_pass)?;
+    let mut reports = reports.into_iter().zip(&findings.per_case);
+    let outcomes = suite
         .iter()
-        .filter_map(|o| match &o.status {
-            Status::Ok(report) => Some(&report.analysis),
-            _ => None,
+        .zip(statuses)
+        .zip(tails)
+        .map(|((case, status), stderr_tail)| {
+            let status = status.unwrap_or_else(|| match reports.next() {
+                Some((mut report, diagnosis)) => {
+                    report.diagnosis = diagnosis.clone();
+                    Status::Ok(Box::new(report))
+                }
+                None => Status::Crashed("not checked".into()),
+            });
+            CaseOutcome {
+                name: case.name(),
+                status,
+                stderr_tail,
+            }
         })
         .collect();
-    let any_differs = outcomes
-        .iter()
-        .any(|o| matches!(&o.status, Status::Ok(c) if c.difference.differing_pixels > 0));
-    let diagnosis = if any_differs {
-        rank(&analyses)
-    } else {
-        Vec::new()
-    };
     Ok(SuiteRun {
         program: program.to_string(),
         cases: outcomes,
-        diagnosis,
+        findings,
     })
 }
 
@@ -154,7 +175,9 @@ enum Ran {
 struct Running {
     index: usize,
     child: Child,
-    stderr: Option<JoinHandle<Vec<u8>>>,
+    /// The reader of the program's standard error and the tail it has kept so far.
+    stderr: Option<JoinHandle<()>>,
+    stderr_tail: Arc<Mutex<Vec<u8>>>,
     started: Instant,
     /// Holds the scene and the output; removed when dropped.
     dir: tempfile::TempDir,
@@ -261,11 +284,18 @@ fn start(words: &[String], case: &SuiteCase, index: usize) -> Result<Running> {
         .spawn()
         .map_err(|e| Error::Usage(format!("cannot start the program `{}`: {e}", words[0])))?;
     let stderr = child.stderr.take();
-    let reader = std::thread::spawn(move || stderr.map(keep_tail).unwrap_or_default());
+    let stderr_tail = Arc::new(Mutex::new(Vec::new()));
+    let tail = Arc::clone(&stderr_tail);
+    let reader = std::thread::spawn(move || {
+        if let Some(pipe) = stderr {
+            keep_tail(pipe, &tail);
+        }
+    });
     Ok(Running {
         index,
         child,
         stderr: Some(reader),
+        stderr_tail,
         started: Instant::now(),
         dir,
     })
@@ -275,22 +305,24 @@ fn output_path(dir: &Path) -> PathBuf {
     dir.join("output.png")
 }
 
-/// Reads `pipe` to its end, keeping only the last `STDERR_TAIL` bytes.
-fn keep_tail(mut pipe: impl Read) -> Vec<u8> {
-    let mut tail: Vec<u8> = Vec::with_capacity(2 * STDERR_TAIL);
+/// Reads `pipe` to its end, keeping only the last `STDERR_TAIL` bytes in `tail`.
+fn keep_tail(mut pipe: impl Read, tail: &Mutex<Vec<u8>>) {
     let mut buffer = [0u8; 8192];
     loop {
         match pipe.read(&mut buffer) {
             Ok(0) | Err(_) => break,
             Ok(n) => {
+                // A poisoned lock only means another reader panicked: the bytes are still
+                // worth keeping.
+                let mut tail = tail.lock().unwrap_or_else(|e| e.into_inner());
                 tail.extend_from_slice(&buffer[..n]);
                 if tail.len() > STDERR_TAIL {
-                    tail.drain(..tail.len() - STDERR_TAIL);
+                    let excess = tail.len() - STDERR_TAIL;
+                    tail.drain(..excess);
                 }
             }
         }
     }
-    tail
 }
 
 /// The last lines of a standard error tail, as text.
@@ -306,11 +338,18 @@ fn stop(r: &mut Running) -> String {
     kill_group(&r.child);
     let _ = r.child.kill();
     let _ = r.child.wait();
-    let tail = r
-        .stderr
-        .take()
-        .and_then(|t| t.join().ok())
-        .unwrap_or_default();
+    // The pipe ends once every process holding it is gone; one that left the group may
+    // hold it for ever, so the reader gets a moment, then is left to end on its own.
+    let deadline = Instant::now() + STDERR_GRACE;
+    if let Some(reader) = r.stderr.take() {
+        while !reader.is_finished() && Instant::now() < deadline {
+            std::thread::sleep(Duration::from_millis(5));
+        }
+        if reader.is_finished() {
+            let _ = reader.join();
+        }
+    }
+    let tail = r.stderr_tail.lock().unwrap_or_else(|e| e.into_inner());
     tail_text(&tail)
 }
 

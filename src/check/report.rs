@@ -5,7 +5,8 @@
 use crate::canvas::{fit, Canvas, LINE_HEIGHT};
 use crate::check::difference::pixel_difference;
 use crate::check::student_png::Rgb8;
-use crate::check::CaseReport;
+use crate::check::summary::opening;
+use crate::check::{CaseReport, Findings};
 use crate::output::png::{PngImage, PngPixels};
 
 /// The colour of a pixel `d` LSB off: black when equal, blue within the tolerance, then red
@@ -69,7 +70,8 @@ fn tile(width: u32, height: u32, pixel: impl Fn(u32, u32) -> [u8; 3]) -> Canvas 
 }
 
 impl ReportRow {
-    pub fn of(case_name: &str, case: &CaseReport) -> Self {
+    /// The row of one case, captioned with its part of the suite's `findings`.
+    pub fn of(case_name: &str, case: &CaseReport, findings: &Findings) -> Self {
         let d = &case.difference;
         let heat = heat_pixels(&case.student, &case.reference, case.tolerance);
         let width = case.student.width;
@@ -89,16 +91,21 @@ impl ReportRow {
                 d.differing_pixels, d.max_difference
             ),
         ];
+        // What explains most first: the best fit beyond the catalogue when the catalogue
+        // explains little.
+        let beyond = opening(findings).into_iter().skip(2).take(1);
+        let weak = findings.weak();
+        if weak {
+            caption.extend(beyond.map(|l| l.trim().to_string()));
+        }
         match case.diagnosis.first() {
             Some(top) => caption.push(format!(
-                "looks like {} ({:.0}% explained)",
+                "{}looks like {} ({:.0}% explained)",
+                if weak { "weakly " } else { "" },
                 top.mistakes.ids().join(" + "),
                 100.0 * top.explained
             )),
             None => caption.push("no catalogued mistake fits".into()),
-        }
-        if let Some(t) = case.terms.first() {
-            caption.push(t.sentence());
         }
         ReportRow { caption, tiles }
     }

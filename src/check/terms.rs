@@ -52,54 +52,119 @@ struct Term {
     values: Vec<(DVec3, DVec3)>,
 }
 
+/// Factors outside this range are no finding: no plausible program scales a term so.
+const PLAUSIBLE: std::ops::RangeInclusive<f64> = -0.05..=4.0;
+
 fn layer_value(sample: &Sample, quantity: Quantity) -> DVec3 {
     let mut out = [0.0; 4];
     quantity.values(sample, &mut out);
     DVec3::new(out[0], out[1], out[2])
 }
 
-/// The fits that best reproduce `student` at the reference `samples` of `pixels` (the
-/// differing ones), best first.
-pub fn fit(
-    scene: &Scene,
-    bounces: u32,
-    samples: &[Sample],
-    pixels: &[(u32, u32)],
-    student: &Rgb8,
-) -> Vec<TermFit> {
-    let names: Vec<String> = scene.lights.iter().map(|l| l.name.clone()).collect();
-    let layers = aov::all_layers(&names, bounces);
-    let colour = |q: Quantity| q.kind() == Kind::Colour && q != Quantity::Beauty;
-    let mut terms: Vec<Term> = layers
-        .iter()
-        .filter(|l| colour(l.quantity))
-        .map(|l| Term {
-            layer: l.name.clone(),
-            replaces: None,
-            values: samples
-                .iter()
-                .map(|s| {
-                    let v = layer_value(s, l.quantity);
-                    (s.beauty - v, v)
-                })
-                .collect(),
-        })
-        .collect();
-    for (i, name) in names.iter().enumerate() {
-        terms.push(Term {
-            layer: PerLight::Unshadowed.layer_name(name),
-            replaces: Some(PerLight::Shadowed.layer_name(name)),
-            values: samples
-                .iter()
-                .map(|s| (s.beauty - s.lights[i].shadowed, s.lights[i].unshadowed))
-                .collect(),
-        });
+/// One case's candidate terms at its sampled differing pixels, and the student's bytes there.
+pub struct TermCase {
+    terms: Vec<Term>,
+    beauty: Vec<DVec3>,
+    targets: Vec<[u8; 3]>,
+}
+
+impl TermCase {
+    /// The terms of `scene`'s render at `bounces`, from the reference `samples` of `pixels`.
+    pub fn new(
+        scene: &Scene,
+        bounces: u32,
+        samples: &[Sample],
+        pixels: &[(u32, u32)],
+        student: &Rgb8,
+    ) -> Self {
+        let names: Vec<String> = scene.lights.iter().map(|l| l.name.clone()).collect();
+        let layers = aov::all_layers(&names, bounces);
+        let colour = |q: Quantity| q.kind() == Kind::Colour && q != Quantity::Beauty;
+        let mut terms: Vec<Term> = layers
+            .iter()
+            .filter(|l| colour(l.quantity))
+            .map(|l| Term {
+                layer: l.name.clone(),
+                replaces: None,
+                values: samples
+                    .iter()
+                    .map(|s| {
+                        let v = layer_value(s, l.quantity);
+                        (s.beauty - v, v)
+                    })
+                    .collect(),
+            })
+            .collect();
+        for (i, name) in names.iter().enumerate() {
+            terms.push(Term {
+                layer: PerLight::Unshadowed.layer_name(name),
+                replaces: Some(PerLight::Shadowed.layer_name(name)),
+                values: samples
+                    .iter()
+                    .map(|s| (s.beauty - s.lights[i].shadowed, s.lights[i].unshadowed))
+                    .collect(),
+            });
+        }
+        TermCase {
+            terms,
+            beauty: samples.iter().map(|s| s.beauty).collect(),
+            targets: pixels.iter().map(|&(x, y)| student.pixel(x, y)).collect(),
+        }
     }
-    let targets: Vec<[u8; 3]> = pixels.iter().map(|&(x, y)| student.pixel(x, y)).collect();
-    let mut fits: Vec<TermFit> = terms
+
+    fn term(&self, layer: &str, replaces: &Option<String>) -> Option<&Term> {
+        self.terms
+            .iter()
+            .find(|t| t.layer == layer && &t.replaces == replaces)
+    }
+}
+
+/// The fits that best reproduce the students' images over every case at once, best first: a
+/// term's factor is shared by every case (the least-squares sums add across cases), and a
+/// case without that layer keeps the reference's beauty.
+pub fn fit(cases: &[TermCase]) -> Vec<TermFit> {
+    let mut keys: Vec<(String, Option<String>)> = Vec::new();
+    for t in cases.iter().flat_map(|c| &c.terms) {
+        let key = (t.layer.clone(), t.replaces.clone());
+        if !keys.contains(&key) {
+            keys.push(key);
+        }
+    }
+    let total: usize = cases.iter().map(|c| c.targets.len()).sum();
+    let mut fits: Vec<TermFit> = keys
         .iter()
-        .filter_map(|term| fit_one(term, &targets))
+        .filter_map(|(layer, replaces)| {
+            let (mut num, mut den) = (0.0, 0.0);
+            for case in cases {
+                if let Some(term) = case.term(layer, replaces) {
+                    let (n, d) = sums(term, &case.targets);
+                    num += n;
+                    den += d;
+                }
+            }
+            if den <= 1e-12 {
+                return None;
+            }
+            let factor = num / den;
+            let matched: usize = cases
+                .iter()
+                .map(|case| {
+                    let predicted: Vec<DVec3> = match case.term(layer, replaces) {
+                        Some(term) => term.values.iter().map(|&(b, x)| b + x * factor).collect(),
+                        None => case.beauty.clone(),
+                    };
+                    matches(&predicted, &case.targets)
+                })
+                .sum();
+            Some(TermFit {
+                layer: layer.clone(),
+                replaces: replaces.clone(),
+                factor,
+                explained: matched as f64 / total.max(1) as f64,
+            })
+        })
         .filter(|f| f.explained > 0.0 && (f.replaces.is_some() || (f.factor - 1.0).abs() > 1e-3))
+        .filter(|f| PLAUSIBLE.contains(&f.factor))
         .collect();
     // On a tie the replacement reads better: "shadows missing", not "twice as strong".
     fits.sort_by(|a, b| {
@@ -111,9 +176,8 @@ pub fn fit(
     fits
 }
 
-/// Least squares for `f` over the channels the student's bytes do not clip, then the share
-/// of pixels the fit reproduces.
-fn fit_one(term: &Term, targets: &[[u8; 3]]) -> Option<TermFit> {
+/// The least-squares sums for `f` over the channels the student's bytes do not clip.
+fn sums(term: &Term, targets: &[[u8; 3]]) -> (f64, f64) {
     let (mut num, mut den) = (0.0, 0.0);
     for (&(base, x), target) in term.values.iter().zip(targets) {
         for c in 0..3 {
@@ -127,21 +191,15 @@ fn fit_one(term: &Term, targets: &[[u8; 3]]) -> Option<TermFit> {
             den += x[c] * x[c];
         }
     }
-    if den <= 1e-12 {
-        return None;
-    }
-    let factor = num / den;
-    let predicted: Vec<DVec3> = term.values.iter().map(|&(b, x)| b + x * factor).collect();
-    let bytes = tick_bytes(&predicted);
-    let matched = targets
+    (num, den)
+}
+
+/// How many `predicted` values give the target bytes within 1 LSB.
+fn matches(predicted: &[DVec3], targets: &[[u8; 3]]) -> usize {
+    let bytes = tick_bytes(predicted);
+    targets
         .iter()
         .enumerate()
         .filter(|(i, t)| (0..3).all(|c| bytes[3 * i + c].abs_diff(t[c]) <= 1))
-        .count();
-    Some(TermFit {
-        layer: term.layer.clone(),
-        replaces: term.replaces.clone(),
-        factor,
-        explained: matched as f64 / targets.len().max(1) as f64,
-    })
+        .count()
 }

@@ -5,10 +5,11 @@
 use serde_json::{json, Value};
 
 use crate::check::diagnose::Diagnosis;
-use crate::check::json::{case_json, diagnosis_json, name};
+use crate::check::json::{add_findings, case_json};
 use crate::check::program::{run_suite, CaseOutcome, Status, SuiteRun, HEIGHT, WIDTH};
 use crate::check::report::{contact_sheet, heat_map, ReportRow};
-use crate::check::{check_image, student_png, CaseReport};
+use crate::check::summary::{candidates_heading, opening};
+use crate::check::{check_image, student_png, CaseReport, Findings};
 use crate::cli::CheckArgs;
 use crate::error::Result;
 use crate::mistakes::Bug;
@@ -60,7 +61,7 @@ fn run_image(args: &CheckArgs, image: &std::path::Path) -> Result<bool> {
     let mut report = args.report.as_deref().map(Destination::open).transpose()?;
     let input = scene::load_input(args.input.as_deref())?;
     let student = student_png::read(image)?;
-    let case = check_image(
+    let (case, findings) = check_image(
         &input.scene,
         &input.name,
         args.bounces,
@@ -71,16 +72,20 @@ fn run_image(args: &CheckArgs, image: &std::path::Path) -> Result<bool> {
         out.write_png(&heat_map(&case.student, &case.reference, args.tolerance))?;
     }
     if let Some(out) = report.as_mut() {
-        let rows = [ReportRow::of(&image.display().to_string(), &case)];
+        let rows = [ReportRow::of(
+            &image.display().to_string(),
+            &case,
+            &findings,
+        )];
         out.write_png(&contact_sheet(&rows))?;
     }
     for out in [heatmap, report].into_iter().flatten() {
         out.commit()?;
     }
     let text = if args.json {
-        pretty(&case_json(&case))
+        pretty(&case_json(&case, Some(&findings)))
     } else {
-        case_text(&case, args.input.as_deref())
+        case_text(&case, &findings, args.input.as_deref())
     };
     stdout::print_line(&text)?;
     Ok(case.difference.verdict.passes())
@@ -111,7 +116,7 @@ fn run_program(args: &CheckArgs, program: &str) -> Result<bool> {
             .iter()
             .filter_map(|c| match &c.status {
                 Status::Ok(case) if !case.difference.verdict.passes() => {
-                    Some(ReportRow::of(&c.name, case))
+                    Some(ReportRow::of(&c.name, case, &run.findings))
                 }
                 _ => None,
             })
@@ -153,14 +158,27 @@ fn diagnosis_lines(list: &[Diagnosis]) -> String {
             if d.exact { "" } else { "; estimated" }
         );
         if !d.indistinguishable_from.is_empty() {
-            let twins: Vec<String> = d.indistinguishable_from.iter().map(|&m| name(m)).collect();
+            let twins: Vec<String> = d.indistinguishable_from.iter().map(|m| m.name()).collect();
             out += &format!("     indistinguishable here from: {}\n", twins.join(", "));
         }
     }
     out
 }
 
-fn case_text(case: &CaseReport, input: Option<&std::path::Path>) -> String {
+/// The candidates and the fits beyond the catalogue, after the opening lines.
+fn findings_text(findings: &Findings) -> String {
+    let mut out = String::new();
+    if findings.diagnosis.is_empty() {
+        out += "diagnosis: no catalogued mistake reproduces the images better than the reference does\n";
+    } else {
+        out += &candidates_heading(findings);
+        out += "\n";
+        out += &diagnosis_lines(&findings.diagnosis);
+    }
+    out
+}
+
+fn case_text(case: &CaseReport, findings: &Findings, input: Option<&std::path::Path>) -> String {
     let d = &case.difference;
     let total = u64::from(d.width) * u64::from(d.height);
     let mut out = format!(
@@ -172,6 +190,10 @@ fn case_text(case: &CaseReport, input: Option<&std::path::Path>) -> String {
         d.verdict.name(),
         case.tolerance
     );
+    for line in opening(findings) {
+        out += &line;
+        out += "\n";
+    }
     if d.differing_pixels == 0 {
         out += "every byte of every pixel equals the reference";
         return out;
@@ -184,25 +206,7 @@ fn case_text(case: &CaseReport, input: Option<&std::path::Path>) -> String {
         out +=
             &format!("they lie in x {x0}..={x1}, y {y0}..={y1}; the worst pixel is ({x}, {y})\n");
     }
-    if case.diagnosis.is_empty() {
-        out += "diagnosis: no catalogued mistake reproduces the image better than the reference does\n";
-    } else if case.terms.is_empty() {
-        out += "diagnosis, best first:\n";
-        out += &diagnosis_lines(&case.diagnosis);
-    } else {
-        out += "no catalogued mistake explains the image well; the closest, best first:\n";
-        out += &diagnosis_lines(&case.diagnosis);
-    }
-    if !case.terms.is_empty() {
-        out += "where the difference lives in the model's terms:\n";
-        for t in &case.terms {
-            out += &format!(
-                "  {} (reproduces {:.1}% of the differing pixels)\n",
-                t.sentence(),
-                100.0 * t.explained
-            );
-        }
-    }
+    out += &findings_text(findings);
     if let Some((x, y)) = d.worst_pixel {
         let scene = input.map_or(String::new(), |p| {
             format!(" -i {}", shell_word(&p.display().to_string()))
@@ -236,7 +240,7 @@ fn shell_word(s: &str) -> String {
 
 fn outcome_json(outcome: &CaseOutcome) -> Value {
     let mut object = match &outcome.status {
-        Status::Ok(case) => case_json(case),
+        Status::Ok(case) => case_json(case, None),
         _ => json!({}),
     };
     object["case"] = json!(outcome.name);
@@ -253,22 +257,27 @@ fn outcome_json(outcome: &CaseOutcome) -> Value {
 }
 
 fn suite_json(run: &SuiteRun) -> Value {
-    json!({
+    let mut object = json!({
         "program": run.program,
         "passed": run.passed(),
         "cases": run.cases.iter().map(outcome_json).collect::<Vec<_>>(),
-        "diagnosis": diagnosis_json(&run.diagnosis),
-    })
+    });
+    add_findings(&mut object, &run.findings);
+    object
 }
 
 fn suite_text(run: &SuiteRun) -> String {
     let mut out = format!("{} over {} cases:\n", run.program, run.cases.len());
+    for line in opening(&run.findings) {
+        out += &line;
+        out += "\n";
+    }
     for c in &run.cases {
         let detail = match &c.status {
             Status::Ok(case) => {
                 let d = &case.difference;
                 let top = case.diagnosis.first().map_or(String::new(), |t| {
-                    format!("; looks like {}", name(t.mistakes))
+                    format!("; looks like {}", t.mistakes.name())
                 });
                 match d.verdict.passes() {
                     true => d.verdict.name().to_string(),
@@ -298,12 +307,7 @@ fn suite_text(run: &SuiteRun) -> String {
     let passed = run.cases.iter().filter(|c| c.passed()).count();
     out += &format!("{passed} of {} cases pass\n", run.cases.len());
     if !run.passed() {
-        if run.diagnosis.is_empty() {
-            out += "diagnosis: no catalogued mistake reproduces the failing images better than the reference does\n";
-        } else {
-            out += "diagnosis over every case, best first:\n";
-            out += &diagnosis_lines(&run.diagnosis);
-        }
+        out += &findings_text(&run.findings);
     }
     out.trim_end().to_string()
 }

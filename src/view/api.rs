@@ -201,7 +201,13 @@ fn trees(content: &Content, x: usize, y: usize) -> Reply {
         serde_json::Value::Null
     } else {
         let frame = tracer.mistakes.frame_spec(&tracer.frame);
-        match explain(&tracer.mistakes, &tracer.scene, &frame, x, y) {
+        match explain(
+            &crate::mistakes::Variant::from(tracer.mistakes),
+            &tracer.scene,
+            &frame,
+            x,
+            y,
+        ) {
             Ok(e) => to_json(&e, &tracer.scene, tracer.mistakes),
             Err(e) => return text(400, &e.to_string()),
         }

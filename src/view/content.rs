@@ -135,14 +135,14 @@ fn load_view(image: &Path, reference: Option<&Path>, scene: Option<&Path>) -> Re
 fn load_check(image: &Path, scene: Option<&Path>, bounces: u32, tolerance: u8) -> Result<Content> {
     let input = scene::load_input(scene)?;
     let student = student_png::read(image)?;
-    let case = check_image(&input.scene, &input.name, bounces, tolerance, student)?;
+    let (case, findings) = check_image(&input.scene, &input.name, bounces, tolerance, student)?;
     let (width, height) = (case.student.width, case.student.height);
     let as_image = |bytes: &[u8]| raster::rgb8(width as usize, height as usize, bytes);
     let mistakes = case
         .diagnosis
         .first()
         .map_or(Mistakes::NONE, |d| d.mistakes);
-    let mut report = case_json(&case);
+    let mut report = case_json(&case, Some(&findings));
     // What each named mistake is, for the panel (the JSON of `check` names them by id).
     let named: serde_json::Map<String, Value> = case
         .diagnosis

@@ -88,6 +88,7 @@ const PANELS = (() => {
       };
       line(`${report.scene}, ${report.width}x${report.height}, ${report.bounces} bounces: ${report.verdict}`, `verdict ${report.verdict}`);
       line(`${report.differing_pixels} pixels differ, ${report.pixels_beyond_tolerance} by more than ${report.tolerance} LSB; the largest difference is ${report.max_difference} LSB`);
+      for (const text of report.summary || []) line(text, "summary");
       if (report.worst_pixel) {
         const [x, y] = report.worst_pixel;
         const button = Object.assign(document.createElement("button"), { textContent: `worst pixel (${x}, ${y})` });
@@ -95,7 +96,8 @@ const PANELS = (() => {
         element.append(button);
       }
       if (report.diagnosis.length) {
-        line("diagnosis, best first:");
+        const weak = !(report.diagnosis[0].explained >= 0.9);
+        line(weak ? "weak candidates (each explains less than 90%), best first:" : "diagnosis, best first:");
         const list = document.createElement("ol");
         list.className = "diagnosis";
         for (const d of report.diagnosis) {
@@ -109,7 +111,6 @@ const PANELS = (() => {
       } else if (report.differing_pixels > 0) {
         line("no catalogued mistake reproduces the image better than the reference does");
       }
-      for (const t of report.terms || []) line(`term ${t.layer}${t.replaces ? ` (replaces ${t.replaces})` : ""} x${t.factor}: reproduces ${(100 * t.explained).toFixed(1)}%`);
       line("click a pixel for its ray trees");
     },
   };

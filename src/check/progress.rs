@@ -1,0 +1,163 @@
+//! Where the student is in the handout (docs/check.md, "Progress"): each stage done, not
+//! written yet, written with a mistake, or unknown, read from the explanation that accounts
+//! for the images best.
+
+use crate::mistakes::{Bug, Mistakes, Parameter, Stage};
+
+/// An explanation must reproduce at least this share of the differing pixels for the stages
+/// it leaves out to count as done; below it nothing is known.
+const TRUSTED: f64 = 0.5;
+
+/// One stage's state.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum StageState {
+    /// Nothing wrong found in that stage.
+    Done,
+    /// Its unfinished-stage entry holds.
+    Missing,
+    /// Entries (or a number) of that stage hold: their ids or names.
+    Mistaken(Vec<String>),
+    /// Cannot tell (every case crashed, or nothing explains the images).
+    Unknown,
+}
+
+impl StageState {
+    /// The JSON value of docs/check.md.
+    pub fn name(&self) -> &'static str {
+        match self {
+            StageState::Done => "done",
+            StageState::Missing => "missing",
+            StageState::Mistaken(_) => "mistaken",
+            StageState::Unknown => "unknown",
+        }
+    }
+}
+
+/// Every stage's state, in the handout's order.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Progress {
+    pub stages: Vec<(Stage, StageState)>,
+}
+
+/// What the progress is read from.
+pub enum Evidence {
+    /// No image to judge by.
+    Nothing,
+    /// Every image equals or is within tolerance of the reference, with no entry found.
+    AllCorrect,
+    /// The best explanation: its entries, perhaps a wrong number, and how much it explains.
+    Explained {
+        mistakes: Mistakes,
+        number: Option<Parameter>,
+        explained: f64,
+    },
+    /// The images differ and nothing explains them.
+    Unexplained,
+}
+
+impl Progress {
+    pub fn of(evidence: &Evidence) -> Progress {
+        let all = |state: StageState| Progress {
+            stages: Stage::ALL.iter().map(|&s| (s, state.clone())).collect(),
+        };
+        match *evidence {
+            Evidence::Nothing | Evidence::Unexplained => all(StageState::Unknown),
+            Evidence::AllCorrect => all(StageState::Done),
+            Evidence::Explained { explained, .. } if explained < TRUSTED => {
+                all(StageState::Unknown)
+            }
+            Evidence::Explained {
+                mistakes, number, ..
+            } => Progress {
+                stages: Stage::ALL
+                    .iter()
+                    .map(|&stage| (stage, state_of(stage, mistakes, number)))
+                    .collect(),
+            },
+        }
+    }
+
+    /// The first line of a report: "progress: planes done; lights not written yet; ...".
+    pub fn sentence(&self) -> String {
+        let parts: Vec<String> = self
+            .stages
+            .iter()
+            .map(|(stage, state)| {
+                let key = stage.key();
+                match state {
+                    StageState::Done => format!("{key} done"),
+                    StageState::Missing => format!("{key} not written yet"),
+                    StageState::Mistaken(ids) => {
+                        format!("{key} done, with a mistake ({})", ids.join(", "))
+                    }
+                    StageState::Unknown => format!("{key} unknown"),
+                }
+            })
+            .collect();
+        format!("progress: {}", parts.join("; "))
+    }
+}
+
+fn state_of(stage: Stage, mistakes: Mistakes, number: Option<Parameter>) -> StageState {
+    let here: Vec<Bug> = mistakes
+        .bugs()
+        .into_iter()
+        .filter(|b| b.stage() == stage)
+        .collect();
+    if here.iter().any(|b| b.is_unfinished()) {
+        return StageState::Missing;
+    }
+    let mut names: Vec<String> = here.iter().map(|b| b.id().to_string()).collect();
+    names.extend(
+        number
+            .filter(|p| p.stage() == stage)
+            .map(|p| p.name().to_string()),
+    );
+    if names.is_empty() {
+        StageState::Done
+    } else {
+        StageState::Mistaken(names)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_stage_is_read_from_the_explanation() {
+        let p = Progress::of(&Evidence::Explained {
+            mistakes: Mistakes::of(&[
+                Bug::ReflectUnclamped,
+                Bug::NoShadows,
+                Bug::ReflectionMissing,
+            ]),
+            number: None,
+            explained: 1.0,
+        });
+        assert_eq!(
+            p.sentence(),
+            "progress: planes done; lights done, with a mistake (reflect-unclamped); \
+             shadows not written yet; reflection not written yet"
+        );
+        let states: Vec<&str> = p.stages.iter().map(|(_, s)| s.name()).collect();
+        assert_eq!(states, ["done", "mistaken", "missing", "missing"]);
+        let unknown = Progress::of(&Evidence::Nothing);
+        assert!(unknown.stages.iter().all(|(_, s)| *s == StageState::Unknown));
+        let weak = Progress::of(&Evidence::Explained {
+            mistakes: Mistakes::of(&[Bug::NoAmbient]),
+            number: None,
+            explained: 0.03,
+        });
+        assert!(weak.stages.iter().all(|(_, s)| *s == StageState::Unknown));
+        let number = Progress::of(&Evidence::Explained {
+            mistakes: Mistakes::NONE,
+            number: Some(Parameter::Epsilon),
+            explained: 0.99,
+        });
+        assert_eq!(
+            number.stages[2].1,
+            StageState::Mistaken(vec!["epsilon".into()])
+        );
+    }
+}

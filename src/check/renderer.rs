@@ -1,0 +1,155 @@
+//! Rendering one scene at one size and bounce count under any candidate program ([`Variant`]):
+//! the reference, a few pixels, every pixel, and the reference's layers where the term fit
+//! needs them. Every whole image is checked against the memory budget before it is made: a
+//! student's PNG sets the size, and a small file can claim a huge one.
+
+use rayon::prelude::*;
+
+use crate::accel::Accelerator;
+use crate::check::student_png::Rgb8;
+use crate::error::Result;
+use crate::frame::{Acceleration, Frame, FrameSpec};
+use crate::interrupt;
+use crate::memory;
+use crate::mistakes::{Mistakes, Variant};
+use crate::model::Model;
+use crate::output::png::tick_bytes;
+use crate::render::trace_pixels;
+use crate::sample::Sample;
+use crate::scene::Scene;
+
+/// Rows rendered together on one core for a whole image.
+const ROWS_PER_TASK: u32 = 4;
+
+/// Bytes a check holds per pixel of the image at its peak: the student's image, the
+/// reference, one candidate's whole image and its heat map (3 bytes each), the wrong-pixel
+/// list (8), and a whole image's f64 beauty for the rows being traced, rounded up generously
+/// for the allocator.
+const BYTES_PER_PIXEL: u64 = 48;
+
+/// Renders one scene at one size and bounce count under any candidate.
+pub struct Renderer<'a> {
+    pub scene: &'a Scene,
+    spec: FrameSpec,
+    bvh: Accelerator,
+    brute: Accelerator,
+}
+
+impl<'a> Renderer<'a> {
+    /// Refuses a size whose check would not fit in the memory this process may use.
+    pub fn new(scene: &'a Scene, width: u32, height: u32, bounces: u32) -> Result<Self> {
+        let pixels = u64::from(width) * u64::from(height);
+        memory::check(
+            pixels.saturating_mul(BYTES_PER_PIXEL),
+            memory::available_bytes(),
+            &format!("checking a {width}x{height} image"),
+        )?;
+        let spec = FrameSpec::tick(width, height, bounces, true);
+        Frame::new(scene, &spec)?;
+        Ok(Renderer {
+            scene,
+            spec,
+            bvh: Accelerator::build(&scene.objects),
+            brute: Accelerator::brute_force(&scene.objects),
+        })
+    }
+
+    pub fn width(&self) -> u32 {
+        self.spec.width
+    }
+
+    pub fn height(&self) -> u32 {
+        self.spec.height
+    }
+
+    pub fn bounces(&self) -> u32 {
+        self.spec.bounces
+    }
+
+    /// The frame a program with `mistakes` renders (its bounce count and shadow switch).
+    pub fn frame(&self, mistakes: Mistakes) -> Result<Frame> {
+        Frame::new(self.scene, &mistakes.frame_spec(&self.spec))
+    }
+
+    /// The hierarchy where it is exact for `variant`'s rules, else brute force.
+    fn accelerator(&self, frame: &Frame) -> &Accelerator {
+        // `Mistakes::frame_spec` asks for brute force where the model needs it.
+        match frame.acceleration() {
+            Acceleration::Bvh => &self.bvh,
+            Acceleration::BruteForce => &self.brute,
+        }
+    }
+
+    /// The tick bytes of `pixels` under `variant` in `frame` (sequential: callers run many
+    /// candidates side by side); an error when the user stopped the run half-way.
+    pub fn bytes_at(
+        &self,
+        variant: &Variant,
+        frame: &Frame,
+        pixels: &[(u32, u32)],
+    ) -> Result<Vec<u8>> {
+        let accel = self.accelerator(frame);
+        let beauty =
+            trace_pixels::<false, _>(variant, self.scene, accel, frame, pixels, |s| s.beauty);
+        interrupt::check()?;
+        Ok(tick_bytes(&beauty))
+    }
+
+    /// The whole image under `model` in `frame`, on every core.
+    fn image_with(&self, model: &(impl Model + Sync), frame: &Frame) -> Result<Rgb8> {
+        let (width, height) = (self.spec.width, self.spec.height);
+        let starts: Vec<u32> = (0..height).step_by(ROWS_PER_TASK as usize).collect();
+        let accel = self.accelerator(frame);
+        let strips: Vec<Vec<u8>> = starts
+            .par_iter()
+            .map(|&y0| {
+                let rows = y0..(y0 + ROWS_PER_TASK).min(height);
+                let pixels: Vec<(u32, u32)> = rows
+                    .flat_map(|y| (0..width).map(move |x| (x, y)))
+                    .collect();
+                let beauty =
+                    trace_pixels::<false, _>(model, self.scene, accel, frame, &pixels, |s| {
+                        s.beauty
+                    });
+                interrupt::check()?;
+                Ok(tick_bytes(&beauty))
+            })
+            .collect::<Result<_>>()?;
+        Ok(Rgb8 {
+            width,
+            height,
+            bytes: strips.concat(),
+        })
+    }
+
+    /// The reference: the course's model.
+    pub fn reference(&self) -> Result<Rgb8> {
+        self.image_with(&crate::model::Tick, &self.frame(Mistakes::NONE)?)
+    }
+
+    /// The whole image a program with `mistakes` renders.
+    pub fn image(&self, mistakes: Mistakes) -> Result<Rgb8> {
+        self.variant_image(&Variant::from(mistakes))
+    }
+
+    /// The whole image `variant` renders.
+    pub fn variant_image(&self, variant: &Variant) -> Result<Rgb8> {
+        self.image_with(variant, &self.frame(variant.mistakes)?)
+    }
+
+    /// The reference's every layer at `pixels` (for the term fit).
+    pub fn layers_at(&self, pixels: &[(u32, u32)]) -> Result<Vec<Sample>> {
+        let frame = self.frame(Mistakes::NONE)?;
+        let accel = self.accelerator(&frame);
+        let samples = trace_pixels::<true, _>(
+            &crate::model::Tick,
+            self.scene,
+            accel,
+            &frame,
+            pixels,
+            Sample::clone,
+        );
+        interrupt::check()?;
+        Ok(samples)
+    }
+}
