@@ -17,8 +17,8 @@ pub mod renderer;
 pub mod report;
 pub mod score;
 pub mod student_png;
-pub mod summary;
 pub mod suite;
+pub mod summary;
 pub mod terms;
 
 use crate::check::case::Case;
@@ -36,6 +36,9 @@ use crate::scene::Scene;
 /// Below this share of differing pixels explained, the best catalogued candidate is not a
 /// good explanation: the term and number fits run, and the report says so first.
 pub const GOOD_EXPLANATION: f64 = 0.9;
+
+/// The share the best entries must explain for a number to be fitted on top of them too.
+const PART_EXPLAINED: f64 = 0.3;
 
 /// What the diagnosis found over one or more cases.
 #[derive(Debug, Clone)]
@@ -103,8 +106,16 @@ pub fn find(cases: &[Case], all_pass: bool) -> Result<Findings> {
     };
     if findings.weak() {
         findings.terms = fit_terms(cases)?;
+        // A number on top of the best entries too, where they explain a good part: a
+        // half-written program with one wrong number.
         let mut bases = vec![Mistakes::NONE];
-        bases.extend(findings.diagnosis.first().map(|d| d.mistakes));
+        bases.extend(
+            findings
+                .diagnosis
+                .first()
+                .filter(|d| d.explained >= PART_EXPLAINED)
+                .map(|d| d.mistakes),
+        );
         findings.parameters = numbers::fit(cases, &bases)?;
     }
     findings.progress = Progress::of(&evidence(&findings, all_pass));

@@ -58,7 +58,12 @@ pub enum Stage {
 }
 
 impl Stage {
-    pub const ALL: [Stage; 4] = [Stage::Planes, Stage::Lights, Stage::Shadows, Stage::Reflection];
+    pub const ALL: [Stage; 4] = [
+        Stage::Planes,
+        Stage::Lights,
+        Stage::Shadows,
+        Stage::Reflection,
+    ];
 
     /// The key of the `progress` object (docs/check.md).
     pub fn key(self) -> &'static str {

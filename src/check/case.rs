@@ -67,8 +67,8 @@ impl<'a> Case<'a> {
     pub fn new(renderer: Renderer<'a>, student: Rgb8, cases: usize) -> Result<Case<'a>> {
         let reference = renderer.reference()?;
         let pixels = student.bytes.len() / 3;
-        let (wrong, right): (Vec<usize>, Vec<usize>) = (0..pixels)
-            .partition(|&i| pixel_difference(&student.bytes, &reference.bytes, i) > 0);
+        let (wrong, right): (Vec<usize>, Vec<usize>) =
+            (0..pixels).partition(|&i| pixel_difference(&student.bytes, &reference.bytes, i) > 0);
         let per_kind = (SAMPLE / cases.max(1)).max(MIN_PER_CASE);
         let (wrong_sample, right_sample) = (spread(&wrong, per_kind), spread(&right, per_kind));
         let looked: Vec<usize> = wrong_sample.iter().chain(&right_sample).copied().collect();

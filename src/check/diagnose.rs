@@ -14,14 +14,14 @@ use std::collections::HashMap;
 use rayon::prelude::*;
 
 use crate::check::case::Case;
-use crate::check::score::{cost, Scored};
 use crate::check::difference::pixel_difference;
+use crate::check::score::{cost, Scored};
 use crate::error::Result;
 use crate::mistakes::{Bug, Mistakes, Variant};
 
 /// Candidates the second stage renders whole, at most: those whose sampled cost is within
 /// `CLOSE` of the best (plus a margin for the sample's noise), where the ranking could turn.
-pub const FINALISTS: usize = 6;
+pub const FINALISTS: usize = 4;
 const CLOSE: f64 = 2.0;
 
 /// Pairs extended to triples.
@@ -48,7 +48,13 @@ pub struct Diagnosis {
 pub fn null_cost(case: &Case) -> f64 {
     case.wrong
         .iter()
-        .map(|&i| cost(pixel_difference(&case.student.bytes, &case.reference.bytes, i)))
+        .map(|&i| {
+            cost(pixel_difference(
+                &case.student.bytes,
+                &case.reference.bytes,
+                i,
+            ))
+        })
         .sum()
 }
 
@@ -117,7 +123,11 @@ impl Search {
                 }
                 members.iter().any(|&m| {
                     let without = Mistakes::of(
-                        &members.iter().copied().filter(|&b| b != m).collect::<Vec<_>>(),
+                        &members
+                            .iter()
+                            .copied()
+                            .filter(|&b| b != m)
+                            .collect::<Vec<_>>(),
                     );
                     index
                         .get(&without)

@@ -13,7 +13,10 @@ use crate::error::Result;
 use crate::mistakes::{Mistakes, Number, Parameter, Variant};
 
 /// Golden-section steps between two grid neighbours.
-const REFINE_STEPS: usize = 10;
+const REFINE_STEPS: usize = 8;
+
+/// The share of the differing pixels a fit must reproduce (on the sample) to be reported.
+const WORTH: f64 = 0.25;
 
 /// Fits rendered whole and reported, at most.
 const LISTED: usize = 2;
@@ -96,22 +99,25 @@ fn fit_one(cases: &[Case], base: Mistakes, parameter: Parameter) -> Result<Score
     let mut lo = to(grid[best.saturating_sub(1)]);
     let mut hi = to(grid[(best + 1).min(grid.len() - 1)]);
     let ratio = (5f64.sqrt() - 1.0) / 2.0;
-    for _ in 0..REFINE_STEPS {
-        let (a, b) = (hi - ratio * (hi - lo), lo + ratio * (hi - lo));
-        let (sa, sb) = rayon::join(
-            || sampled(cases, base, parameter, from(a)),
-            || sampled(cases, base, parameter, from(b)),
-        );
-        let (sa, sb) = (sa?, sb?);
-        if sa.cost() <= sb.cost() {
-            hi = b;
-        } else {
-            lo = a;
+    let mut inner = |x: f64| -> Result<(f64, f64)> {
+        let s = sampled(cases, base, parameter, from(x))?;
+        let cost = s.cost();
+        if cost < best_score.cost() {
+            best_score = s;
         }
-        for s in [sa, sb] {
-            if s.cost() < best_score.cost() {
-                best_score = s;
-            }
+        Ok((x, cost))
+    };
+    let mut a = inner(hi - ratio * (hi - lo))?;
+    let mut b = inner(lo + ratio * (hi - lo))?;
+    for _ in 0..REFINE_STEPS {
+        if a.1 <= b.1 {
+            hi = b.0;
+            b = a;
+            a = inner(hi - ratio * (hi - lo))?;
+        } else {
+            lo = a.0;
+            a = b;
+            b = inner(lo + ratio * (hi - lo))?;
         }
     }
     // The plainest value that does as well: what the student most likely wrote.
@@ -134,7 +140,11 @@ fn plainer(parameter: Parameter, x: f64) -> Vec<f64> {
             let five = 5.0 * 10f64.powf((x / 5.0).log10().round());
             vec![decade, five]
         }
-        _ => vec![(x * 2.0).round() / 2.0, (x * 4.0).round() / 4.0, (x * 20.0).round() / 20.0],
+        _ => vec![
+            (x * 2.0).round() / 2.0,
+            (x * 4.0).round() / 4.0,
+            (x * 20.0).round() / 20.0,
+        ],
     }
 }
 
@@ -164,6 +174,14 @@ pub fn fit(cases: &[Case], bases: &[Mistakes]) -> Result<Vec<NumberFit>> {
         !course && s.cost() < without
     });
     fits.sort_by(|a, b| a.cost().total_cmp(&b.cost()));
+    // A number on top of entries is worth saying only where it beats every number alone.
+    let best_alone = fits
+        .iter()
+        .find(|s| s.variant.mistakes.is_empty())
+        .map_or(f64::INFINITY, Scored::cost);
+    fits.retain(|s| s.variant.mistakes.is_empty() || s.cost() < best_alone);
+    // Only a fit that explains a fair part is worth its whole render.
+    fits.retain(|s| s.explained() >= WORTH * differing as f64);
     fits.truncate(LISTED);
     fits.iter()
         .map(|s| {

@@ -143,7 +143,10 @@ mod tests {
         let states: Vec<&str> = p.stages.iter().map(|(_, s)| s.name()).collect();
         assert_eq!(states, ["done", "mistaken", "missing", "missing"]);
         let unknown = Progress::of(&Evidence::Nothing);
-        assert!(unknown.stages.iter().all(|(_, s)| *s == StageState::Unknown));
+        assert!(unknown
+            .stages
+            .iter()
+            .all(|(_, s)| *s == StageState::Unknown));
         let weak = Progress::of(&Evidence::Explained {
             mistakes: Mistakes::of(&[Bug::NoAmbient]),
             number: None,

@@ -104,9 +104,8 @@ impl<'a> Renderer<'a> {
             .par_iter()
             .map(|&y0| {
                 let rows = y0..(y0 + ROWS_PER_TASK).min(height);
-                let pixels: Vec<(u32, u32)> = rows
-                    .flat_map(|y| (0..width).map(move |x| (x, y)))
-                    .collect();
+                let pixels: Vec<(u32, u32)> =
+                    rows.flat_map(|y| (0..width).map(move |x| (x, y))).collect();
                 let beauty =
                     trace_pixels::<false, _>(model, self.scene, accel, frame, &pixels, |s| {
                         s.beauty

@@ -78,7 +78,11 @@ impl CaseScore {
         s.changes_image = bytes != sample.reference.as_slice();
         for j in 0..sample.positions.len() {
             let (weight, was_wrong) = sample.kind(j);
-            s.tally(weight, was_wrong, pixel_difference(bytes, &sample.student, j));
+            s.tally(
+                weight,
+                was_wrong,
+                pixel_difference(bytes, &sample.student, j),
+            );
         }
         s
     }

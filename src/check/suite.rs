@@ -43,8 +43,8 @@ pub fn cases() -> Vec<SuiteCase> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::check::renderer::Renderer;
     use crate::check::difference::difference;
+    use crate::check::renderer::Renderer;
     use crate::check::student_png::Rgb8;
     use crate::mistakes::{Bug, Mistakes};
 

@@ -62,7 +62,15 @@ fn suite_findings(images: &[(SuiteCase, Scene, Rgb8)]) -> Findings {
     let (prepared, reports): (Vec<Case>, Vec<CaseReport>) = images
         .iter()
         .map(|(case, scene, image)| {
-            prepare(scene, case.file, case.bounces, 2, image.clone(), images.len()).expect("case")
+            prepare(
+                scene,
+                case.file,
+                case.bounces,
+                2,
+                image.clone(),
+                images.len(),
+            )
+            .expect("case")
         })
         .unzip();
     let all_pass = reports.iter().all(|r| r.difference.verdict.passes());
@@ -114,14 +122,21 @@ fn pairs_with_stages_are_found_in_the_top_three() {
             .take(3)
             .map(|d| d.mistakes.name())
             .collect();
-        assert!(in_top_three(&findings.diagnosis, wanted), "{pair:?}: {top3:?}");
+        assert!(
+            in_top_three(&findings.diagnosis, wanted),
+            "{pair:?}: {top3:?}"
+        );
     }
 }
 
 #[test]
 fn three_at_once_are_found_over_the_suite() {
     let triples = [
-        [Bug::NoShadows, Bug::ReflectionMissing, Bug::ReflectUnclamped],
+        [
+            Bug::NoShadows,
+            Bug::ReflectionMissing,
+            Bug::ReflectUnclamped,
+        ],
         [Bug::NoShadows, Bug::ReflectionMissing, Bug::NoAmbient],
         [Bug::NoAmbient, Bug::ViewFlipped, Bug::BouncesPlusOne],
     ];
@@ -134,7 +149,10 @@ fn three_at_once_are_found_over_the_suite() {
             .take(3)
             .map(|d| d.mistakes.name())
             .collect();
-        assert!(in_top_three(&findings.diagnosis, wanted), "{triple:?}: {top3:?}");
+        assert!(
+            in_top_three(&findings.diagnosis, wanted),
+            "{triple:?}: {top3:?}"
+        );
     }
 }
 
@@ -144,7 +162,11 @@ fn the_progress_names_each_stage() {
         (Bug::PlanesMissing, Stage::Planes, StageState::Missing),
         (Bug::LightsMissing, Stage::Lights, StageState::Missing),
         (Bug::NoShadows, Stage::Shadows, StageState::Missing),
-        (Bug::ReflectionMissing, Stage::Reflection, StageState::Missing),
+        (
+            Bug::ReflectionMissing,
+            Stage::Reflection,
+            StageState::Missing,
+        ),
         (
             Bug::ShadowAnyHit,
             Stage::Shadows,
@@ -154,12 +176,20 @@ fn the_progress_names_each_stage() {
     for (bug, stage, state) in expect {
         let findings = suite_findings(&suite_images(Variant::from(Mistakes::of(&[bug]))));
         for (s, got) in &findings.progress.stages {
-            let wanted = if *s == stage { &state } else { &StageState::Done };
+            let wanted = if *s == stage {
+                &state
+            } else {
+                &StageState::Done
+            };
             assert_eq!(got, wanted, "{} in {s:?}", bug.id());
         }
     }
     let correct = suite_findings(&suite_images(Variant::default()));
-    assert!(correct.progress.stages.iter().all(|(_, s)| *s == StageState::Done));
+    assert!(correct
+        .progress
+        .stages
+        .iter()
+        .all(|(_, s)| *s == StageState::Done));
 }
 
 #[test]
@@ -173,7 +203,11 @@ fn rounding_noise_is_not_a_mistake() {
     }
     let (report, findings) = check_image(&scene, "tick2.xml", 2, 2, image).expect("check");
     assert_eq!(report.difference.verdict, Verdict::WithinTolerance);
-    assert!(findings.diagnosis.is_empty(), "{:?}", findings.diagnosis.first());
+    assert!(
+        findings.diagnosis.is_empty(),
+        "{:?}",
+        findings.diagnosis.first()
+    );
 }
 
 #[test]

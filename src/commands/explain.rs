@@ -19,7 +19,13 @@ pub fn run(args: &ExplainArgs) -> Result<()> {
     let e = if mistakes.is_empty() {
         explain(&Tick, &scene, &args.frame(), x, y)?
     } else {
-        explain(&crate::mistakes::Variant::from(mistakes), &scene, &args.frame(), x, y)?
+        explain(
+            &crate::mistakes::Variant::from(mistakes),
+            &scene,
+            &args.frame(),
+            x,
+            y,
+        )?
     };
     let text = if args.json {
         // serde_json cannot fail to print a Value it built itself.

@@ -69,8 +69,12 @@ impl Parameter {
     /// The values a first search tries, over what a student could plausibly have written.
     pub fn grid(self) -> Vec<f64> {
         match self {
-            Parameter::SpecularExponent => (0..=24).map(|i| 2f64.powf(f64::from(i) / 3.0)).collect(),
-            Parameter::Epsilon => (0..=28).map(|i| 10f64.powf(-9.0 + f64::from(i) / 3.0)).collect(),
+            Parameter::SpecularExponent => {
+                (0..=16).map(|i| 2f64.powf(f64::from(i) / 2.0)).collect()
+            }
+            Parameter::Epsilon => (0..=14)
+                .map(|i| 10f64.powf(-9.0 + f64::from(i) / 2.0))
+                .collect(),
             Parameter::FalloffPower => (0..=16).map(|i| f64::from(i) / 4.0).collect(),
             Parameter::Reflectivity | Parameter::Ambient => {
                 (0..=16).map(|i| f64::from(i) / 4.0).collect()
@@ -351,11 +355,17 @@ mod tests {
                     value: parameter.course(),
                 }),
             };
-            assert_eq!(course.illumination(&light, 3.0), Tick.illumination(&light, 3.0));
+            assert_eq!(
+                course.illumination(&light, 3.0),
+                Tick.illumination(&light, 3.0)
+            );
             assert_eq!(course.epsilon(), Tick.epsilon());
             assert_eq!(course.specular_exponent(10.0), 10.0);
             assert_eq!(course.reflectivity(0.3), 0.3);
-            assert_eq!(course.ambient(DVec3::ONE, DVec3::splat(0.5)), DVec3::splat(0.5));
+            assert_eq!(
+                course.ambient(DVec3::ONE, DVec3::splat(0.5)),
+                DVec3::splat(0.5)
+            );
             assert!(parameter.grid().len() > 10);
         }
         let linear = Variant {
