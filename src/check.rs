@@ -11,6 +11,7 @@ pub mod diagnose;
 pub mod difference;
 pub mod json;
 pub mod numbers;
+pub mod orphans;
 pub mod program;
 pub mod progress;
 pub mod renderer;

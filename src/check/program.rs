@@ -12,6 +12,7 @@ use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
+use crate::check::orphans;
 use crate::check::student_png::{self, Rgb8};
 use crate::check::suite::{cases, SuiteCase};
 use crate::check::{find, prepare, CaseReport, Findings};
@@ -193,11 +194,13 @@ fn run_programs(
     let mut results: Vec<Option<(Ran, String)>> = suite.iter().map(|_| None).collect();
     let mut running: Vec<Running> = Vec::new();
     let mut next = 0;
+    orphans::adopt();
     loop {
         if interrupt::requested() {
             for mut r in running.drain(..) {
                 stop(&mut r);
             }
+            orphans::kill_adopted();
             interrupt::check()?;
         }
         while running.len() < AT_ONCE && next < suite.len() {
@@ -207,12 +210,14 @@ fn run_programs(
                     for mut r in running.drain(..) {
                         stop(&mut r);
                     }
+                    orphans::kill_adopted();
                     return Err(e);
                 }
             }
             next += 1;
         }
         if running.is_empty() {
+            orphans::kill_adopted();
             break;
         }
         let mut still = Vec::new();

@@ -306,7 +306,10 @@ fn suite_text(run: &SuiteRun) -> String {
     }
     let passed = run.cases.iter().filter(|c| c.passed()).count();
     out += &format!("{passed} of {} cases pass\n", run.cases.len());
-    if !run.passed() {
+    let any_image = run.cases.iter().any(|c| matches!(c.status, Status::Ok(_)));
+    if !any_image {
+        out += "diagnosis: no case wrote an image to diagnose\n";
+    } else if !run.passed() {
         out += &findings_text(&run.findings);
     }
     out.trim_end().to_string()

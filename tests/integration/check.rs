@@ -7,8 +7,8 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
 
-use whitted::check::diagnose::Renderer;
 use whitted::check::difference::difference;
+use whitted::check::renderer::Renderer;
 use whitted::check::suite::{cases, SuiteCase};
 use whitted::mistakes::{Bug, Mistakes};
 
@@ -165,7 +165,7 @@ fn every_mistake_of_the_java_program_is_named_first() {
     for (id, top) in &results {
         assert!(top.contains(id), "{id}: the top diagnosis is {top:?}");
     }
-    assert_eq!(results.len(), 21);
+    assert_eq!(results.len(), Bug::ALL.len());
 }
 
 #[test]
@@ -175,6 +175,8 @@ fn pairs_of_mistakes_are_in_the_top_three() {
         ["no-ambient", "reflect-unclamped"],
         ["view-flipped", "no-shadow-bias"],
         ["first-light-only", "bounces-plus-one"],
+        ["reflection-missing", "reflect-unclamped"],
+        ["planes-missing", "specular-gated"],
     ] {
         let bugs: Vec<Bug> = pair
             .iter()
@@ -227,7 +229,7 @@ fn the_suite_passes_a_correct_program_and_names_a_wrong_one() {
     let text = String::from_utf8_lossy(&run.stdout);
     let first = text
         .lines()
-        .skip_while(|l| !l.starts_with("diagnosis over every case"))
+        .skip_while(|l| !l.starts_with("diagnosis, best first"))
         .nth(1)
         .unwrap_or_default();
     assert!(first.contains("1. specular-object-colour"), "{text}");
@@ -371,7 +373,15 @@ fn images_that_cannot_be_compared_are_refused_with_one_line() {
     let run = whitted(d, &["check", "--list-bugs"]);
     assert!(run.status.success());
     let listed = String::from_utf8_lossy(&run.stdout);
-    assert_eq!(listed.lines().count(), 21);
+    assert_eq!(listed.lines().count(), Bug::ALL.len());
+    for stage in [
+        "planes-missing",
+        "lights-missing",
+        "reflection-missing",
+        "reflection-ignored",
+    ] {
+        assert!(listed.lines().any(|l| l.starts_with(stage)), "{listed}");
+    }
     assert!(listed
         .lines()
         .all(|l| Bug::from_id(l.split_whitespace().next().unwrap_or("")).is_some()));
@@ -479,4 +489,119 @@ fn a_mistake_nobody_listed_is_located_in_the_terms() {
     let top = &json["terms"][0];
     assert_eq!(top["layer"], "specular", "{json}");
     assert!(top["factor"].as_f64().is_some_and(|f| f < 1.0), "{top}");
+}
+
+/// `check --program` with the Java program and these `-Dbug` switches, as JSON.
+fn suite_json(dir: &Path, bugs: &[&str]) -> serde_json::Value {
+    let run = whitted(dir, &["check", "--program", &program(bugs), "--json"]);
+    assert_eq!(run.status.code(), Some(1), "{}", stderr(&run));
+    serde_json::from_slice(&run.stdout).expect("json")
+}
+
+#[test]
+fn a_half_written_program_is_named_with_its_stages_and_progress() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    // Shadows and reflection not written yet, and a mistake in what is written.
+    let triple = ["reflect-unclamped", "no-shadows", "reflection-missing"];
+    let json = suite_json(dir.path(), &triple);
+    let top3: Vec<String> = json["diagnosis"]
+        .as_array()
+        .expect("diagnosis")
+        .iter()
+        .take(3)
+        .flat_map(names)
+        .collect();
+    let wanted = triple.join("+");
+    assert!(top3.contains(&wanted), "{wanted}: {top3:?}");
+    assert_eq!(
+        json["progress"],
+        serde_json::json!({"planes": "done", "lights": "mistaken", "shadows": "missing",
+            "reflection": "missing"}),
+        "{}",
+        json["progress"]
+    );
+    // Every case's label is the suite's explanation, counted whole on that case.
+    for case in json["cases"].as_array().expect("cases") {
+        if case["verdict"] == "differs" {
+            assert_eq!(case["diagnosis"][0]["exact"], true, "{case}");
+        }
+    }
+    // A stage and a mistake.
+    let json = suite_json(dir.path(), &["lights-missing", "plane-behind"]);
+    let top3: Vec<String> = json["diagnosis"]
+        .as_array()
+        .expect("diagnosis")
+        .iter()
+        .take(3)
+        .flat_map(names)
+        .collect();
+    assert!(
+        top3.contains(&"plane-behind+lights-missing".to_string()),
+        "{top3:?}"
+    );
+    assert_eq!(json["progress"]["lights"], "missing");
+    assert_eq!(json["progress"]["planes"], "mistaken");
+}
+
+#[test]
+fn the_suite_fits_the_model_s_numbers_and_terms_and_says_so_first() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let json = suite_json(dir.path(), &["exponent-doubled"]);
+    let fit = &json["parameters"][0];
+    assert_eq!(fit["name"], "specular-exponent", "{json}");
+    let fitted = fit["fitted"].as_f64().unwrap_or(0.0);
+    assert!((fitted - 20.0).abs() <= 2.0, "{fit}");
+    assert!(fit["explained"].as_f64().unwrap_or(0.0) > 0.9, "{fit}");
+    assert!(
+        !json["terms"].as_array().expect("terms").is_empty(),
+        "{json}"
+    );
+    assert_eq!(json["progress"]["lights"], "mistaken");
+    let run = whitted(
+        dir.path(),
+        &["check", "--program", &program(&["exponent-doubled"])],
+    );
+    let text = String::from_utf8_lossy(&run.stdout);
+    let lines: Vec<&str> = text.lines().collect();
+    assert!(lines[1].starts_with("progress: "), "{text}");
+    assert!(
+        lines[2].starts_with("no catalogued mistake explains 90%")
+            && lines[3].contains("the specular exponent looks like 20 (the course's is 10)"),
+        "{text}"
+    );
+    assert!(text.contains("weak candidates"), "{text}");
+}
+
+#[test]
+fn a_program_whose_descendant_leaves_its_group_ends_at_the_timeout() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    // The descendant holds standard error open for ever.
+    let escape = script(d, "escape.sh", "setsid sleep 1000 &\nsleep 100");
+    let started = std::time::Instant::now();
+    let run = whitted(
+        d,
+        &["check", "--program", &escape, "--timeout", "1", "--json"],
+    );
+    let elapsed = started.elapsed();
+    assert_eq!(run.status.code(), Some(1), "{}", stderr(&run));
+    // Seven cases, two at a time: four rounds of the timeout plus a second each at most.
+    assert!(elapsed.as_secs_f64() < 4.0 * 2.0, "{elapsed:?}");
+    let json: serde_json::Value = serde_json::from_slice(&run.stdout).expect("json");
+    assert!(json["cases"]
+        .as_array()
+        .expect("cases")
+        .iter()
+        .all(|c| c["status"] == "timeout"));
+    assert!(json["progress"]["planes"] == "unknown", "{json}");
+    // The escaped processes were adopted and killed.
+    let left = Command::new("pgrep")
+        .args(["-f", "sleep 1000"])
+        .output()
+        .expect("pgrep");
+    assert!(
+        left.stdout.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&left.stdout)
+    );
 }

@@ -86,6 +86,8 @@ public final class Tick2 {
         }
 
         Double intersect(Ray ray) {
+            // The skeleton's TODO, left as it is: the empty hit.
+            if (bug("planes-missing")) return null;
             double s = point.sub(ray.origin()).dot(normal) / ray.direction().dot(normal);
             if (Double.isNaN(s) || Double.isInfinite(s)) return null;
             if (s < 0 && !bug("plane-behind")) return null;
@@ -162,6 +164,8 @@ public final class Tick2 {
                 : bug("view-from-ray-origin") ? ray.origin().sub(p).normalised()
                 : p.negate().normalised();
         List<Light> used = bug("first-light-only") && !lights.isEmpty() ? lights.subList(0, 1) : lights;
+        // The skeleton's TODO, left as it is: the ambient term only.
+        if (bug("lights-missing")) used = List.of();
         for (Light light : used) {
             Vec3 toLight = light.position().sub(p);
             double d = toLight.length();
@@ -197,7 +201,14 @@ public final class Tick2 {
         Vec3 p = ray.at(hit.distance());
         Vec3 n = s.normalAt(p);
         Vec3 direct = illuminate(s, p, n, ray);
+        // Reflection not written at all: the direct illumination as it is.
+        if (bug("reflection-ignored")) return direct;
         if (bouncesLeft <= 0 || s.reflectivity == 0) return direct;
+        if (bug("reflection-missing")) {
+            // The skeleton's TODO, left as it is: reflectedIllumination stays black.
+            Vec3 reflectedIllumination = new Vec3(0, 0, 0);
+            return direct.scale(1 - s.reflectivity).add(reflectedIllumination.scale(s.reflectivity));
+        }
         Vec3 d = ray.direction();
         Vec3 r = bug("reflection-wrong-sign") ? n.scale(2 * n.dot(d)).sub(d).normalised()
                 : n.scale(2 * n.dot(d.negate())).sub(d.negate()).normalised();
