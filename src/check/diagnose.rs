@@ -144,7 +144,7 @@ impl Search {
             .useful()
             .filter(|s| s.variant.mistakes.len() == 2)
             .collect();
-        pairs.sort_by(|a, b| ranking(a, b));
+        pairs.sort_by(ranking);
         let mut triples: Vec<Mistakes> = pairs
             .iter()
             .take(BEAM)
@@ -192,7 +192,7 @@ impl Search {
     fn finalise(&mut self, cases: &[Case]) -> Result<()> {
         let differing: usize = cases.iter().map(|c| c.wrong.len()).sum();
         let mut order: Vec<&Scored> = self.useful().collect();
-        order.sort_by(|a, b| ranking(a, b));
+        order.sort_by(ranking);
         let best = order.first().map_or(0.0, |s| s.cost());
         let margin = 0.01 * differing as f64 + 1.0;
         let finalists: Vec<Mistakes> = order

@@ -91,11 +91,9 @@ fn fit_one(cases: &[Case], base: Mistakes, parameter: Parameter) -> Result<Score
         .unwrap_or(0);
     let mut best_score = scores[best].clone();
     // Golden-section search between the neighbours, in log space for a geometric grid.
-    let (to, from): (fn(f64) -> f64, fn(f64) -> f64) = if parameter.geometric() {
-        (f64::ln, f64::exp)
-    } else {
-        (|x| x, |x| x)
-    };
+    let geometric = parameter.geometric();
+    let to = |x: f64| if geometric { x.ln() } else { x };
+    let from = |x: f64| if geometric { x.exp() } else { x };
     let mut lo = to(grid[best.saturating_sub(1)]);
     let mut hi = to(grid[(best + 1).min(grid.len() - 1)]);
     let ratio = (5f64.sqrt() - 1.0) / 2.0;

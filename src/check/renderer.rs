@@ -96,7 +96,7 @@ impl<'a> Renderer<'a> {
     }
 
     /// The whole image under `model` in `frame`, on every core.
-    fn image_with(&self, model: &(impl Model + Sync), frame: &Frame) -> Result<Rgb8> {
+    fn image_with(&self, model: &impl Model, frame: &Frame) -> Result<Rgb8> {
         let (width, height) = (self.spec.width, self.spec.height);
         let starts: Vec<u32> = (0..height).step_by(ROWS_PER_TASK as usize).collect();
         let accel = self.accelerator(frame);
