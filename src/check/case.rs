@@ -7,7 +7,7 @@ use crate::check::student_png::Rgb8;
 use crate::error::Result;
 
 /// Pixels of each kind (wrong, right) the first stage looks at, over all cases together.
-pub const SAMPLE: usize = 2500;
+pub const SAMPLE: usize = 2000;
 
 /// Each case looks at no fewer pixels of a kind than this, however many cases there are.
 const MIN_PER_CASE: usize = 300;

@@ -25,7 +25,7 @@ pub const FINALISTS: usize = 4;
 const CLOSE: f64 = 2.0;
 
 /// Pairs extended to triples.
-const BEAM: usize = 8;
+const BEAM: usize = 6;
 
 /// Diagnoses listed at most.
 const LISTED: usize = 8;

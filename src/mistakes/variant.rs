@@ -72,7 +72,7 @@ impl Parameter {
             Parameter::SpecularExponent => {
                 (0..=16).map(|i| 2f64.powf(f64::from(i) / 2.0)).collect()
             }
-            Parameter::Epsilon => (0..=14)
+            Parameter::Epsilon => (0..=16)
                 .map(|i| 10f64.powf(-9.0 + f64::from(i) / 2.0))
                 .collect(),
             Parameter::FalloffPower => (0..=16).map(|i| f64::from(i) / 4.0).collect(),
