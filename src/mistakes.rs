@@ -189,6 +189,14 @@ impl Mistakes {
         Mistakes(self.0 | bug.bit())
     }
 
+    /// Every set with one entry of this one left out.
+    pub fn one_smaller(self) -> Vec<Mistakes> {
+        self.bugs()
+            .into_iter()
+            .map(|b| Mistakes(self.0 & !b.bit()))
+            .collect()
+    }
+
     /// Whether `bug` can join the set: not in it, and excluded by none of its members.
     pub fn admits(self, bug: Bug) -> bool {
         !self.has(bug) && self.bugs().iter().all(|&m| !m.excludes(bug))
@@ -266,6 +274,13 @@ mod tests {
         assert!(Mistakes::NONE.is_empty() && Mistakes::NONE.hierarchy_exact());
         assert_eq!(set.len(), 2);
         assert_eq!(set.name(), "no-ambient+sphere-far-root");
+        assert_eq!(
+            set.one_smaller(),
+            vec![
+                Mistakes::of(&[Bug::SphereFarRoot]),
+                Mistakes::of(&[Bug::NoAmbient])
+            ]
+        );
     }
 
     #[test]

@@ -36,9 +36,35 @@ pub fn exact(v: f64) -> String {
     }
 }
 
+/// A number as a person writes it in a sentence (the check's fitted numbers): three
+/// significant digits, no trailing zeros, scientific only when tiny or huge.
+pub fn plain(x: f64) -> String {
+    if x != 0.0 && (x.abs() < 1e-4 || x.abs() >= 1e6) {
+        return format!("{x:.2e}").replace(".00e", "e");
+    }
+    let digits = (2 - x.abs().log10().floor() as i32).clamp(0, 6) as usize;
+    let text = format!("{x:.digits$}");
+    if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        text
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn plain_numbers_read_as_written() {
+        assert_eq!(plain(20.0), "20");
+        assert_eq!(plain(1.0), "1");
+        assert_eq!(plain(0.5), "0.5");
+        assert_eq!(plain(0.0001), "0.0001");
+        assert_eq!(plain(1e-5), "1e-5");
+        assert_eq!(plain(123.456), "123");
+        assert_eq!(plain(1.234), "1.23");
+    }
 
     #[test]
     fn compact_numbers_have_four_significant_digits() {

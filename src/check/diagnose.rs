@@ -15,7 +15,7 @@ use rayon::prelude::*;
 
 use crate::check::case::Case;
 use crate::check::difference::pixel_difference;
-use crate::check::score::{cost, Scored};
+use crate::check::score::{cost, share, Scored};
 use crate::error::Result;
 use crate::mistakes::{Bug, Mistakes, Variant};
 
@@ -60,10 +60,7 @@ pub fn null_cost(case: &Case) -> f64 {
 
 /// Every candidate scored on the samples, the finalists on whole images, in no set order.
 pub struct Search {
-    pub scored: Vec<Scored>,
-    /// The candidates that render what a smaller set of their entries renders (or, for a
-    /// single entry, what the reference renders): they add nothing.
-    redundant: Vec<bool>,
+    scored: Vec<Scored>,
 }
 
 /// Scores `list` on the samples, on every core.
@@ -88,53 +85,18 @@ fn singles_and_pairs() -> Vec<Mistakes> {
 impl Search {
     /// Runs both stages over `cases` (at least one differs from its reference).
     pub fn run(cases: &[Case]) -> Result<Self> {
-        let mut scored = score_all(cases, &singles_and_pairs())?;
         let mut search = Search {
-            redundant: Vec::new(),
-            scored: Vec::new(),
+            scored: score_all(cases, &singles_and_pairs())?,
         };
-        search.extend(std::mem::take(&mut scored));
         let triples = search.triples();
-        search.extend(score_all(cases, &triples)?);
+        search.scored.extend(score_all(cases, &triples)?);
         search.finalise(cases)?;
         Ok(search)
     }
 
-    /// Adds scored candidates and marks which are redundant.
-    fn extend(&mut self, more: Vec<Scored>) {
-        self.scored.extend(more);
-        self.mark_redundant();
-    }
-
-    fn mark_redundant(&mut self) {
-        let index: HashMap<Mistakes, usize> = self
-            .scored
-            .iter()
-            .enumerate()
-            .map(|(i, s)| (s.variant.mistakes, i))
-            .collect();
-        self.redundant = self
-            .scored
-            .iter()
-            .map(|s| {
-                let members = s.variant.mistakes.bugs();
-                if members.len() == 1 {
-                    return !s.changes_any();
-                }
-                members.iter().any(|&m| {
-                    let without = Mistakes::of(
-                        &members
-                            .iter()
-                            .copied()
-                            .filter(|&b| b != m)
-                            .collect::<Vec<_>>(),
-                    );
-                    index
-                        .get(&without)
-                        .is_some_and(|&j| s.renders_like(&self.scored[j]))
-                })
-            })
-            .collect();
+    /// The candidate for exactly `mistakes` (no number), if it was scored.
+    pub fn get(&self, mistakes: Mistakes) -> Option<&Scored> {
+        self.scored.iter().find(|s| s.variant.mistakes == mistakes)
     }
 
     /// The best pairs, each extended by every entry it admits, where no triple of the same
@@ -161,31 +123,25 @@ impl Search {
         triples
     }
 
-    /// The candidates worth ranking: they change something, add something over their
-    /// members, and (for three entries) cost less than every pair within them that was
-    /// scored: an entry is added only while the cost falls.
+    /// The candidates worth ranking: they change something, and render differently from
+    /// every scored set one entry smaller (a single entry: from the reference), so each entry
+    /// adds something; a third entry counts only where it also lowers the cost (the beam
+    /// extends while the cost falls).
     fn useful(&self) -> impl Iterator<Item = &Scored> {
-        let cost_of: HashMap<Mistakes, f64> = self
+        let by_set: HashMap<Mistakes, &Scored> = self
             .scored
             .iter()
-            .map(|s| (s.variant.mistakes, s.cost()))
+            .map(|s| (s.variant.mistakes, s))
             .collect();
-        self.scored
-            .iter()
-            .zip(&self.redundant)
-            .filter(|(s, &redundant)| s.changes_any() && !redundant)
-            .map(|(s, _)| s)
-            .filter(move |s| {
-                let members = s.variant.mistakes.bugs();
-                members.len() < 3
-                    || members.iter().all(|&m| {
-                        let without: Vec<Bug> =
-                            members.iter().copied().filter(|&b| b != m).collect();
-                        cost_of
-                            .get(&Mistakes::of(&without))
-                            .is_none_or(|&c| s.cost() < c)
+        self.scored.iter().filter(move |s| {
+            let set = s.variant.mistakes;
+            s.changes_any()
+                && set.one_smaller().iter().all(|smaller| {
+                    by_set.get(smaller).is_none_or(|t| {
+                        !s.renders_like(t) && (set.len() < 3 || s.cost() < t.cost())
                     })
-            })
+                })
+        })
     }
 
     /// Renders whole the best candidates, where the ranking could turn.
@@ -210,7 +166,6 @@ impl Search {
                 *s = s.made_whole(cases)?;
             }
         }
-        self.mark_redundant();
         Ok(())
     }
 
@@ -276,11 +231,7 @@ fn rank(order: Vec<Scored>, differing: usize) -> Vec<Diagnosis> {
         let explained = s.explained();
         let diagnosis = Diagnosis {
             mistakes,
-            explained: if differing == 0 {
-                0.0
-            } else {
-                (explained / differing as f64).min(1.0)
-            },
+            explained: share(explained, differing),
             unexplained_pixels: (differing as f64 - explained).max(0.0).round() as u64,
             wrongly_changed_pixels: s.wrongly_changed().round() as u64,
             indistinguishable_from: Vec::new(),

@@ -50,7 +50,6 @@ pub fn parameters_json(parameters: &[NumberFit]) -> Value {
             "with": p.with.ids(),
             "explained": share(p.explained),
             "wrongly_changed_pixels": p.wrongly_changed_pixels,
-            "exact": p.exact,
         }))
         .collect::<Vec<_>>())
 }
@@ -75,6 +74,7 @@ pub fn add_findings(object: &mut Value, findings: &Findings) {
         object["parameters"] = parameters_json(&findings.parameters);
     }
     object["summary"] = json!(summary::opening(findings));
+    object["diagnosis_heading"] = json!(summary::candidates_heading(findings));
 }
 
 /// One case; with `findings` when it is a check of one image (not a suite's case).

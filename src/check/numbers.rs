@@ -8,9 +8,10 @@
 use rayon::prelude::*;
 
 use crate::check::case::Case;
-use crate::check::score::Scored;
+use crate::check::score::{share, Scored};
 use crate::error::Result;
 use crate::mistakes::{Mistakes, Number, Parameter, Variant};
+use crate::numbers::plain;
 
 /// Golden-section steps between two grid neighbours.
 const REFINE_STEPS: usize = 8;
@@ -31,9 +32,6 @@ pub struct NumberFit {
     /// Share of the differing pixels it reproduces within 1 LSB.
     pub explained: f64,
     pub wrongly_changed_pixels: u64,
-    pub exact: bool,
-    /// The total cost, for ranking against other explanations.
-    pub cost: f64,
 }
 
 impl NumberFit {
@@ -50,20 +48,6 @@ impl NumberFit {
             plain(self.fitted),
             plain(self.parameter.course())
         )
-    }
-}
-
-/// A number as a person writes it: three significant digits, no trailing zeros.
-pub fn plain(x: f64) -> String {
-    if x != 0.0 && (x.abs() < 1e-4 || x.abs() >= 1e6) {
-        return format!("{x:.2e}").replace(".00e", "e");
-    }
-    let digits = (2 - x.abs().log10().floor() as i32).clamp(0, 6) as usize;
-    let text = format!("{x:.digits$}");
-    if text.contains('.') {
-        text.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        text
     }
 }
 
@@ -181,44 +165,25 @@ pub fn fit(cases: &[Case], bases: &[Mistakes]) -> Result<Vec<NumberFit>> {
     // Only a fit that explains a fair part is worth its whole render.
     fits.retain(|s| s.explained() >= WORTH * differing as f64);
     fits.truncate(LISTED);
-    fits.iter()
-        .map(|s| {
-            let whole = s.made_whole(cases)?;
-            let number = whole.variant.number.unwrap_or(Number {
-                parameter: Parameter::SpecularExponent,
-                value: 0.0,
-            });
-            Ok(NumberFit {
+    let mut listed = Vec::new();
+    for s in &fits {
+        let whole = s.made_whole(cases)?;
+        if let Some(number) = whole.variant.number {
+            listed.push(NumberFit {
                 parameter: number.parameter,
                 fitted: number.value,
                 with: whole.variant.mistakes,
-                explained: if differing == 0 {
-                    0.0
-                } else {
-                    (whole.explained() / differing as f64).min(1.0)
-                },
+                explained: share(whole.explained(), differing),
                 wrongly_changed_pixels: whole.wrongly_changed().round() as u64,
-                exact: true,
-                cost: whole.cost(),
-            })
-        })
-        .collect()
+            });
+        }
+    }
+    Ok(listed)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn numbers_read_as_written() {
-        assert_eq!(plain(20.0), "20");
-        assert_eq!(plain(1.0), "1");
-        assert_eq!(plain(0.5), "0.5");
-        assert_eq!(plain(0.0001), "0.0001");
-        assert_eq!(plain(1e-5), "1e-5");
-        assert_eq!(plain(123.456), "123");
-        assert_eq!(plain(1.234), "1.23");
-    }
 
     #[test]
     fn plainer_values_are_near() {

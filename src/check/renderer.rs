@@ -80,17 +80,17 @@ impl<'a> Renderer<'a> {
         }
     }
 
-    /// The tick bytes of `pixels` under `variant` in `frame` (sequential: callers run many
+    /// The tick bytes of `pixels` under `model` in `frame` (sequential: callers run many
     /// candidates side by side); an error when the user stopped the run half-way.
     pub fn bytes_at(
         &self,
-        variant: &Variant,
+        model: &impl Model,
         frame: &Frame,
         pixels: &[(u32, u32)],
     ) -> Result<Vec<u8>> {
         let accel = self.accelerator(frame);
         let beauty =
-            trace_pixels::<false, _>(variant, self.scene, accel, frame, pixels, |s| s.beauty);
+            trace_pixels::<false, _>(model, self.scene, accel, frame, pixels, |s| s.beauty);
         interrupt::check()?;
         Ok(tick_bytes(&beauty))
     }
@@ -99,19 +99,13 @@ impl<'a> Renderer<'a> {
     fn image_with(&self, model: &impl Model, frame: &Frame) -> Result<Rgb8> {
         let (width, height) = (self.spec.width, self.spec.height);
         let starts: Vec<u32> = (0..height).step_by(ROWS_PER_TASK as usize).collect();
-        let accel = self.accelerator(frame);
         let strips: Vec<Vec<u8>> = starts
             .par_iter()
             .map(|&y0| {
                 let rows = y0..(y0 + ROWS_PER_TASK).min(height);
                 let pixels: Vec<(u32, u32)> =
                     rows.flat_map(|y| (0..width).map(move |x| (x, y))).collect();
-                let beauty =
-                    trace_pixels::<false, _>(model, self.scene, accel, frame, &pixels, |s| {
-                        s.beauty
-                    });
-                interrupt::check()?;
-                Ok(tick_bytes(&beauty))
+                self.bytes_at(model, frame, &pixels)
             })
             .collect::<Result<_>>()?;
         Ok(Rgb8 {

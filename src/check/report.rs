@@ -5,7 +5,7 @@
 use crate::canvas::{fit, Canvas, LINE_HEIGHT};
 use crate::check::difference::pixel_difference;
 use crate::check::student_png::Rgb8;
-use crate::check::summary::opening;
+use crate::check::summary::fits;
 use crate::check::{CaseReport, Findings};
 use crate::output::png::{PngImage, PngPixels};
 
@@ -93,10 +93,9 @@ impl ReportRow {
         ];
         // What explains most first: the best fit beyond the catalogue when the catalogue
         // explains little.
-        let beyond = opening(findings).into_iter().skip(2).take(1);
         let weak = findings.weak();
         if weak {
-            caption.extend(beyond.map(|l| l.trim().to_string()));
+            caption.extend(fits(findings).into_iter().take(1));
         }
         match case.diagnosis.first() {
             Some(top) => caption.push(format!(

@@ -23,6 +23,15 @@ pub fn cost(difference: u8) -> f64 {
     }
 }
 
+/// `explained` differing pixels as a share of `differing` (0 when nothing differs).
+pub fn share(explained: f64, differing: usize) -> f64 {
+    if differing == 0 {
+        0.0
+    } else {
+        (explained / differing as f64).min(1.0)
+    }
+}
+
 /// A hash of rendered bytes: two candidates with the same one render alike.
 fn fingerprint(bytes: &[u8]) -> u64 {
     let mut hasher = DefaultHasher::new();

@@ -2,11 +2,12 @@
 //! student is, and, when no catalogued candidate explains the images well, that fact and what
 //! does explain most, before any weak candidate.
 
-use super::numbers::plain;
 use super::{Findings, GOOD_EXPLANATION};
+use crate::numbers::plain;
 
-/// One explanation beyond the catalogue, in words, and the share it reproduces.
-fn fits(findings: &Findings) -> Vec<(f64, String)> {
+/// The explanations beyond the catalogue (numbers and terms), best first, each as "what:
+/// reproduces N% of the differing pixels".
+pub fn fits(findings: &Findings) -> Vec<String> {
     let mut fits: Vec<(f64, String)> = findings
         .parameters
         .iter()
@@ -14,7 +15,14 @@ fn fits(findings: &Findings) -> Vec<(f64, String)> {
         .chain(findings.terms.iter().map(|t| (t.explained, t.sentence())))
         .collect();
     fits.sort_by(|a, b| b.0.total_cmp(&a.0));
-    fits
+    fits.into_iter()
+        .map(|(explained, sentence)| {
+            format!(
+                "{sentence}: reproduces {}% of the differing pixels",
+                plain(100.0 * explained)
+            )
+        })
+        .collect()
 }
 
 /// The progress line, then, when the catalogue explains little, what explains most.
@@ -30,12 +38,7 @@ pub fn opening(findings: &Findings) -> Vec<String> {
             lines.push(format!(
                 "no catalogued mistake explains {good}% of the differing pixels; what explains most:"
             ));
-            for (explained, sentence) in fits.iter().take(3) {
-                lines.push(format!(
-                    "  {sentence}: reproduces {}% of the differing pixels",
-                    plain(100.0 * explained)
-                ));
-            }
+            lines.extend(fits.iter().take(3).map(|fit| format!("  {fit}")));
         }
         None if !findings.diagnosis.is_empty() => lines.push(format!(
             "no catalogued mistake explains {good}% of the differing pixels, and no term or number of the model does"

@@ -35,12 +35,16 @@ fn named_first(diagnosis: &[Diagnosis], wanted: Mistakes) -> bool {
         .is_some_and(|d| d.mistakes == wanted || d.indistinguishable_from.contains(&wanted))
 }
 
-/// Whether `wanted` (or a twin of it) is among the first three.
-fn in_top_three(diagnosis: &[Diagnosis], wanted: Mistakes) -> bool {
-    diagnosis
-        .iter()
-        .take(3)
-        .any(|d| d.mistakes == wanted || d.indistinguishable_from.contains(&wanted))
+/// Fails unless `wanted` (or a twin of it) is among the first three.
+fn assert_in_top_three(diagnosis: &[Diagnosis], wanted: Mistakes) {
+    let top3: Vec<&Diagnosis> = diagnosis.iter().take(3).collect();
+    assert!(
+        top3.iter()
+            .any(|d| d.mistakes == wanted || d.indistinguishable_from.contains(&wanted)),
+        "{}: {:?}",
+        wanted.name(),
+        top3.iter().map(|d| d.mistakes.name()).collect::<Vec<_>>()
+    );
 }
 
 /// Every suite case's scene and whitted's render of `variant` there, as a student's program
@@ -116,16 +120,7 @@ fn pairs_with_stages_are_found_in_the_top_three() {
         let wanted = Mistakes::of(&pair);
         let (case, scene, image) = failing_case(wanted);
         let (_, findings) = check_image(&scene, case.file, case.bounces, 2, image).expect("check");
-        let top3: Vec<String> = findings
-            .diagnosis
-            .iter()
-            .take(3)
-            .map(|d| d.mistakes.name())
-            .collect();
-        assert!(
-            in_top_three(&findings.diagnosis, wanted),
-            "{pair:?}: {top3:?}"
-        );
+        assert_in_top_three(&findings.diagnosis, wanted);
     }
 }
 
@@ -143,16 +138,7 @@ fn three_at_once_are_found_over_the_suite() {
     for triple in triples {
         let wanted = Mistakes::of(&triple);
         let findings = suite_findings(&suite_images(Variant::from(wanted)));
-        let top3: Vec<String> = findings
-            .diagnosis
-            .iter()
-            .take(3)
-            .map(|d| d.mistakes.name())
-            .collect();
-        assert!(
-            in_top_three(&findings.diagnosis, wanted),
-            "{triple:?}: {top3:?}"
-        );
+        assert_in_top_three(&findings.diagnosis, wanted);
     }
 }
 

@@ -126,6 +126,17 @@ fn names(entry: &serde_json::Value) -> Vec<String> {
     all
 }
 
+/// The names in the first three diagnoses of a check's JSON, twins included.
+fn top_three(json: &serde_json::Value) -> Vec<String> {
+    json["diagnosis"]
+        .as_array()
+        .expect("diagnosis")
+        .iter()
+        .take(3)
+        .flat_map(names)
+        .collect()
+}
+
 #[test]
 fn every_mistake_of_the_java_program_is_named_first() {
     let dir = tempfile::tempdir().expect("tempdir");
@@ -186,13 +197,7 @@ fn pairs_of_mistakes_are_in_the_top_three() {
         let png = java_render(dir.path(), &case, &pair, "pair.png");
         let json = check_json(dir.path(), &png, &case);
         let wanted = Mistakes::of(&bugs).ids().join("+");
-        let top3: Vec<String> = json["diagnosis"]
-            .as_array()
-            .expect("diagnosis")
-            .iter()
-            .take(3)
-            .flat_map(names)
-            .collect();
+        let top3 = top_three(&json);
         assert!(top3.contains(&wanted), "{wanted}: {top3:?}");
     }
 }
@@ -504,13 +509,7 @@ fn a_half_written_program_is_named_with_its_stages_and_progress() {
     // Shadows and reflection not written yet, and a mistake in what is written.
     let triple = ["reflect-unclamped", "no-shadows", "reflection-missing"];
     let json = suite_json(dir.path(), &triple);
-    let top3: Vec<String> = json["diagnosis"]
-        .as_array()
-        .expect("diagnosis")
-        .iter()
-        .take(3)
-        .flat_map(names)
-        .collect();
+    let top3 = top_three(&json);
     let wanted = triple.join("+");
     assert!(top3.contains(&wanted), "{wanted}: {top3:?}");
     assert_eq!(
@@ -528,13 +527,7 @@ fn a_half_written_program_is_named_with_its_stages_and_progress() {
     }
     // A stage and a mistake.
     let json = suite_json(dir.path(), &["lights-missing", "plane-behind"]);
-    let top3: Vec<String> = json["diagnosis"]
-        .as_array()
-        .expect("diagnosis")
-        .iter()
-        .take(3)
-        .flat_map(names)
-        .collect();
+    let top3 = top_three(&json);
     assert!(
         top3.contains(&"plane-behind+lights-missing".to_string()),
         "{top3:?}"

@@ -96,8 +96,7 @@ const PANELS = (() => {
         element.append(button);
       }
       if (report.diagnosis.length) {
-        const weak = !(report.diagnosis[0].explained >= 0.9);
-        line(weak ? "weak candidates (each explains less than 90%), best first:" : "diagnosis, best first:");
+        line(report.diagnosis_heading || "diagnosis, best first:");
         const list = document.createElement("ol");
         list.className = "diagnosis";
         for (const d of report.diagnosis) {
