@@ -16,6 +16,7 @@ pub mod program;
 pub mod progress;
 pub mod renderer;
 pub mod report;
+pub mod reproduce;
 pub mod score;
 pub mod student_png;
 pub mod suite;
@@ -23,7 +24,7 @@ pub mod summary;
 pub mod terms;
 
 use crate::check::case::Case;
-use crate::check::diagnose::{Diagnosis, Search};
+use crate::check::diagnose::{CaseFinding, Diagnosis, Search};
 use crate::check::difference::{difference, Difference};
 use crate::check::numbers::NumberFit;
 use crate::check::progress::{Evidence, Progress};
@@ -47,8 +48,8 @@ pub struct Findings {
     /// Best first; empty when every image is identical or nothing explains them better than
     /// the reference does.
     pub diagnosis: Vec<Diagnosis>,
-    /// Per case, the candidates counted over that case whole, ranked there.
-    pub per_case: Vec<Vec<Diagnosis>>,
+    /// Per case, what the best explanation says of it.
+    pub per_case: Vec<CaseFinding>,
     /// Where no candidate explains the images well: the model's terms they differ in.
     pub terms: Vec<TermFit>,
     /// Where no candidate explains the images well: the model's numbers that do.
@@ -68,7 +69,7 @@ impl Findings {
     fn nothing(cases: usize, evidence: Evidence) -> Findings {
         Findings {
             diagnosis: Vec::new(),
-            per_case: vec![Vec::new(); cases],
+            per_case: vec![CaseFinding::default(); cases],
             terms: Vec::new(),
             parameters: Vec::new(),
             progress: Progress::of(&evidence),
@@ -91,11 +92,11 @@ pub fn find(cases: &[Case], all_pass: bool) -> Result<Findings> {
         return Ok(Findings::nothing(cases.len(), evidence));
     }
     let search = Search::run(cases)?;
-    let diagnosis = search.diagnosis(cases, None);
+    let diagnosis = search.diagnosis(cases);
     let per_case = (0..cases.len())
-        .map(|i| match cases[i].identical() {
-            true => Vec::new(),
-            false => search.diagnosis(cases, Some(i)),
+        .map(|i| match diagnosis.first() {
+            Some(top) => search.in_case(cases, top.mistakes, i),
+            None => CaseFinding::default(),
         })
         .collect();
     let mut findings = Findings {
@@ -171,8 +172,12 @@ pub struct CaseReport {
     pub bounces: u32,
     pub tolerance: u8,
     pub difference: Difference,
-    /// This case's own ranking of the candidates (best first).
+    /// The diagnosis as it concerns this case: the whole ranking for one image; in a suite,
+    /// the part of the suite's explanation that shows here, if it explains this case.
     pub diagnosis: Vec<Diagnosis>,
+    /// Entries this case passes with, yet renders exactly as they do: the same fix as the
+    /// failing cases'.
+    pub hidden_mistakes: Mistakes,
     pub student: Rgb8,
     pub reference: Rgb8,
 }
@@ -194,6 +199,7 @@ pub fn prepare<'a>(
         tolerance,
         difference: difference(&case.student, &case.reference, tolerance),
         diagnosis: Vec::new(),
+        hidden_mistakes: Mistakes::NONE,
         student: case.student.clone(),
         reference: case.reference.clone(),
     };
@@ -212,6 +218,7 @@ pub fn check_image(
     let passes = report.difference.verdict.passes();
     let findings = find(std::slice::from_ref(&case), passes)?;
     report.diagnosis = findings.diagnosis.clone();
+    report.hidden_mistakes = findings.per_case[0].hidden(passes);
     Ok((report, findings))
 }
 

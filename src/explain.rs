@@ -4,6 +4,7 @@
 //! beauty. It is the renderer's own trace, observed (`trace::observe`), so the numbers are the
 //! numbers the image is made of.
 
+pub mod compare;
 pub mod json;
 
 use glam::DVec3;

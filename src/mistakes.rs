@@ -121,6 +121,36 @@ impl Bug {
         catalogue::entry(self).stage
     }
 
+    /// The class and method of the course's code the entry is in.
+    pub fn place(self) -> &'static str {
+        catalogue::entry(self).place
+    }
+
+    /// What the wrong code typically looks like; for a stage, what is not written yet.
+    pub fn looks_like(self) -> &'static str {
+        catalogue::entry(self).looks_like
+    }
+
+    /// The course's formula and the line that computes it.
+    pub fn fix(self) -> &'static str {
+        catalogue::entry(self).fix
+    }
+
+    /// Where and how to fix it, as two lines of a report: where (and what the wrong code
+    /// looks like, or which TODO is open), then the fix.
+    pub fn advice(self) -> [String; 2] {
+        let place = if self.is_unfinished() {
+            format!(
+                "where: {}, not written yet: {}",
+                self.place(),
+                self.looks_like()
+            )
+        } else {
+            format!("where: {}, often `{}`", self.place(), self.looks_like())
+        };
+        [place, format!("fix: {}", self.fix())]
+    }
+
     /// Whether this entry is a stage not written yet rather than a mistake in written code.
     pub fn is_unfinished(self) -> bool {
         catalogue::entry(self).unfinished

@@ -278,6 +278,8 @@ fn light_terms<O: Observer>(
         illumination,
         to_light: l,
         n_dot_l,
+        mirror: r,
+        view: v,
         r_dot_v,
         diffuse,
         specular,

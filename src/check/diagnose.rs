@@ -169,29 +169,74 @@ impl Search {
         Ok(())
     }
 
-    /// The ranked diagnosis over every case, or over case `only`.
-    pub fn diagnosis(&self, cases: &[Case], only: Option<usize>) -> Vec<Diagnosis> {
-        let picked: Vec<usize> = match only {
-            Some(i) => vec![i],
-            None => (0..cases.len()).collect(),
-        };
-        let view = |s: &Scored| Scored {
-            variant: s.variant,
-            cases: picked.iter().map(|&i| s.cases[i].clone()).collect(),
-        };
-        let null: f64 = picked.iter().map(|&i| null_cost(&cases[i])).sum();
-        let differing: usize = picked.iter().map(|&i| cases[i].wrong.len()).sum();
-        let mut order: Vec<Scored> = self
-            .useful()
-            // A case's own labels come from what was counted over it whole.
-            .filter(|s| only.is_none() || s.is_whole())
-            .map(view)
-            .filter(|s| s.changes_any() && s.cost() < null)
-            .collect();
-        order.sort_by(|a, b| ranking(&a, &b));
+    /// The ranked diagnosis over every case.
+    pub fn diagnosis(&self, cases: &[Case]) -> Vec<Diagnosis> {
+        let null: f64 = cases.iter().map(null_cost).sum();
+        let differing: usize = cases.iter().map(|c| c.wrong.len()).sum();
+        let mut order: Vec<&Scored> = self.useful().filter(|s| s.cost() < null).collect();
+        order.sort_by(ranking);
         rank(order, differing)
     }
+
+    /// What the suite's best explanation `top` says of case `i`: the part of it that shows
+    /// there (an entry shows where leaving it out renders the case otherwise), with its
+    /// numbers on that case, and whether it renders the case exactly as the student did.
+    pub fn in_case(&self, cases: &[Case], top: Mistakes, i: usize) -> CaseFinding {
+        let Some(scored) = self.get(top) else {
+            return CaseFinding::default();
+        };
+        let here = &scored.cases[i];
+        let shows = Mistakes::of(
+            &top.bugs()
+                .into_iter()
+                .filter(|&m| {
+                    let without = top.one_smaller().into_iter().find(|s| !s.has(m));
+                    match without.filter(|w| !w.is_empty()).and_then(|w| self.get(w)) {
+                        Some(smaller) => !here.renders_like(&smaller.cases[i]),
+                        None => here.changes_image,
+                    }
+                })
+                .collect::<Vec<_>>(),
+        );
+        let wrong = cases[i].wrong.len();
+        let label = Diagnosis {
+            mistakes: shows,
+            explained: share(here.explained, wrong),
+            unexplained_pixels: (wrong as f64 - here.explained).max(0.0).round() as u64,
+            wrongly_changed_pixels: here.wrongly_changed.round() as u64,
+            indistinguishable_from: Vec::new(),
+            exact: here.is_whole(),
+        };
+        CaseFinding {
+            exactly: here.is_whole() && here.changes_image && here.cost == 0.0 && !shows.is_empty(),
+            label: (!shows.is_empty() && wrong > 0 && label.explained >= LABELLED).then_some(label),
+        }
+    }
 }
+
+/// What the suite's explanation says of one case.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct CaseFinding {
+    /// The part of the suite's explanation that shows in this case, where it explains at
+    /// least `LABELLED` of the case's differing pixels.
+    pub label: Option<Diagnosis>,
+    /// Whether the suite's explanation renders this case byte for byte as the student did.
+    pub exactly: bool,
+}
+
+impl CaseFinding {
+    /// The entries a case that `passes` hides: it renders exactly what they render.
+    pub fn hidden(&self, passes: bool) -> Mistakes {
+        match (&self.label, passes && self.exactly) {
+            (Some(label), true) => label.mistakes,
+            _ => Mistakes::NONE,
+        }
+    }
+}
+
+/// A case is labelled with the suite's explanation only where that explains this share of
+/// its differing pixels: below, the label would say little.
+const LABELLED: f64 = 0.5;
 
 /// Lower cost first; then fewer entries, then catalogue order.
 fn ranking(a: &&Scored, b: &&Scored) -> std::cmp::Ordering {
@@ -208,13 +253,13 @@ fn simpler(a: Mistakes, b: Mistakes) -> std::cmp::Ordering {
 
 /// The listed diagnoses from candidates in ranking order: twins fold into the first of them,
 /// and after an exact explanation of everything only its twins remain.
-fn rank(order: Vec<Scored>, differing: usize) -> Vec<Diagnosis> {
-    let mut listed: Vec<(Scored, Diagnosis)> = Vec::new();
+fn rank(order: Vec<&Scored>, differing: usize) -> Vec<Diagnosis> {
+    let mut listed: Vec<(&Scored, Diagnosis)> = Vec::new();
     for s in order {
         let mistakes = s.variant.mistakes;
         if let Some((_, entry)) = listed
             .iter_mut()
-            .find(|(r, _)| r.renders_like(&s) && r.compared_whole(&s))
+            .find(|(r, _)| r.renders_like(s) && r.compared_whole(s))
         {
             // A twin with more entries adds nothing: the simpler explanation stands.
             if entry.mistakes.len() == mistakes.len() {

@@ -24,6 +24,10 @@ pub fn diagnosis_json(list: &[Diagnosis]) -> Value {
             "wrongly_changed_pixels": d.wrongly_changed_pixels,
             "indistinguishable_from": d.indistinguishable_from.iter().map(|&m| m.name()).collect::<Vec<_>>(),
             "exact": d.exact,
+            "where": d.mistakes.bugs().iter().map(|b| b.place()).collect::<Vec<_>>(),
+            "looks_like": d.mistakes.bugs().iter().map(|b| b.looks_like()).collect::<Vec<_>>(),
+            "fix": d.mistakes.bugs().iter().map(|b| b.fix()).collect::<Vec<_>>(),
+            "text": summary::diagnosis_lines(d),
         }))
         .collect::<Vec<_>>())
 }
@@ -50,6 +54,7 @@ pub fn parameters_json(parameters: &[NumberFit]) -> Value {
             "with": p.with.ids(),
             "explained": share(p.explained),
             "wrongly_changed_pixels": p.wrongly_changed_pixels,
+            "where": p.parameter.place(),
         }))
         .collect::<Vec<_>>())
 }
@@ -93,6 +98,8 @@ pub fn case_json(case: &CaseReport, findings: Option<&Findings>) -> Value {
         "worst_pixel": d.worst_pixel.map(|(x, y)| json!([x, y])),
         "bounds": d.bounds.map(|(x0, y0, x1, y1)| json!([x0, y0, x1, y1])),
         "diagnosis": diagnosis_json(&case.diagnosis),
+        "hidden_mistakes": case.hidden_mistakes.ids(),
+        "difference_text": summary::difference_sentence(d),
     });
     if let Some(findings) = findings {
         add_findings(&mut object, findings);

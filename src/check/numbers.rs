@@ -43,10 +43,11 @@ impl NumberFit {
             format!(", together with {}", self.with.name())
         };
         format!(
-            "{} looks like {} (the course's is {}){with}",
+            "{} looks like {} (the course's is {}){with}; look at {}",
             self.parameter.words(),
             plain(self.fitted),
-            plain(self.parameter.course())
+            plain(self.parameter.course()),
+            self.parameter.place()
         )
     }
 }

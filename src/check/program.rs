@@ -69,6 +69,8 @@ impl Status {
 #[derive(Debug, Clone)]
 pub struct CaseOutcome {
     pub name: String,
+    /// The suite case it ran.
+    pub case: SuiteCase,
     pub status: Status,
     /// The last lines of what the program wrote to standard error.
     pub stderr_tail: String,
@@ -146,14 +148,16 @@ pub fn run_suite(program: &str, tolerance: u8, timeout: u64) -> Result<SuiteRun>
         .zip(tails)
         .map(|((case, status), stderr_tail)| {
             let status = status.unwrap_or_else(|| match reports.next() {
-                Some((mut report, diagnosis)) => {
-                    report.diagnosis = diagnosis.clone();
+                Some((mut report, finding)) => {
+                    report.diagnosis = finding.label.iter().cloned().collect();
+                    report.hidden_mistakes = finding.hidden(report.difference.verdict.passes());
                     Status::Ok(Box::new(report))
                 }
                 None => Status::Crashed("not checked".into()),
             });
             CaseOutcome {
                 name: case.name(),
+                case: *case,
                 status,
                 stderr_tail,
             }

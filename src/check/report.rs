@@ -5,7 +5,7 @@
 use crate::canvas::{fit, Canvas, LINE_HEIGHT};
 use crate::check::difference::pixel_difference;
 use crate::check::student_png::Rgb8;
-use crate::check::summary::fits;
+use crate::check::summary::{fits, largest};
 use crate::check::{CaseReport, Findings};
 use crate::output::png::{PngImage, PngPixels};
 
@@ -86,10 +86,7 @@ impl ReportRow {
         ];
         let mut caption = vec![
             format!("{case_name}: {}", d.verdict.name()),
-            format!(
-                "{} pixels differ, up to {} LSB",
-                d.differing_pixels, d.max_difference
-            ),
+            format!("{} pixels differ, {}", d.differing_pixels, largest(d)),
         ];
         // What explains most first: the best fit beyond the catalogue when the catalogue
         // explains little.
@@ -98,12 +95,15 @@ impl ReportRow {
             caption.extend(fits(findings).into_iter().take(1));
         }
         match case.diagnosis.first() {
-            Some(top) => caption.push(format!(
-                "{}looks like {} ({:.0}% explained)",
-                if weak { "weakly " } else { "" },
-                top.mistakes.ids().join(" + "),
-                100.0 * top.explained
-            )),
+            Some(top) => {
+                caption.push(format!(
+                    "{}looks like {} ({:.0}% explained)",
+                    if weak { "weakly " } else { "" },
+                    top.mistakes.ids().join(" + "),
+                    100.0 * top.explained
+                ));
+                caption.extend(top.mistakes.bugs().iter().flat_map(|b| b.advice()));
+            }
             None => caption.push("no catalogued mistake fits".into()),
         }
         ReportRow { caption, tiles }

@@ -5,6 +5,10 @@
 //! course's two scenes cannot: lights behind and beyond objects, overlapping spheres, mirrors
 //! facing each other, a plane close under the camera (see docs/check.md).
 
+use std::path::Path;
+
+use crate::error::{Error, Result};
+
 /// One case: a scene at a bounce count.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct SuiteCase {
@@ -19,6 +23,45 @@ impl SuiteCase {
     pub fn name(&self) -> String {
         format!("{} -b {}", self.file, self.bounces)
     }
+
+    /// The name of the PNG a rerun of this case writes: `shadows_b1.png`.
+    pub fn output_name(&self) -> String {
+        format!(
+            "{}_b{}.png",
+            self.file.trim_end_matches(".xml"),
+            self.bounces
+        )
+    }
+}
+
+/// Writes every scene of the suite into `dir` (made if missing), so that a student can rerun
+/// and explain each case from their own directory. A file of the same name and content is
+/// left as it is; one with other content is refused, never replaced.
+pub fn write_scenes(dir: &Path) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, "cannot create the directory", e))?;
+    let mut files: Vec<SuiteCase> = cases();
+    files.dedup_by_key(|c| c.file);
+    for case in &files {
+        let path = dir.join(case.file);
+        match std::fs::read(&path) {
+            Ok(bytes) if bytes == case.xml.as_bytes() => continue,
+            Ok(_) => {
+                return Err(Error::Usage(format!(
+                    "{} exists with other content; not replaced (choose another --suite-dir)",
+                    path.display()
+                )))
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+            Err(e) => return Err(Error::io(&path, "cannot read", e)),
+        }
+        let mut file = tempfile::NamedTempFile::new_in(dir)
+            .map_err(|e| Error::io(dir, "cannot write into", e))?;
+        std::io::Write::write_all(&mut file, case.xml.as_bytes())
+            .map_err(|e| Error::io(&path, "cannot write", e))?;
+        file.persist_noclobber(&path)
+            .map_err(|e| Error::io(&path, "cannot write", e.error))?;
+    }
+    Ok(())
 }
 
 const TICK2: &str = include_str!("../../scenes/check/tick2.xml");

@@ -2,6 +2,8 @@
 //! student is, and, when no catalogued candidate explains the images well, that fact and what
 //! does explain most, before any weak candidate.
 
+use super::diagnose::Diagnosis;
+use super::difference::Difference;
 use super::{Findings, GOOD_EXPLANATION};
 use crate::numbers::plain;
 
@@ -58,4 +60,49 @@ pub fn candidates_heading(findings: &Findings) -> String {
     } else {
         "diagnosis, best first:".to_string()
     }
+}
+
+/// How far a channel is off, in the student's terms.
+pub fn largest(d: &Difference) -> String {
+    format!("by up to {} of 255 in a channel", d.max_difference)
+}
+
+/// How the image differs, in one sentence.
+pub fn difference_sentence(d: &Difference) -> String {
+    let total = u64::from(d.width) * u64::from(d.height);
+    format!(
+        "{} of {total} pixels differ ({} by more than the tolerance), {}",
+        d.differing_pixels,
+        d.beyond_tolerance,
+        largest(d)
+    )
+}
+
+/// One diagnosis in words: each entry, where and how to fix it, and what it explains.
+pub fn diagnosis_lines(d: &Diagnosis) -> Vec<String> {
+    let mut lines = Vec::new();
+    for (i, bug) in d.mistakes.bugs().into_iter().enumerate() {
+        let and = if i == 0 { "" } else { "and " };
+        lines.push(format!("{and}{}: {}", bug.id(), bug.description()));
+        lines.extend(bug.advice().map(|line| format!("  {line}")));
+    }
+    lines.push(format!(
+        "explains {}% of the differing pixels ({} not explained; changes {} pixels you had right){}",
+        plain(100.0 * d.explained),
+        d.unexplained_pixels,
+        d.wrongly_changed_pixels,
+        if d.exact {
+            ""
+        } else {
+            "; figures estimated from a sample of the pixels, not counted over the whole image"
+        }
+    ));
+    if !d.indistinguishable_from.is_empty() {
+        let twins: Vec<String> = d.indistinguishable_from.iter().map(|m| m.name()).collect();
+        lines.push(format!(
+            "renders these images exactly as: {}",
+            twins.join(", ")
+        ));
+    }
+    lines
 }

@@ -45,6 +45,11 @@ pub struct CheckArgs {
     #[arg(long, value_name = "CMD ARGS")]
     pub program: Option<String>,
 
+    /// Write the suite's scenes into DIR (made if missing), so that every failing case can be
+    /// rerun and explained from your own directory; the report's commands then name them
+    #[arg(long, value_name = "DIR", requires = "program")]
+    pub suite_dir: Option<PathBuf>,
+
     /// Seconds each case of `--program` may take
     #[arg(long, value_name = "SECONDS", default_value_t = 60, value_parser = parse_timeout)]
     pub timeout: u64,

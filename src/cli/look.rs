@@ -30,6 +30,11 @@ pub struct ExplainArgs {
     /// `whitted check --list-bugs`; repeat it for several)
     #[arg(long = "bug", value_name = "ID", value_parser = parse_bug)]
     pub bugs: Vec<Bug>,
+
+    /// With --bug: the reference's tree and the mistake's side by side, only the steps that
+    /// differ (the vectors R, V, L and the terms that change)
+    #[arg(long, requires = "bugs", conflicts_with = "json")]
+    pub compare: bool,
 }
 
 impl ExplainArgs {
@@ -40,10 +45,15 @@ impl ExplainArgs {
 
     /// The frame the pixel belongs to, as a program with those mistakes renders it.
     pub fn frame(&self) -> FrameSpec {
-        self.mistakes().frame_spec(&FrameSpec {
+        self.mistakes().frame_spec(&self.reference_frame())
+    }
+
+    /// The frame the pixel belongs to, as the course's program renders it.
+    pub fn reference_frame(&self) -> FrameSpec {
+        FrameSpec {
             aovs: "beauty".into(),
             ..self.frame.spec()
-        })
+        }
     }
 }
 

@@ -2,13 +2,17 @@
 //! verdict, where the image differs, and which mistake made it (docs/check.md). Exit 0 when
 //! every image passes, 1 when one differs, 2 when they cannot be compared.
 
+use std::path::Path;
+
 use serde_json::{json, Value};
 
 use crate::check::diagnose::Diagnosis;
 use crate::check::json::{add_findings, case_json};
 use crate::check::program::{run_suite, CaseOutcome, Status, SuiteRun, HEIGHT, WIDTH};
 use crate::check::report::{contact_sheet, heat_map, ReportRow};
-use crate::check::summary::{candidates_heading, opening};
+use crate::check::reproduce::{explain_commands, Reproduce};
+use crate::check::suite;
+use crate::check::summary::{self, candidates_heading, opening};
 use crate::check::{check_image, student_png, CaseReport, Findings};
 use crate::cli::CheckArgs;
 use crate::error::Result;
@@ -39,10 +43,20 @@ pub fn run(args: &CheckArgs) -> Result<bool> {
     }
 }
 
+/// The catalogue: each entry's id and statement on a line, then where and how to fix it.
 fn catalogue() -> String {
     Bug::ALL
         .iter()
-        .map(|b| format!("{:<24} {}", b.id(), b.description()))
+        .map(|b| {
+            let [place, fix] = b.advice();
+            format!(
+                "{:<24} {}\n{:25}{place}\n{:25}{fix}",
+                b.id(),
+                b.description(),
+                "",
+                ""
+            )
+        })
         .collect::<Vec<_>>()
         .join("\n")
 }
@@ -108,6 +122,9 @@ fn run_program(args: &CheckArgs, program: &str) -> Result<bool> {
     if let Some(report) = &args.report {
         refuse_clashes(&[], &[report])?;
     }
+    if let Some(dir) = &args.suite_dir {
+        suite::write_scenes(dir)?;
+    }
     let mut report = args.report.as_deref().map(Destination::open).transpose()?;
     let run = run_suite(program, args.tolerance, args.timeout)?;
     if let Some(out) = report.as_mut() {
@@ -126,10 +143,11 @@ fn run_program(args: &CheckArgs, program: &str) -> Result<bool> {
     if let Some(out) = report {
         out.commit()?;
     }
+    let suite_dir = args.suite_dir.as_deref();
     let text = if args.json {
-        pretty(&suite_json(&run))
+        pretty(&suite_json(&run, suite_dir))
     } else {
-        suite_text(&run)
+        suite_text(&run, suite_dir)
     };
     stdout::print_line(&text)?;
     Ok(run.passed())
@@ -143,23 +161,11 @@ fn pretty(value: &Value) -> String {
 fn diagnosis_lines(list: &[Diagnosis]) -> String {
     let mut out = String::new();
     for (rank, d) in list.iter().enumerate() {
-        let bugs = d.mistakes.bugs();
-        let what: Vec<String> = bugs
-            .iter()
-            .map(|b| format!("{} ({})", b.id(), b.description()))
-            .collect();
-        out += &format!(
-            "  {}. {}\n     explains {:.1}% of the differing pixels ({} unexplained, {} right pixels changed{})\n",
-            rank + 1,
-            what.join("\n     and "),
-            100.0 * d.explained,
-            d.unexplained_pixels,
-            d.wrongly_changed_pixels,
-            if d.exact { "" } else { "; estimated" }
-        );
-        if !d.indistinguishable_from.is_empty() {
-            let twins: Vec<String> = d.indistinguishable_from.iter().map(|m| m.name()).collect();
-            out += &format!("     indistinguishable here from: {}\n", twins.join(", "));
+        for (i, line) in summary::diagnosis_lines(d).iter().enumerate() {
+            match i {
+                0 => out += &format!("  {}. {line}\n", rank + 1),
+                _ => out += &format!("     {line}\n"),
+            }
         }
     }
     out
@@ -178,11 +184,39 @@ fn findings_text(findings: &Findings) -> String {
     out
 }
 
+/// One suite case's verdict, in a line: how far it is off and what of the diagnosis shows in
+/// it, or that it passes while rendering exactly what the diagnosis renders.
+fn case_line(case: &CaseReport) -> String {
+    let d = &case.difference;
+    if d.verdict.passes() {
+        return match case.hidden_mistakes.is_empty() {
+            true => d.verdict.name().to_string(),
+            false => format!(
+                "{}, but is exactly what {} renders: the same fix",
+                d.verdict.name(),
+                case.hidden_mistakes.name()
+            ),
+        };
+    }
+    let shows = case.diagnosis.first().map_or(String::new(), |t| {
+        format!(
+            "; shows {} ({}% of this case explained)",
+            t.mistakes.name(),
+            crate::numbers::plain(100.0 * t.explained)
+        )
+    });
+    format!(
+        "{}: {} pixels, {}{shows}",
+        d.verdict.name(),
+        d.differing_pixels,
+        summary::largest(d)
+    )
+}
+
 fn case_text(case: &CaseReport, findings: &Findings, input: Option<&std::path::Path>) -> String {
     let d = &case.difference;
-    let total = u64::from(d.width) * u64::from(d.height);
     let mut out = format!(
-        "{}, {}x{}, {} bounces: {} (tolerance {} LSB)\n",
+        "{}, {}x{}, {} bounces: {} (tolerance: {} of 255 in a channel)\n",
         case.scene_name,
         d.width,
         d.height,
@@ -198,51 +232,47 @@ fn case_text(case: &CaseReport, findings: &Findings, input: Option<&std::path::P
         out += "every byte of every pixel equals the reference";
         return out;
     }
-    out += &format!(
-        "{} of {total} pixels differ ({} by more than the tolerance); the largest difference is {} LSB\n",
-        d.differing_pixels, d.beyond_tolerance, d.max_difference
-    );
+    if !case.hidden_mistakes.is_empty() {
+        out += &format!(
+            "it passes, but is exactly what {} renders: fix it all the same\n",
+            case.hidden_mistakes.name()
+        );
+    }
+    out += &summary::difference_sentence(d);
+    out += "\n";
     if let (Some((x0, y0, x1, y1)), Some((x, y))) = (d.bounds, d.worst_pixel) {
         out +=
             &format!("they lie in x {x0}..={x1}, y {y0}..={y1}; the worst pixel is ({x}, {y})\n");
     }
     out += &findings_text(findings);
-    if let Some((x, y)) = d.worst_pixel {
-        let scene = input.map_or(String::new(), |p| {
-            format!(" -i {}", shell_word(&p.display().to_string()))
-        });
-        let base = format!(
-            "whitted explain{scene} -b {} --width {} --height {} --pixel {x},{y}",
-            case.bounces, d.width, d.height
+    if let Some(pixel) = d.worst_pixel {
+        let scene = input.map(|p| p.display().to_string());
+        let top = case
+            .diagnosis
+            .first()
+            .map_or(case.hidden_mistakes, |t| t.mistakes);
+        let size = (d.width, d.height);
+        let commands = explain_commands(scene.as_deref(), case.bounces, size, pixel, top);
+        out += &format!(
+            "the worst pixel, as the reference traces it:\n  {}\n",
+            commands[0]
         );
-        out += &format!("the worst pixel, as the reference traces it:\n  {base}\n");
-        if let Some(top) = case.diagnosis.first() {
-            let bugs: Vec<String> = top
-                .mistakes
-                .ids()
-                .iter()
-                .map(|id| format!(" --bug {id}"))
-                .collect();
+        if let Some(compare) = commands.get(1) {
             out += &format!(
-                "and as the top diagnosis traces it:\n  {base}{}\n",
-                bugs.concat()
+                "and beside it as the top diagnosis traces it, the steps that differ:\n  {compare}\n"
             );
         }
     }
     out.trim_end().to_string()
 }
 
-/// `s` quoted for a POSIX shell where it needs to be (a path with a NUL byte cannot be
-/// quoted, and is shown as it is).
-fn shell_word(s: &str) -> String {
-    shlex::try_quote(s).map_or_else(|_| s.to_string(), |q| q.into_owned())
-}
-
-fn outcome_json(outcome: &CaseOutcome) -> Value {
-    let mut object = match &outcome.status {
-        Status::Ok(case) => case_json(case, None),
-        _ => json!({}),
+fn outcome_json(run: &SuiteRun, outcome: &CaseOutcome, suite_dir: Option<&Path>) -> Value {
+    let report = match &outcome.status {
+        Status::Ok(case) => Some(case.as_ref()),
+        _ => None,
     };
+    let mut object = report.map_or_else(|| json!({}), |case| case_json(case, None));
+    object["reproduce"] = Reproduce::of(&run.program, suite_dir, &outcome.case, report).json();
     object["case"] = json!(outcome.name);
     object["status"] = json!(outcome.status.name());
     object["stderr_tail"] = json!(outcome.stderr_tail);
@@ -256,39 +286,29 @@ fn outcome_json(outcome: &CaseOutcome) -> Value {
     object
 }
 
-fn suite_json(run: &SuiteRun) -> Value {
+fn suite_json(run: &SuiteRun, suite_dir: Option<&Path>) -> Value {
     let mut object = json!({
         "program": run.program,
         "passed": run.passed(),
-        "cases": run.cases.iter().map(outcome_json).collect::<Vec<_>>(),
+        "cases": run.cases.iter().map(|c| outcome_json(run, c, suite_dir)).collect::<Vec<_>>(),
     });
     add_findings(&mut object, &run.findings);
     object
 }
 
-fn suite_text(run: &SuiteRun) -> String {
+fn suite_text(run: &SuiteRun, suite_dir: Option<&Path>) -> String {
     let mut out = format!("{} over {} cases:\n", run.program, run.cases.len());
     for line in opening(&run.findings) {
         out += &line;
         out += "\n";
     }
     for c in &run.cases {
+        let report = match &c.status {
+            Status::Ok(case) => Some(case.as_ref()),
+            _ => None,
+        };
         let detail = match &c.status {
-            Status::Ok(case) => {
-                let d = &case.difference;
-                let top = case.diagnosis.first().map_or(String::new(), |t| {
-                    format!("; looks like {}", t.mistakes.name())
-                });
-                match d.verdict.passes() {
-                    true => d.verdict.name().to_string(),
-                    false => format!(
-                        "{}: {} pixels, up to {} LSB{top}",
-                        d.verdict.name(),
-                        d.differing_pixels,
-                        d.max_difference
-                    ),
-                }
-            }
+            Status::Ok(case) => case_line(case),
             Status::WrongSize { width, height } => {
                 format!("wrong-size: wrote {width}x{height}, expected {WIDTH}x{HEIGHT}")
             }
@@ -298,9 +318,16 @@ fn suite_text(run: &SuiteRun) -> String {
             Status::Timeout(seconds) => format!("timeout: still running after {seconds} s"),
         };
         out += &format!("  {:<28} {detail}\n", c.name);
-        if !c.stderr_tail.is_empty() && !matches!(c.status, Status::Ok(_)) {
+        if !c.stderr_tail.is_empty() && report.is_none() {
             for line in c.stderr_tail.lines() {
                 out += &format!("      | {line}\n");
+            }
+        }
+        let worth_seeing =
+            report.is_some_and(|r| !r.difference.verdict.passes() || !r.hidden_mistakes.is_empty());
+        if worth_seeing {
+            for line in Reproduce::of(&run.program, suite_dir, &c.case, report).lines() {
+                out += &format!("      {line}\n");
             }
         }
     }

@@ -5,6 +5,7 @@ use glam::DVec3;
 
 use crate::cli::ExplainArgs;
 use crate::error::Result;
+use crate::explain::compare;
 use crate::explain::json::{kind, layers, to_json};
 use crate::explain::{explain, vector, Explanation};
 use crate::mistakes::Mistakes;
@@ -27,7 +28,15 @@ pub fn run(args: &ExplainArgs) -> Result<()> {
             y,
         )?
     };
-    let text = if args.json {
+    let text = if args.compare {
+        let reference = explain(&Tick, &scene, &args.reference_frame(), x, y)?;
+        compare::text(
+            (x, y),
+            &mistakes.name(),
+            &to_json(&reference, &scene, Mistakes::NONE),
+            &to_json(&e, &scene, mistakes),
+        )
+    } else if args.json {
         // serde_json cannot fail to print a Value it built itself.
         serde_json::to_string_pretty(&to_json(&e, &scene, mistakes)).unwrap_or_default()
     } else {

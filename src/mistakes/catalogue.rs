@@ -1,6 +1,7 @@
-//! Each catalogue entry's stable id, its one-line statement against docs/rendering.md, and the
-//! stage of the handout it belongs to: one table, so that `--list-bugs`, the report and the
-//! progress line can never disagree.
+//! Each catalogue entry's stable id, its one-line statement against docs/rendering.md, the
+//! stage of the handout it belongs to, and where and how a student fixes it in the course's
+//! code (the skeleton's `gfx.tick2` API): one table, so that `--list-bugs`, every report and
+//! the progress line can never disagree.
 
 use super::{Bug, Stage};
 
@@ -11,53 +12,96 @@ pub(super) struct Entry {
     pub stage: Stage,
     /// An unfinished stage (the skeleton's TODO left as it is), not a mistake in written code.
     pub unfinished: bool,
+    /// The class and method of the course's code where it is.
+    pub place: &'static str,
+    /// What the wrong code typically looks like (for a stage: what is not written yet).
+    pub looks_like: &'static str,
+    /// The course's formula, and the line that computes it.
+    pub fix: &'static str,
 }
 
-const fn mistake(id: &'static str, stage: Stage, description: &'static str) -> Entry {
+/// The place, the wrong line and the fix of an entry.
+struct Where(&'static str, &'static str, &'static str);
+
+const fn mistake(id: &'static str, stage: Stage, description: &'static str, w: Where) -> Entry {
     Entry {
         id,
         description,
         stage,
         unfinished: false,
+        place: w.0,
+        looks_like: w.1,
+        fix: w.2,
     }
 }
 
-const fn unfinished(id: &'static str, stage: Stage, description: &'static str) -> Entry {
+const fn unfinished(id: &'static str, stage: Stage, description: &'static str, w: Where) -> Entry {
     Entry {
         id,
         description,
         stage,
         unfinished: true,
+        place: w.0,
+        looks_like: w.1,
+        fix: w.2,
     }
 }
+
+const ILLUMINATE: &str = "Renderer.illuminate";
+const TRACE: &str = "Renderer.trace";
 
 pub(super) fn entry(bug: Bug) -> Entry {
     use Stage::*;
     match bug {
-        Bug::ReflectUnclamped => mistake("reflect-unclamped", Lights, "specular mirror direction R built from the unclamped N.L (the plain reflection of L)"),
-        Bug::SpecularGated => mistake("specular-gated", Lights, "specular added only where N.L > 0"),
-        Bug::ViewFromRayOrigin => mistake("view-from-ray-origin", Lights, "V points to the ray's origin, not to the camera, for reflected rays"),
-        Bug::ViewFlipped => mistake("view-flipped", Lights, "V = normalise(P) instead of normalise(-P)"),
-        Bug::LightUnnormalised => mistake("light-unnormalised", Lights, "L = light position - P, not normalised (in N.L and R)"),
-        Bug::NoFalloff => mistake("no-falloff", Lights, "light intensity without the 1/(4 pi d^2) falloff"),
-        Bug::NoAmbient => mistake("no-ambient", Lights, "ambient term missing"),
-        Bug::DiffuseNoColour => mistake("diffuse-no-colour", Lights, "diffuse term not multiplied by the object colour"),
-        Bug::SpecularObjectColour => mistake("specular-object-colour", Lights, "specular term multiplied by the object colour"),
-        Bug::FirstLightOnly => mistake("first-light-only", Lights, "only the first point light is used"),
-        Bug::LastLightWins => mistake("last-light-wins", Lights, "each light replaces the colour (ambient + its terms) instead of adding to it"),
-        Bug::NoShadows => unfinished("no-shadows", Shadows, "shadow rays never cast (inShadow stays false: the shadow stage not written yet)"),
-        Bug::NoShadowBias => mistake("no-shadow-bias", Shadows, "shadow ray starts at P, without the EPSILON offset (shadow acne)"),
-        Bug::ShadowAnyHit => mistake("shadow-any-hit", Shadows, "in shadow whenever the shadow ray hits anything, even beyond the light"),
-        Bug::NoReflectionBias => mistake("no-reflection-bias", Reflection, "reflected ray starts at P, without the EPSILON offset"),
-        Bug::ReflectionWrongSign => mistake("reflection-wrong-sign", Reflection, "reflected direction is D mirrored in N, without negating D first"),
-        Bug::ReflectionUnweighted => mistake("reflection-unweighted", Reflection, "returns direct + reflectivity * reflected (direct not scaled by 1 - r)"),
-        Bug::BouncesPlusOne => mistake("bounces-plus-one", Reflection, "one more reflection bounce than --bounces"),
-        Bug::BouncesMinusOne => mistake("bounces-minus-one", Reflection, "one bounce fewer than --bounces"),
-        Bug::PlaneBehind => mistake("plane-behind", Planes, "plane hits with s < 0 accepted (planes behind the ray's origin)"),
-        Bug::SphereFarRoot => mistake("sphere-far-root", Planes, "the sphere takes the far root when the near one is not > 0, so a ray from inside hits it"),
-        Bug::PlanesMissing => unfinished("planes-missing", Planes, "Plane.intersectionWith still returns the empty hit: no plane is ever hit (no floor, no plane shadows or reflections)"),
-        Bug::LightsMissing => unfinished("lights-missing", Lights, "Renderer.illuminate adds the ambient term only: no diffuse or specular from any light"),
-        Bug::ReflectionMissing => unfinished("reflection-missing", Reflection, "Renderer.trace leaves reflectedIllumination at black: a reflective surface shows direct * (1 - r) and nothing reflected"),
-        Bug::ReflectionIgnored => unfinished("reflection-ignored", Reflection, "trace returns the direct illumination unscaled at every hit (what --bounces 0 renders)"),
+        Bug::ReflectUnclamped => mistake("reflect-unclamped", Lights, "specular mirror direction R built from the unclamped N.L (the plain reflection of L)",
+            Where(ILLUMINATE, "Vector3 R = L.reflectIn(N);", "R = 2 max(0, N.L) N - L: Vector3 R = N.scale(2 * Math.max(0, N.dot(L))).subtract(L);")),
+        Bug::SpecularGated => mistake("specular-gated", Lights, "specular added only where N.L > 0",
+            Where(ILLUMINATE, "if (N.dot(L) > 0) { ... add the specular term ... }", "add I kS max(0, R.V)^n wherever the light is not in shadow, whatever N.L is (R uses the clamped N.L)")),
+        Bug::ViewFromRayOrigin => mistake("view-from-ray-origin", Lights, "V points to the ray's origin, not to the camera, for reflected rays",
+            Where(ILLUMINATE, "Vector3 V = ray.getOrigin().subtract(P).normalised();", "V = normalise(-P), towards the camera at the origin, for reflected rays too: Vector3 V = P.scale(-1).normalised();")),
+        Bug::ViewFlipped => mistake("view-flipped", Lights, "V = normalise(P) instead of normalise(-P)",
+            Where(ILLUMINATE, "Vector3 V = P.normalised();", "V = normalise(-P): Vector3 V = P.scale(-1).normalised();")),
+        Bug::LightUnnormalised => mistake("light-unnormalised", Lights, "L = light position - P, not normalised (in N.L and R)",
+            Where(ILLUMINATE, "Vector3 L = light.getPosition().subtract(P);", "L = normalise(X - P): Vector3 L = light.getPosition().subtract(P).normalised();")),
+        Bug::NoFalloff => mistake("no-falloff", Lights, "light intensity without the 1/(4 pi d^2) falloff",
+            Where(ILLUMINATE, "Vector3 I = light.getColour().scale(light.getIntensity());", "I = c k / (4 pi d^2), d = |X - P|: Vector3 I = light.getIlluminationAt(d);")),
+        Bug::NoAmbient => mistake("no-ambient", Lights, "ambient term missing",
+            Where(ILLUMINATE, "Vector3 colour = new Vector3(0);", "start from I_a C: Vector3 colour = scene.getAmbientLighting().scale(object.getColour());")),
+        Bug::DiffuseNoColour => mistake("diffuse-no-colour", Lights, "diffuse term not multiplied by the object colour",
+            Where(ILLUMINATE, "Vector3 diffuse = I.scale(kD * Math.max(0, N.dot(L)));", "diffuse = C I kD max(0, N.L): Vector3 diffuse = C.scale(I).scale(kD).scale(Math.max(0, N.dot(L)));")),
+        Bug::SpecularObjectColour => mistake("specular-object-colour", Lights, "specular term multiplied by the object colour",
+            Where(ILLUMINATE, "Vector3 specular = C.scale(I).scale(kS * ...);", "the specular term is white: I kS max(0, R.V)^n, without C")),
+        Bug::FirstLightOnly => mistake("first-light-only", Lights, "only the first point light is used",
+            Where(ILLUMINATE, "PointLight light = scene.getPointLight();", "add every light's terms: for (PointLight light : scene.getPointLights()) { ... }")),
+        Bug::LastLightWins => mistake("last-light-wins", Lights, "each light replaces the colour (ambient + its terms) instead of adding to it",
+            Where(ILLUMINATE, "colour = ambient.add(diffuse).add(specular);  // inside the light loop", "colour = colour.add(diffuse).add(specular);")),
+        Bug::NoShadows => unfinished("no-shadows", Shadows, "shadow rays never cast (inShadow stays false: the shadow stage not written yet)",
+            Where(ILLUMINATE, "the shadow test (inShadow is never set)", "cast Ray(P + EPSILON L, L); the light is blocked when it hits something nearer than d = |X - P|")),
+        Bug::NoShadowBias => mistake("no-shadow-bias", Shadows, "shadow ray starts at P, without the EPSILON offset (shadow acne)",
+            Where(ILLUMINATE, "Ray shadowRay = new Ray(P, L);", "start it EPSILON along L: Ray shadowRay = new Ray(P.add(L.scale(EPSILON)), L);")),
+        Bug::ShadowAnyHit => mistake("shadow-any-hit", Shadows, "in shadow whenever the shadow ray hits anything, even beyond the light",
+            Where(ILLUMINATE, "inShadow = scene.findClosestIntersection(shadowRay).getObjectHit() != null;", "only a hit nearer than the light shadows: inShadow = hit.getObjectHit() != null && hit.getDistance() < d;")),
+        Bug::NoReflectionBias => mistake("no-reflection-bias", Reflection, "reflected ray starts at P, without the EPSILON offset",
+            Where(TRACE, "Ray reflectedRay = new Ray(P, R);", "start it EPSILON along R: Ray reflectedRay = new Ray(P.add(R.scale(EPSILON)), R);")),
+        Bug::ReflectionWrongSign => mistake("reflection-wrong-sign", Reflection, "reflected direction is D mirrored in N, without negating D first",
+            Where(TRACE, "Vector3 R = D.reflectIn(N);", "R mirrors -D in N: Vector3 R = D.scale(-1).reflectIn(N).normalised();")),
+        Bug::ReflectionUnweighted => mistake("reflection-unweighted", Reflection, "returns direct + reflectivity * reflected (direct not scaled by 1 - r)",
+            Where(TRACE, "return direct.add(reflected.scale(r));", "direct (1 - r) + reflected r: return direct.scale(1 - r).add(reflected.scale(r));")),
+        Bug::BouncesPlusOne => mistake("bounces-plus-one", Reflection, "one more reflection bounce than --bounces",
+            Where(TRACE, "if (bouncesLeft < 0) return direct;  or  trace(scene, reflectedRay, bouncesLeft)", "reflect only while bouncesLeft > 0, and recurse with bouncesLeft - 1")),
+        Bug::BouncesMinusOne => mistake("bounces-minus-one", Reflection, "one bounce fewer than --bounces",
+            Where(TRACE, "if (bouncesLeft <= 1) return direct;  or  trace(scene, reflectedRay, bouncesLeft - 2)", "reflect only while bouncesLeft > 0, and recurse with bouncesLeft - 1")),
+        Bug::PlaneBehind => mistake("plane-behind", Planes, "plane hits with s < 0 accepted (planes behind the ray's origin)",
+            Where("Plane.intersectionWith", "return new RaycastHit(this, s, ray.evaluateAt(s), normal);  // s never checked", "s = (Q - O).N / (D.N); no hit unless s >= 0: if (s < 0) return new RaycastHit();")),
+        Bug::SphereFarRoot => mistake("sphere-far-root", Planes, "the sphere takes the far root when the near one is not > 0, so a ray from inside hits it",
+            Where("Sphere.intersectionWith", "if (s1 > 0) return hit at s1; else return hit at s2;", "only the near root s1 = (-b - sqrt(b^2 - 4ac)) / 2a, and only when s1 > 0")),
+        Bug::PlanesMissing => unfinished("planes-missing", Planes, "Plane.intersectionWith still returns the empty hit: no plane is ever hit (no floor, no plane shadows or reflections)",
+            Where("Plane.intersectionWith", "the intersection (it returns new RaycastHit(), no hit)", "s = (Q - O).N / (D.N); a hit at ray.evaluateAt(s) with the plane's normal when s >= 0")),
+        Bug::LightsMissing => unfinished("lights-missing", Lights, "Renderer.illuminate adds the ambient term only: no diffuse or specular from any light",
+            Where(ILLUMINATE, "the loop over scene.getPointLights()", "for each light: colour += C I kD max(0, N.L) + I kS max(0, R.V)^n, with I = light.getIlluminationAt(d)")),
+        Bug::ReflectionMissing => unfinished("reflection-missing", Reflection, "Renderer.trace leaves reflectedIllumination at black: a reflective surface shows direct * (1 - r) and nothing reflected",
+            Where(TRACE, "the reflected ray (reflectedIllumination stays new Vector3(0))", "reflectedIllumination = trace(scene, new Ray(P.add(R.scale(EPSILON)), R), bouncesLeft - 1), R = -D mirrored in N")),
+        Bug::ReflectionIgnored => unfinished("reflection-ignored", Reflection, "trace returns the direct illumination unscaled at every hit (what --bounces 0 renders)",
+            Where(TRACE, "the reflection (it returns directIllumination at every hit)", "when bouncesLeft > 0 and r > 0: return direct.scale(1 - r).add(reflected.scale(r));")),
     }
 }

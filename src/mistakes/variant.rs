@@ -56,6 +56,17 @@ impl Parameter {
         }
     }
 
+    /// Which constant of the course's code to look at.
+    pub fn place(self) -> &'static str {
+        match self {
+            Parameter::SpecularExponent => "the exponent n in Renderer.illuminate's Math.pow(Math.max(0, R.dot(V)), n): object.getPhong_n(), 10 on spheres",
+            Parameter::Epsilon => "Renderer.EPSILON (the course's 0.0001), where shadow and reflected rays start",
+            Parameter::FalloffPower => "the light's falloff in Renderer.illuminate: use light.getIlluminationAt(d), c k / (4 pi d^2)",
+            Parameter::Reflectivity => "the reflectivity r in Renderer.trace: object.getReflectivity() as it is",
+            Parameter::Ambient => "the ambient term in Renderer.illuminate: scene.getAmbientLighting().scale(object.getColour()) as it is",
+        }
+    }
+
     /// The course's value.
     pub fn course(self) -> f64 {
         match self {

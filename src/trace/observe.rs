@@ -41,6 +41,9 @@ pub struct LightRecord {
     pub illumination: DVec3,
     pub to_light: DVec3,
     pub n_dot_l: f64,
+    /// `R`, the mirror of `L` the specular term uses, and `V`, towards the viewer.
+    pub mirror: DVec3,
+    pub view: DVec3,
     pub r_dot_v: f64,
     pub diffuse: DVec3,
     pub specular: DVec3,

@@ -87,7 +87,8 @@ const PANELS = (() => {
         return p;
       };
       line(`${report.scene}, ${report.width}x${report.height}, ${report.bounces} bounces: ${report.verdict}`, `verdict ${report.verdict}`);
-      line(`${report.differing_pixels} pixels differ, ${report.pixels_beyond_tolerance} by more than ${report.tolerance} LSB; the largest difference is ${report.max_difference} LSB`);
+      line(report.difference_text);
+      if ((report.hidden_mistakes || []).length) line(`it passes, but is exactly what ${report.hidden_mistakes.join("+")} renders: fix it all the same`);
       for (const text of report.summary || []) line(text, "summary");
       if (report.worst_pixel) {
         const [x, y] = report.worst_pixel;
@@ -101,9 +102,8 @@ const PANELS = (() => {
         list.className = "diagnosis";
         for (const d of report.diagnosis) {
           const li = document.createElement("li");
-          const what = d.bugs.map((id) => `${id}: ${(report.descriptions || {})[id] || ""}`).join("\n and ");
-          li.textContent = `${what}\n explains ${(100 * d.explained).toFixed(1)}% (${d.unexplained_pixels} unexplained, ${d.wrongly_changed_pixels} right pixels changed${d.exact ? "" : "; estimated"})`;
-          if (d.indistinguishable_from.length) li.textContent += `\n indistinguishable here from ${d.indistinguishable_from.join(", ")}`;
+          // The server's words, the same as the text report's.
+          li.textContent = d.text.join("\n ");
           list.append(li);
         }
         element.append(list);
