@@ -74,8 +74,24 @@ fn not_an_image(path: &Path) -> Error {
     ))
 }
 
-/// The whole file, once its first bytes say it is an OpenEXR or a PNG file.
+/// The whole file, once its first bytes say it is an image `read` understands.
 pub(crate) fn read_recognised(path: &Path) -> Result<Vec<u8>> {
+    read_if(
+        path,
+        |head| format_of(head).is_some(),
+        || not_an_image(path),
+    )
+}
+
+/// The whole file, once its first bytes (up to ten) pass `known`, or `unknown()`'s error
+/// after reading no more than those: a device such as `/dev/zero` or a huge file of another
+/// kind costs ten bytes, and a file larger than the memory this process may use is refused
+/// before it is read.
+pub(crate) fn read_if(
+    path: &Path,
+    known: impl Fn(&[u8]) -> bool,
+    unknown: impl Fn() -> Error,
+) -> Result<Vec<u8>> {
     let cannot = |e| Error::io(path, "cannot read", e);
     let mut file = File::open(path).map_err(cannot)?;
     let metadata = file.metadata().map_err(cannot)?;
@@ -87,8 +103,8 @@ pub(crate) fn read_recognised(path: &Path) -> Result<Vec<u8>> {
         .take(SIGNATURE_BYTES as u64)
         .read_to_end(&mut head)
         .map_err(cannot)?;
-    if format_of(&head).is_none() {
-        return Err(not_an_image(path));
+    if !known(&head) {
+        return Err(unknown());
     }
     // A regular file says how long it is; a pipe or device is read up to what memory allows.
     let budget = memory::available_bytes().unwrap_or(u64::MAX);

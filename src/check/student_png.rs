@@ -34,15 +34,19 @@ pub fn read(path: &Path) -> Result<Rgb8> {
         path: path.to_path_buf(),
         msg,
     };
-    let length = std::fs::metadata(path)
-        .map_err(|e| Error::io(path, "cannot read", e))?
-        .len();
-    memory::check(
-        length,
-        memory::available_bytes(),
-        &format!("reading {}", path.display()),
-    )?;
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, "cannot read", e))?;
+    // A pipe would block the open until a writer comes, a device never ends: neither is a
+    // program's PNG.
+    let metadata = std::fs::metadata(path).map_err(|e| Error::io(path, "cannot read", e))?;
+    if !metadata.is_file() {
+        return Err(fail(
+            "is not a regular file (a directory, device, pipe or socket)".into(),
+        ));
+    }
+    let signature =
+        |head: &[u8]| head.starts_with(&PNG_SIGNATURE) || head.starts_with(&JPEG_SIGNATURE);
+    let bytes = crate::input::read_if(path, signature, || {
+        fail("is not a PNG (no PNG signature)".into())
+    })?;
     if bytes.starts_with(&JPEG_SIGNATURE) {
         return Err(fail(
             "is a JPEG: its compression is lossy, so its bytes cannot be compared with the \

@@ -254,3 +254,38 @@ fn mistakes_beyond_the_catalogue_are_located_in_the_terms() {
     );
     assert!(top.explained > 0.9, "{top:?}");
 }
+
+#[test]
+fn a_passing_image_that_is_exactly_a_mistake_says_so() {
+    let scene = crate::scene::parse_str("tick2.xml", crate::scene::EMBEDDED_TICK2).expect("scene");
+    let r = Renderer::new(&scene, 640, 480, 2).expect("renderer");
+    let gated = Mistakes::of(&[Bug::SpecularGated]);
+    let image = r.image(gated).expect("image");
+    let (report, findings) = check_image(&scene, "tick2.xml", 2, 2, image).expect("check");
+    assert_eq!(report.difference.verdict, Verdict::WithinTolerance);
+    assert_eq!(report.hidden_mistakes, gated, "{:?}", findings.diagnosis);
+    // A reference is hiding nothing.
+    let (report, _) =
+        check_image(&scene, "tick2.xml", 2, 2, r.reference().expect("reference")).expect("check");
+    assert!(report.hidden_mistakes.is_empty());
+}
+
+#[test]
+fn no_implausible_term_factor_is_a_finding() {
+    let scene = crate::scene::parse_str("tick2.xml", crate::scene::EMBEDDED_TICK2).expect("scene");
+    for (bounces, bugs) in [
+        (
+            2,
+            vec![Bug::ReflectionWrongSign, Bug::NoAmbient, Bug::ViewFlipped],
+        ),
+        (1, vec![Bug::LightUnnormalised]),
+    ] {
+        let r = Renderer::new(&scene, 640, 480, bounces).expect("renderer");
+        let image = r.image(Mistakes::of(&bugs)).expect("image");
+        let (_, findings) = check_image(&scene, "tick2.xml", bounces, 2, image).expect("check");
+        for t in &findings.terms {
+            assert!((-0.05..=4.0).contains(&t.factor), "{t:?}");
+            assert!(!t.sentence().contains("x as strong") || t.factor >= 0.0);
+        }
+    }
+}

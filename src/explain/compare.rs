@@ -39,7 +39,11 @@ fn rows(tree: &Value) -> Vec<Row> {
     for vertex in tree["vertices"].as_array().into_iter().flatten() {
         let depth = format!("depth {}", vertex["depth"]);
         if let Value::Object(map) = vertex {
-            for (k, v) in map.iter().filter(|(k, _)| *k != "lights") {
+            // The vertex, its lights, then the colour they shade it with.
+            for (k, v) in map
+                .iter()
+                .filter(|(k, _)| !["lights", "colour"].contains(&k.as_str()))
+            {
                 flatten(join(&depth, k), v, &mut out);
             }
         }
@@ -47,6 +51,7 @@ fn rows(tree: &Value) -> Vec<Row> {
             let name = format!("{depth}, light {}", light["light"].as_str().unwrap_or("?"));
             flatten(name, light, &mut out);
         }
+        flatten(join(&depth, "colour"), &vertex["colour"], &mut out);
     }
     flatten("leaves the scene".into(), &tree["miss"], &mut out);
     for step in tree["fold_steps"].as_array().into_iter().flatten() {
@@ -101,9 +106,16 @@ pub fn differences(reference: &Value, mistake: &Value) -> Vec<(String, String, S
     out
 }
 
-/// The comparison as text: a heading, then at most `SHOWN` differing rows.
+/// The comparison as text: a heading, then at most `SHOWN` differing rows, the beauty's last
+/// whenever it differs (what the pixel ends up as).
 pub fn text(pixel: (u32, u32), name: &str, reference: &Value, mistake: &Value) -> String {
-    let rows = differences(reference, mistake);
+    let mut rows = differences(reference, mistake);
+    if rows.len() > SHOWN {
+        let beauty = rows.iter().position(|r| r.0 == "beauty");
+        if let Some(beauty) = beauty.map(|i| rows.remove(i)) {
+            rows.insert(SHOWN - 1, beauty);
+        }
+    }
     let mut out = format!(
         "pixel ({}, {}): the reference | {name}, the {} steps that differ{}\n",
         pixel.0,

@@ -378,7 +378,8 @@ fn images_that_cannot_be_compared_are_refused_with_one_line() {
     let run = whitted(d, &["check", "--list-bugs"]);
     assert!(run.status.success());
     let listed = String::from_utf8_lossy(&run.stdout);
-    assert_eq!(listed.lines().count(), Bug::ALL.len());
+    let entries = listed.lines().filter(|l| !l.starts_with(' '));
+    assert_eq!(entries.count(), Bug::ALL.len());
     for stage in [
         "planes-missing",
         "lights-missing",
@@ -389,6 +390,7 @@ fn images_that_cannot_be_compared_are_refused_with_one_line() {
     }
     assert!(listed
         .lines()
+        .filter(|l| !l.starts_with(' '))
         .all(|l| Bug::from_id(l.split_whitespace().next().unwrap_or("")).is_some()));
 }
 
@@ -597,4 +599,194 @@ fn a_program_whose_descendant_leaves_its_group_ends_at_the_timeout() {
         "{}",
         String::from_utf8_lossy(&left.stdout)
     );
+}
+
+#[test]
+fn every_entry_says_where_and_how_to_fix_it() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let run = whitted(dir.path(), &["check", "--list-bugs"]);
+    let listed = String::from_utf8_lossy(&run.stdout);
+    let methods = [
+        "Plane.intersectionWith",
+        "Sphere.intersectionWith",
+        "Renderer.illuminate",
+        "Renderer.trace",
+    ];
+    for bug in Bug::ALL {
+        assert!(methods.contains(&bug.place()), "{}", bug.id());
+        assert!(!bug.fix().is_empty() && !bug.looks_like().is_empty());
+        let [place, fix] = bug.advice();
+        assert!(
+            listed.contains(&place) && listed.contains(&fix),
+            "{}",
+            bug.id()
+        );
+    }
+    let reflect = Bug::from_id("reflect-unclamped").expect("id");
+    assert!(reflect.looks_like().contains("L.reflectIn(N)"));
+    assert!(reflect.fix().contains("R = 2 max(0, N.L) N - L"));
+}
+
+#[test]
+fn the_report_tells_one_story_in_plain_words_and_each_case_can_be_rerun() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let suite = d.join("suite");
+    let gated = program(&["specular-gated"]);
+    let args = [
+        "check",
+        "--program",
+        &gated,
+        "--suite-dir",
+        suite.to_str().expect("utf-8"),
+    ];
+    let run = whitted(d, &[&args[..], &["--json"]].concat());
+    assert_eq!(run.status.code(), Some(1), "{}", stderr(&run));
+    let json: serde_json::Value = serde_json::from_slice(&run.stdout).expect("json");
+    let top = &json["diagnosis"][0];
+    assert_eq!(top["bugs"], serde_json::json!(["specular-gated"]), "{json}");
+    assert_eq!(top["where"], serde_json::json!(["Renderer.illuminate"]));
+    assert!(top["fix"][0].as_str().is_some_and(|f| f.contains("R.V")));
+    let cases = json["cases"].as_array().expect("cases");
+    // tick2.xml passes within the tolerance, yet is exactly what the mistake renders.
+    let tick2 = &cases[0];
+    assert_eq!(tick2["verdict"], "within-tolerance", "{tick2}");
+    assert_eq!(
+        tick2["hidden_mistakes"],
+        serde_json::json!(["specular-gated"])
+    );
+    // Every failing case's label is part of the suite's diagnosis.
+    for case in cases.iter().filter(|c| c["verdict"] == "differs") {
+        for bug in case["diagnosis"][0]["bugs"].as_array().expect("a label") {
+            assert!(
+                top["bugs"].as_array().expect("bugs").contains(bug),
+                "{case}"
+            );
+        }
+    }
+    // The failing case reruns from the student's directory, and its check names the mistake.
+    let failing = cases
+        .iter()
+        .find(|c| c["verdict"] == "differs")
+        .expect("a failing case");
+    let reproduce = &failing["reproduce"];
+    assert_eq!(reproduce["scene_written"], true);
+    for command in ["run", "check"] {
+        let line = reproduce[command].as_str().expect("command");
+        // The check command's `whitted` is the binary under test.
+        let line = match line.strip_prefix("whitted ") {
+            Some(rest) => format!("{} {rest}", env!("CARGO_BIN_EXE_whitted")),
+            None => line.to_string(),
+        };
+        let rerun = Command::new("sh")
+            .args(["-c", &line])
+            .current_dir(d)
+            .output()
+            .expect("sh runs");
+        let expected = if command == "run" { 0 } else { 1 };
+        assert_eq!(
+            rerun.status.code(),
+            Some(expected),
+            "{line}: {}",
+            stderr(&rerun)
+        );
+        if command == "check" {
+            assert!(String::from_utf8_lossy(&rerun.stdout).contains("1. specular-gated"));
+        }
+    }
+    // The text: possible numbers in plain words, the hidden mistake, the commands.
+    let run = whitted(d, &args);
+    let text = String::from_utf8_lossy(&run.stdout);
+    assert!(
+        !text.contains("LSB") && !text.contains("; estimated)"),
+        "{text}"
+    );
+    assert!(text.contains("of 255 in a channel"), "{text}");
+    assert!(
+        text.contains("within-tolerance, but is exactly what specular-gated renders: the same fix"),
+        "{text}"
+    );
+    assert!(
+        text.contains("rerun it: ") && text.contains("--compare"),
+        "{text}"
+    );
+    // The suite's scenes were written once and are left as they are when written again.
+    assert_eq!(std::fs::read_dir(&suite).expect("suite").count(), 4);
+    std::fs::write(suite.join("tick2.xml"), "<scene/>").expect("write");
+    let refused = whitted(d, &args);
+    assert_eq!(refused.status.code(), Some(2));
+    assert!(
+        stderr(&refused).contains("not replaced"),
+        "{}",
+        stderr(&refused)
+    );
+}
+
+#[test]
+fn explain_compare_shows_only_the_steps_that_differ() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let run = whitted(
+        dir.path(),
+        &[
+            "explain",
+            "-b",
+            "2",
+            "--pixel",
+            "164,303",
+            "--bug",
+            "reflect-unclamped",
+            "--compare",
+        ],
+    );
+    assert!(run.status.success(), "{}", stderr(&run));
+    let text = String::from_utf8_lossy(&run.stdout);
+    let lines: Vec<&str> = text.lines().collect();
+    assert!(lines.len() <= 13, "{text}");
+    assert!(lines[0].contains("reflect-unclamped"), "{text}");
+    // The mirror direction R changes, then the specular term, then the beauty.
+    let r = lines.iter().position(|l| l.contains(", R ")).expect("R");
+    let specular = lines
+        .iter()
+        .position(|l| l.contains(", specular "))
+        .expect("specular");
+    assert!(r < specular, "{text}");
+    assert!(lines
+        .last()
+        .is_some_and(|l| l.trim_start().starts_with("beauty")));
+    assert!(!text.contains("n_dot_l"), "N.L is the same in both: {text}");
+    // Without --bug there is nothing to compare with.
+    let run = whitted(dir.path(), &["explain", "--pixel", "1,1", "--compare"]);
+    assert_eq!(run.status.code(), Some(2));
+}
+
+#[test]
+fn check_looks_at_an_image_s_first_bytes_before_reading_it() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let run = whitted(d, &["check", "/dev/zero"]);
+    assert_eq!(run.status.code(), Some(2));
+    assert!(
+        stderr(&run).contains("not a regular file"),
+        "{}",
+        stderr(&run)
+    );
+    // A pipe with no writer would block an open for ever.
+    let fifo = d.join("a.png");
+    let made = Command::new("mkfifo").arg(&fifo).status().expect("mkfifo");
+    assert!(made.success());
+    let run = whitted(d, &["check", "a.png"]);
+    assert_eq!(run.status.code(), Some(2));
+    assert!(
+        stderr(&run).contains("not a regular file"),
+        "{}",
+        stderr(&run)
+    );
+    // A 2 GB sparse file is refused after its first bytes, not read whole.
+    let big = std::fs::File::create(d.join("big.png")).expect("create");
+    big.set_len(2 << 30).expect("sparse");
+    let started = std::time::Instant::now();
+    let run = whitted(d, &["check", "big.png"]);
+    assert_eq!(run.status.code(), Some(2));
+    assert!(stderr(&run).contains("not a PNG"), "{}", stderr(&run));
+    assert!(started.elapsed().as_secs() < 2, "{:?}", started.elapsed());
 }

@@ -107,3 +107,47 @@ fn every_readme_example_runs_as_written() {
         assert!(meta.len() > 0, "{made} is empty");
     }
 }
+
+/// The students' examples (the blocks of "For students" that run `whitted check`) run from a
+/// student's own directory: no `scenes/` of this repository beside them.
+#[test]
+fn the_students_check_examples_run_from_any_directory() {
+    let readme = std::fs::read_to_string(root().join("README.md")).expect("README.md");
+    let students = readme
+        .split("## For students")
+        .nth(1)
+        .and_then(|s| s.split("\n## ").next())
+        .expect("the For students section");
+    let blocks: Vec<String> = shell_blocks(students)
+        .into_iter()
+        .filter(|b| b.contains("whitted check"))
+        .collect();
+    assert!(!blocks.is_empty(), "no check example");
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let bin = d.join(".bin");
+    std::fs::create_dir(&bin).expect("mkdir");
+    link(
+        Path::new(env!("CARGO_BIN_EXE_whitted")),
+        &bin.join("whitted"),
+    );
+    let path = format!(
+        "{}:{}",
+        bin.display(),
+        std::env::var("PATH").unwrap_or_default()
+    );
+    for block in &blocks {
+        let run = Command::new("bash")
+            .args(["-euo", "pipefail", "-c", block])
+            .env("PATH", &path)
+            .current_dir(d)
+            .output()
+            .expect("bash runs");
+        assert!(
+            run.status.success(),
+            "README example failed outside the repository:\n{block}\n{}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+    }
+    assert!(d.join("check.json").exists());
+}
