@@ -197,7 +197,8 @@ pub enum PerLight {
 impl PerLight {
     const ALL: [PerLight; 3] = [PerLight::Shadowed, PerLight::Unshadowed, PerLight::Mask];
 
-    fn prefix(self) -> &'static str {
+    /// What every layer name of this kind starts with.
+    pub fn prefix(self) -> &'static str {
         match self {
             PerLight::Shadowed => "light_",
             PerLight::Unshadowed => "unshadowed_",

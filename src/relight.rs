@@ -30,8 +30,21 @@ pub fn working_bytes(pixels: usize) -> u64 {
 /// layer of the file counts: one that is not a full colour layer is an error, not a term
 /// left out of the sum.
 pub fn relight(image: &Image, spec: &RelightSpec) -> Result<Vec<DVec3>, String> {
-    let lights: Vec<String> = image
-        .layers()
+    let layers = image.layers();
+    // A layer named like a light's whose light cannot be read (`light_`) is part of the
+    // beauty too: leaving it out of the sum would change the image without a word.
+    let prefix = PerLight::Shadowed.prefix();
+    if let Some(nameless) = layers
+        .iter()
+        .find(|l| l.name.starts_with(prefix) && aov::light_of_layer(&l.name).is_none())
+    {
+        return Err(format!(
+            "layer `{}` is a light's layer without a light name: it cannot be relit, and \
+             leaving it out would change the beauty",
+            nameless.name
+        ));
+    }
+    let lights: Vec<String> = layers
         .into_iter()
         .filter_map(|l| aov::light_of_layer(&l.name).map(str::to_string))
         .collect();

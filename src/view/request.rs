@@ -51,6 +51,9 @@ pub struct Incoming<'a> {
     pub query: &'a str,
     /// Every `Host` header's value.
     pub hosts: Vec<&'a [u8]>,
+    /// The authority of an absolute-form target (`GET http://host:port/path`), if it has one:
+    /// it stands for the Host header then (RFC 9112 3.2.2).
+    pub authority: Option<&'a str>,
     /// Whether the request announces a body (`Content-Length` > 0 or `Transfer-Encoding`).
     pub has_body: bool,
 }
@@ -73,10 +76,11 @@ pub fn parse(request: &Incoming, token: &str, port: u16) -> Result<ApiRequest, R
             "method not allowed: the viewer answers GET and HEAD",
         ));
     }
-    let host = match request.hosts[..] {
-        [host] => host,
-        [] => return Err(refuse(400, "bad request: no Host header")),
-        _ => return Err(refuse(400, "bad request: more than one Host header")),
+    let host = match (request.authority, &request.hosts[..]) {
+        (Some(authority), _) => authority.as_bytes(),
+        (None, [host]) => *host,
+        (None, []) => return Err(refuse(400, "bad request: no Host header")),
+        (None, _) => return Err(refuse(400, "bad request: more than one Host header")),
     };
     let allowed = [format!("127.0.0.1:{port}"), format!("localhost:{port}")];
     if !allowed.iter().any(|a| a.as_bytes() == host) {
@@ -170,6 +174,7 @@ mod tests {
             path,
             query,
             hosts: vec![b"127.0.0.1:8000"],
+            authority: None,
             has_body: false,
         };
         parse(&request, TOKEN, 8000).map_err(|r| r.0)
@@ -247,6 +252,7 @@ mod tests {
             path: "/",
             query: "token=0123abcd",
             hosts: vec![b"127.0.0.1:8000"],
+            authority: None,
             has_body: false,
         };
         let status = |r: Incoming| parse(&r, TOKEN, 8000).map_err(|r| r.0).err();
@@ -285,10 +291,27 @@ mod tests {
         let evil = vec![&b"evil.example:8000"[..]];
         assert_eq!(
             status(Incoming {
-                hosts: evil,
+                hosts: evil.clone(),
                 ..base.clone()
             }),
             Some(403)
+        );
+        // An absolute-form target's authority stands for Host (RFC 9112 3.2.2): a foreign
+        // one is refused whatever Host says, ours is served whatever Host says.
+        assert_eq!(
+            status(Incoming {
+                authority: Some("evil.example"),
+                ..base.clone()
+            }),
+            Some(403)
+        );
+        assert_eq!(
+            status(Incoming {
+                authority: Some("127.0.0.1:8000"),
+                hosts: evil,
+                ..base.clone()
+            }),
+            None
         );
         assert_eq!(
             status(Incoming {

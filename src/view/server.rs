@@ -124,6 +124,7 @@ fn checked(served: &Served, request: &Request<Body>) -> std::result::Result<ApiR
             .iter()
             .map(HeaderValue::as_bytes)
             .collect(),
+        authority: request.uri().authority().map(|a| a.as_str()),
         has_body: announced,
     };
     parse(&incoming, &served.token, served.port)

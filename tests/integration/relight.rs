@@ -160,3 +160,33 @@ fn relight_refuses_png_options_for_an_exr_overflow_and_incomplete_light_layers()
     assert_eq!(run.status.code(), Some(2), "{}", stderr(&run));
     assert!(stderr(&run).contains("light_0"), "{}", stderr(&run));
 }
+
+#[test]
+fn a_light_layer_without_a_light_name_is_refused_not_left_out() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    use exr::prelude::*;
+    let plane = |name: &str| AnyChannel::new(name, FlatSamples::F32(vec![0.25; 16]));
+    let mut channels = Vec::new();
+    for layer in ["ambient", "background", "light_0", "light_1", "light_"] {
+        channels.extend(["R", "G", "B"].map(|c| plane(&format!("{layer}.{c}"))));
+    }
+    let layer = Layer::new(
+        (4, 4),
+        LayerAttributes::default(),
+        Encoding::FAST_LOSSLESS,
+        AnyChannels::sort(channels.into()),
+    );
+    Image::from_layer(layer)
+        .write()
+        .to_file(d.join("nameless.exr"))
+        .expect("exr");
+    for extra in [&[][..], &["--light", "=2"]] {
+        let mut args = vec!["relight", "nameless.exr", "-o", "out.exr"];
+        args.extend_from_slice(extra);
+        let run = whitted(d, &args);
+        assert_eq!(run.status.code(), Some(2), "{}", stderr(&run));
+        assert!(stderr(&run).contains("`light_`"), "{}", stderr(&run));
+        assert!(!d.join("out.exr").exists());
+    }
+}
