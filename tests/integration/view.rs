@@ -577,3 +577,108 @@ fn tiff_hdr_and_jpeg_open_with_their_own_values() {
     assert_eq!((status, body.len()), (200, 160 * 120 * 3 * 4));
     assert!(floats(&body).iter().all(|v| (0.0..=1.0).contains(v)));
 }
+
+/// The page's bytes (RGBA) after `script` (a promise chain ending in `pixels()`).
+fn page_bytes(browser: &Browser, script: &str) -> Vec<u8> {
+    browser
+        .script(script, json!([]))
+        .as_array()
+        .expect("bytes")
+        .iter()
+        .map(|v| v.as_u64().unwrap_or(0) as u8)
+        .collect()
+}
+
+#[test]
+fn names_from_the_file_and_non_finite_values_do_not_break_the_page() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    // Lights named as an object's own machinery: legal names in a scene.
+    let names = d.join("names.xml");
+    std::fs::write(
+        &names,
+        r##"<scene>
+  <ambient-light colour="#404040"/>
+  <sphere x="0" y="0" z="4" radius="1" colour="#C04020"/>
+  <plane x="0" y="-1" z="0" nx="0" ny="1" nz="0" colour="#808080"/>
+  <point-light x="-2" y="2" z="1" colour="#FFFFFF" intensity="80" name="constructor"/>
+  <point-light x="2" y="2" z="1" colour="#FFFFFF" intensity="80" name="toString"/>
+</scene>
+"##,
+    )
+    .expect("scene");
+    let size = ["--width", "80", "--height", "60"];
+    let full = render_exr(d, &names, "names.exr", &size);
+    let aovs = [&size[..], &["--aovs", "light_constructor,light_toString"]].concat();
+    let lights_only = render_exr(d, &names, "lights.exr", &aovs);
+    let browser = Browser::start();
+    let relit = "return window.whitted.setToneMap('tick', 0) \
+                 .then(() => window.whitted.setGain('constructor', 0.5, 0.5, 0.5)) \
+                 .then(() => window.whitted.setShadows('toString', false)) \
+                 .then(() => window.whitted.setGain('toString', 1, 1, 1)) \
+                 .then(() => window.whitted.setShadows('toString', true)) \
+                 .then(() => window.whitted.pixels())";
+    for exr in [&full, &lights_only] {
+        let viewer = Viewer::start(d, exr);
+        browser.open(viewer.url());
+        let pixels = page_bytes(&browser, relit);
+        assert_eq!(pixels.len(), 80 * 60 * 4, "{}", exr.display());
+        assert!(pixels.iter().any(|&b| b > 0), "a blank canvas");
+        if exr == &full {
+            // The same image as `whitted relight --light constructor=0.5`, to 1 LSB.
+            let run = whitted(
+                d,
+                &[
+                    "relight",
+                    s(exr),
+                    "-o",
+                    "relit.png",
+                    "--light",
+                    "constructor=0.5",
+                ],
+            );
+            assert!(run.status.success(), "{}", stderr(&run));
+            let png = read_png(&d.join("relit.png"));
+            let page = &pixels;
+            let worst = png
+                .data
+                .chunks(3)
+                .enumerate()
+                .flat_map(|(i, rgb)| (0..3).map(move |c| rgb[c].abs_diff(page[i * 4 + c])))
+                .max()
+                .unwrap_or(0);
+            assert!(worst <= 1, "the page differs from relight by {worst}");
+        }
+    }
+
+    // A NaN and an infinity in the file: the probe says so instead of throwing.
+    use exr::prelude::*;
+    let mut values = vec![0.25f32; 16];
+    values[5] = f32::NAN;
+    values[6] = f32::INFINITY;
+    let plane = |name: &str, v: &Vec<f32>| AnyChannel::new(name, FlatSamples::F32(v.clone()));
+    let mut channels = Vec::new();
+    for layer in ["ambient", "light_0", "background"] {
+        channels.extend(["R", "G", "B"].map(|c| plane(&format!("{layer}.{c}"), &values)));
+    }
+    channels.extend(["R", "G", "B"].map(|c| plane(c, &values)));
+    let layer = Layer::new(
+        (4, 4),
+        LayerAttributes::default(),
+        Encoding::FAST_LOSSLESS,
+        AnyChannels::sort(channels.into()),
+    );
+    let odd = d.join("odd.exr");
+    Image::from_layer(layer).write().to_file(&odd).expect("exr");
+    let viewer = Viewer::start(d, &odd);
+    browser.open(viewer.url());
+    for (x, y) in [(1, 1), (2, 1)] {
+        let probe = browser.script(
+            "return window.whitted.probe(arguments[0], arguments[1]) \
+               .then(() => document.getElementById('probe').textContent)",
+            json!([x, y]),
+        );
+        let text = probe.as_str().expect("the probe's text");
+        assert!(text.contains("non-finite"), "({x}, {y}): {text}");
+    }
+}

@@ -197,19 +197,24 @@ function select(name) {
 // ---- probe and ray trees ----
 async function probe(x, y) {
   const reply = await getJson(`/api/pixel?x=${x}&y=${y}`);
-  const values = reply.values;
+  // Layer names come from the file: looked up in maps, never as an object's properties.
+  const values = new Map(Object.entries(reply.values));
+  const references = new Map(Object.entries(reply.reference || {}));
+  // JSON has no NaN or infinities: the server sends null for them.
+  const value = (e) => (e === null ? NaN : e);
+  const show = (v) => v.map((e) => (e === null ? "non-finite" : e.toPrecision(6))).join(", ");
   const sum = [0, 0, 0];
   for (const [name, gain] of relightTerms()) {
-    const v = values[name] || [0, 0, 0];
-    for (let c = 0; c < 3; c++) sum[c] += v[c] * gain[c];
+    const v = values.get(name) || [0, 0, 0];
+    for (let c = 0; c < 3; c++) sum[c] += value(v[c]) * gain[c];
   }
-  const text = [`pixel (${x}, ${y})`, `RGB = ambient + sum light + background = ${sum.map((v) => v.toPrecision(6)).join(", ")}`];
-  for (const [name, v] of Object.entries(values)) {
-    const ref = reply.reference && reply.reference[name];
-    text.push(`${name}: ${v.map((e) => e.toPrecision(6)).join(", ")}${ref ? `   reference ${ref.map((e) => e.toPrecision(6)).join(", ")}` : ""}`);
+  const text = [`pixel (${x}, ${y})`, `RGB = ambient + sum light + background = ${sum.map((v) => (Number.isFinite(v) ? v.toPrecision(6) : "non-finite")).join(", ")}`];
+  for (const [name, v] of values) {
+    const ref = references.get(name);
+    text.push(`${name}: ${show(v)}${ref ? `   reference ${show(ref)}` : ""}`);
   }
   $("probe").textContent = text.join("\n");
-  return { pixel: [x, y], values, reference: reply.reference, breakdown: sum };
+  return { pixel: [x, y], values: reply.values, reference: reply.reference, breakdown: sum };
 }
 
 async function showTrees(x, y) {
@@ -327,8 +332,8 @@ window.whitted = {
   view: () => ({ ...state.view }),
   imageAt: (cx, cy) => VIEWPORT.imageAt(state.view, cx, cy),
   canvasAt: (x, y) => VIEWPORT.canvasAt(state.view, x, y),
-  setGain(light, r, g, b) { state.gains[light] = [r, g, b]; return draw(); },
-  setShadows(light, on) { state.shadows[light] = on; return draw(); },
+  setGain(light, r, g, b) { state.gains.set(light, [r, g, b]); return draw(); },
+  setShadows(light, on) { state.shadows.set(light, on); return draw(); },
   setToneMap(op, ev) { $("tonemap").value = op; return setExposure(ev); },
   setColormap(map) { $("colormap").value = map; return draw(); },
   async pixels() { const img = await fullImage(); state.display = img.data; return Array.from(img.data); },

@@ -26,9 +26,9 @@ function relightPanel() {
     return div;
   };
   for (const light of state.meta.lights) {
-    const div = row(`light ${light}`, 1, (g, colour) => { state.gains[light] = hexToGain(colour, g); draw(); }, true);
+    const div = row(`light ${light}`, 1, (g, colour) => { state.gains.set(light, hexToGain(colour, g)); draw(); }, true);
     const box = Object.assign(document.createElement("input"), { type: "checkbox", checked: true });
-    box.onchange = () => { state.shadows[light] = box.checked; draw(); };
+    box.onchange = () => { state.shadows.set(light, box.checked); draw(); };
     div.append(" shadows ", box);
   }
   if (info("ambient")) row("ambient", 1, (g) => { state.ambient = g; draw(); });
@@ -64,7 +64,7 @@ function zoomAtCentre(factor) {
   return zoomAt(cw / 2, ch / 2, factor);
 }
 function reset() {
-  Object.assign(state, { gains: {}, shadows: {}, ambient: 1, background: 1 });
+  Object.assign(state, { gains: new Map(), shadows: new Map(), ambient: 1, background: 1 });
   $("tonemap").value = "tick";
   relightPanel();
   state.fitted = true;

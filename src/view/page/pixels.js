@@ -4,17 +4,18 @@
 
 const relighting = () =>
   state.ambient !== 1 || state.background !== 1 ||
-  state.meta.lights.some((l) => (state.gains[l] || [1, 1, 1]).some((g) => g !== 1) || state.shadows[l] === false);
+  state.meta.lights.some((l) => (state.gains.get(l) || [1, 1, 1]).some((g) => g !== 1) || state.shadows.get(l) === false);
 
-/** The layers and gains of the relit image, in the order of the sum. */
+/** The layers and gains of the relit image, in the order of the sum: the file's own (one
+ * written with `--aovs light_0,light_1` has no ambient or background to add). */
 function relightTerms() {
   const terms = [["ambient", [state.ambient, state.ambient, state.ambient]]];
   for (const light of state.meta.lights) {
-    const name = state.shadows[light] === false ? `unshadowed_${light}` : `light_${light}`;
-    terms.push([name, state.gains[light] || [1, 1, 1]]);
+    const name = state.shadows.get(light) === false ? `unshadowed_${light}` : `light_${light}`;
+    terms.push([name, state.gains.get(light) || [1, 1, 1]]);
   }
   terms.push(["background", [state.background, state.background, state.background]]);
-  return terms;
+  return terms.filter(([name]) => info(name));
 }
 
 /** One plane of a recipe: values `which` of layer `name` (n channels a sample), the channels

@@ -23,8 +23,10 @@ const state = {
   compare: "a", // "a" the image, "b" the reference, or an error metric's name
   view: { zoom: 1, x: 0, y: 0 },
   fitted: false, // whether the view still follows the window (until the user zooms or pans)
-  gains: {}, // light -> [r, g, b]
-  shadows: {}, // light -> false when shown without its shadows
+  // Maps, not objects: a light's name comes from a file, and `constructor` or `__proto__`
+  // would find the object's own machinery.
+  gains: new Map(), // light -> [r, g, b]
+  shadows: new Map(), // light -> false when shown without its shadows
   ambient: 1,
   background: 1,
   stats: new Map(), // "which\0name" -> the promise of /api/stats
