@@ -141,6 +141,8 @@ impl Served {
 /// `watch`, reloading the source whenever one of its files changes.
 pub fn serve(source: Source, port: u16, no_browser: bool, watch: bool) -> Result<()> {
     let (done, first_load) = std::sync::mpsc::channel();
+    // Before the first load, so that a change made while it runs is seen.
+    let baseline = watch.then(|| watch::Baseline::of(&source));
     let (reading, started) = (source.clone(), Instant::now());
     std::thread::Builder::new()
         .name("load".into())
@@ -171,10 +173,12 @@ pub fn serve(source: Source, port: u16, no_browser: bool, watch: bool) -> Result
     let url = format!("http://127.0.0.1:{port}/?token={}", served.token);
     crate::output::stdout::print_line(&url)?;
     let _ = std::io::stdout().flush();
-    match pending {
-        Some(first_load) => finish_opening(first_load, source, served.clone(), watch)?,
-        None if watch => watch::start(source, served.clone())?,
-        None => {}
+    match (pending, baseline) {
+        (Some(first_load), baseline) => {
+            finish_opening(first_load, source, served.clone(), baseline)?
+        }
+        (None, Some(baseline)) => watch::start(source, served.clone(), baseline)?,
+        (None, None) => {}
     }
     // Kept until the server stops, so the browser can still read it.
     let _opener = if no_browser { None } else { open_browser(&url) };
@@ -182,12 +186,12 @@ pub fn serve(source: Source, port: u16, no_browser: bool, watch: bool) -> Result
 }
 
 /// Hands the first load's outcome to `served` when it comes (the server stops with a
-/// failure), and starts watching after it.
+/// failure), and starts watching from `baseline` after it.
 fn finish_opening(
     first_load: std::sync::mpsc::Receiver<Result<Content>>,
     source: Source,
     served: Arc<Served>,
-    watch: bool,
+    baseline: Option<watch::Baseline>,
 ) -> Result<()> {
     std::thread::Builder::new()
         .name("open".into())
@@ -195,8 +199,8 @@ fn finish_opening(
             let outcome = first_load.recv().unwrap_or_else(|_| Err(load_stopped()));
             let ok = outcome.is_ok();
             served.opened(outcome);
-            if ok && watch {
-                if let Err(e) = watch::start(source, served.clone()) {
+            if let Some(baseline) = baseline.filter(|_| ok) {
+                if let Err(e) = watch::start(source, served.clone(), baseline) {
                     served.fail(e);
                 }
             }

@@ -15,6 +15,15 @@ use crate::memory;
 /// as decoded, four f32 channels as stored).
 const MAX_BYTES_PER_PIXEL: u64 = 4 * 2 + 4 * 4;
 
+/// Whether a JPEG's bytes end with its end-of-image marker (FF D9), allowing the little
+/// padding some writers put after it. The decoder itself fills the rows of a truncated file
+/// with grey and says nothing, so a file caught half-written would pass for a good one.
+fn ends_a_jpeg(bytes: &[u8]) -> bool {
+    const PADDING: usize = 256;
+    let tail = &bytes[bytes.len().saturating_sub(PADDING + 2)..];
+    tail.windows(2).any(|w| w == [0xff, 0xd9])
+}
+
 /// Decodes `bytes` as `format`, after checking that the size its header declares fits in the
 /// memory this process may use.
 pub fn decode(path: &Path, bytes: &[u8], format: Format) -> Result<Image> {
@@ -22,6 +31,12 @@ pub fn decode(path: &Path, bytes: &[u8], format: Format) -> Result<Image> {
         path: path.to_path_buf(),
         msg: e.to_string(),
     };
+    if format == Format::Jpeg && !ends_a_jpeg(bytes) {
+        return Err(Error::Raster {
+            path: path.to_path_buf(),
+            msg: "is a truncated JPEG (no end-of-image marker): still being written?".into(),
+        });
+    }
     let codec = match format {
         Format::Png => ImageFormat::Png,
         Format::Jpeg => ImageFormat::Jpeg,

@@ -597,6 +597,9 @@ fn a_long_first_load_opens_the_page_at_once_and_says_what_it_reads() {
         "the URL came before the check: {version}"
     );
     assert_eq!(version["reading"], "big.png (and checking it)");
+    // Rewritten while the first load runs: --watch looked before it, and sees the change.
+    std::fs::copy(d.join("big.png"), d.join("again.png")).expect("copy");
+    replace(&d.join("again.png"), &d.join("big.png"));
     browser.session("POST", "/url", Some(json!({"url": viewer.url()})));
     browser.wait_for(
         "document.getElementById('status').textContent.startsWith('reading big.png')",
@@ -614,9 +617,7 @@ fn a_long_first_load_opens_the_page_at_once_and_says_what_it_reads() {
         "!!(window.whitted && window.whitted.ready)",
         "the page is ready",
     );
-    // --watch starts once the first load has ended: the image rewritten is checked again.
-    std::fs::copy(d.join("big.png"), d.join("again.png")).expect("copy");
-    replace(&d.join("again.png"), &d.join("big.png"));
+    // The image rewritten during the first load is checked again once it has ended.
     let started = Instant::now();
     while viewer.json("/api/version")["version"] != 2 {
         assert!(started.elapsed() < Duration::from_secs(60), "no reload");
@@ -627,4 +628,67 @@ fn a_long_first_load_opens_the_page_at_once_and_says_what_it_reads() {
         "the page follows the reload",
     );
     browser.assert_no_errors();
+}
+
+#[test]
+fn watch_reports_a_pipe_and_a_truncated_jpeg_and_reloads_the_next_good_file() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let shown = tick_png(d, "shown.png", &[]);
+    let viewer = Viewer::start_with(d, &[s(&shown), "--watch"]);
+    let started = Instant::now();
+    let wait_for = |what: &str, done: &dyn Fn(&Value) -> bool| loop {
+        let version = viewer.json("/api/version");
+        if done(&version) {
+            return version;
+        }
+        assert!(
+            started.elapsed() < Duration::from_secs(60),
+            "{what}: {version}"
+        );
+        std::thread::sleep(Duration::from_millis(100));
+    };
+    // A pipe renamed over the watched file: said, never opened (an open would block).
+    let fifo = d.join("fifo");
+    assert!(std::process::Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .expect("mkfifo")
+        .success());
+    replace(&fifo, &shown);
+    let version = wait_for("the pipe reported", &|v| !v["problem"].is_null());
+    assert!(
+        version["problem"]
+            .as_str()
+            .is_some_and(|p| p.contains("not a regular file")),
+        "{version}"
+    );
+    // A good PNG renamed over the pipe is reloaded.
+    let good = tick_png(d, "good.png", &["--no-shadows"]);
+    replace(&good, &shown);
+    wait_for("the good file reloaded", &|v| {
+        v["version"].as_u64().is_some_and(|n| n >= 2) && v["problem"].is_null()
+    });
+    let image = viewer.json("/api/image");
+    assert_eq!(image["width"], read_png(&shown).width, "{image}");
+    drop(viewer);
+
+    // A JPEG caught 60% written (the writer paused): reported, not shown with grey rows.
+    let jpeg = root().join("reference/specular_test_correct_solution.jpg");
+    let whole = std::fs::read(&jpeg).expect("jpeg");
+    let watched = d.join("shown.jpg");
+    std::fs::write(&watched, &whole).expect("jpeg");
+    let viewer = Viewer::start_with(d, &[s(&watched), "--watch"]);
+    std::fs::write(&watched, &whole[..whole.len() * 6 / 10]).expect("half");
+    let started = Instant::now();
+    loop {
+        let version = viewer.json("/api/version");
+        if let Some(problem) = version["problem"].as_str() {
+            assert!(problem.contains("truncated JPEG"), "{problem}");
+            assert_eq!(version["version"], 1, "the last good image stays");
+            break;
+        }
+        assert!(started.elapsed() < Duration::from_secs(60), "{version}");
+        std::thread::sleep(Duration::from_millis(100));
+    }
 }
