@@ -218,7 +218,17 @@ fn load_stopped() -> Error {
 /// which redirects to it (as Jupyter does), so that the token never stands in a browser's
 /// command line, where every local user can read it in /proc. Elsewhere the URL printed is
 /// the way in.
-fn open_browser(url: &str) -> Option<tempfile::TempPath> {
+/// The browser's redirect page, a temporary file holding the token: deleted when dropped, and
+/// registered so that a forced exit (which runs no destructor) deletes it too.
+struct RedirectPage(tempfile::TempPath);
+
+impl Drop for RedirectPage {
+    fn drop(&mut self) {
+        crate::interrupt::unregister_temp(&self.0);
+    }
+}
+
+fn open_browser(url: &str) -> Option<RedirectPage> {
     let mut file = tempfile::Builder::new()
         .prefix("whitted-view-")
         .suffix(".html")
@@ -230,12 +240,13 @@ fn open_browser(url: &str) -> Option<tempfile::TempPath> {
     );
     file.write_all(page.as_bytes()).ok()?;
     let path = file.into_temp_path();
+    crate::interrupt::register_temp(&path);
     let _ = std::process::Command::new("xdg-open")
         .arg(&path)
         .stdout(std::process::Stdio::null())
         .stderr(std::process::Stdio::null())
         .spawn();
-    Some(path)
+    Some(RedirectPage(path))
 }
 
 #[cfg(test)]

@@ -682,3 +682,70 @@ fn names_from_the_file_and_non_finite_values_do_not_break_the_page() {
         assert!(text.contains("non-finite"), "({x}, {y}): {text}");
     }
 }
+
+#[test]
+fn ctrl_c_while_replies_compute_leaves_no_redirect_page() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let exr = small_render(d);
+    let tmp = d.join("tmp");
+    std::fs::create_dir(&tmp).expect("tmp");
+    // Without --no-browser: the redirect page (which holds the token) is written.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_whitted"))
+        .args(["view", exr.to_str().expect("utf-8")])
+        .env("TMPDIR", &tmp)
+        .current_dir(d)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("whitted view starts");
+    let mut line = String::new();
+    BufReader::new(child.stdout.take().expect("stdout"))
+        .read_line(&mut line)
+        .expect("the URL line");
+    let pages = || {
+        std::fs::read_dir(&tmp)
+            .expect("tmp")
+            .flatten()
+            .filter(|e| e.file_name().to_string_lossy().starts_with("whitted-view-"))
+            .count()
+    };
+    // Written just after the URL is printed.
+    let started = Instant::now();
+    while pages() == 0 {
+        assert!(
+            started.elapsed() < Duration::from_secs(10),
+            "no redirect page"
+        );
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    let port: u16 = line.trim()["http://127.0.0.1:".len()..]
+        .split('/')
+        .next()
+        .and_then(|p| p.parse().ok())
+        .expect("a port");
+    let token = line
+        .trim()
+        .split("token=")
+        .nth(1)
+        .expect("token")
+        .to_string();
+    // Replies being computed when the signals come.
+    for _ in 0..8 {
+        let token = token.clone();
+        std::thread::spawn(move || {
+            let path = format!("/api/stats?name=beauty&which=relative-squared-error&token={token}");
+            let _ = http(port, "GET", &path, &format!("127.0.0.1:{port}"), None);
+        });
+    }
+    std::thread::sleep(Duration::from_millis(50));
+    for _ in 0..2 {
+        let _ = Command::new("kill")
+            .args(["-INT", &child.id().to_string()])
+            .status();
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let status = child.wait().expect("wait");
+    assert_eq!(status.code(), Some(130));
+    assert_eq!(pages(), 0, "the redirect page was left behind");
+}
