@@ -321,6 +321,20 @@ pub fn light_of_layer(name: &str) -> Option<&str> {
     }
 }
 
+/// The group a layer is shown in (the viewer's thumbnails): `beauty`, `effects` (the beauty's
+/// split into terms), `lights`, `bounces`, `masks` or `data`; `None` for a name whitted never
+/// writes.
+pub fn group_of_layer(name: &str) -> Option<&'static str> {
+    Some(match parse_layer_name(name)? {
+        LayerName::Image(Quantity::Beauty) => "beauty",
+        LayerName::Image(Quantity::Reflected | Quantity::ReflectedBounce(_)) => "bounces",
+        LayerName::Light(PerLight::Shadowed | PerLight::Unshadowed, _) => "lights",
+        LayerName::Light(PerLight::Mask, _) => "masks",
+        LayerName::Image(q) if q.role() == Role::Colour => "effects",
+        LayerName::Image(_) => "data",
+    })
+}
+
 /// The role of a layer named as whitted names them, or `None` for a name it never writes.
 pub fn role_of_layer(name: &str) -> Option<Role> {
     Some(match parse_layer_name(name)? {
@@ -411,6 +425,27 @@ pub fn select(spec: &str, available: &[Layer]) -> Result<Vec<Layer>, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn layers_fall_into_the_viewer_s_groups_by_what_they_are() {
+        let groups = [
+            ("beauty", Some("beauty")),
+            ("direct", Some("effects")),
+            ("specular", Some("effects")),
+            ("reflected", Some("bounces")),
+            ("reflected_2", Some("bounces")),
+            ("light_key", Some("lights")),
+            ("unshadowed_0", Some("lights")),
+            ("shadow_key", Some("masks")),
+            ("Z", Some("data")),
+            ("objectid", Some("data")),
+            ("light_", None),
+            ("reflectedness", None),
+        ];
+        for (name, group) in groups {
+            assert_eq!(group_of_layer(name), group, "{name}");
+        }
+    }
 
     fn names(layers: &[Layer]) -> Vec<String> {
         layers.iter().flat_map(Layer::channel_names).collect()

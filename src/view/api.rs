@@ -238,7 +238,13 @@ fn describe(now: &Snapshot) -> serde_json::Value {
                 None if image.is_colour(layer) => "colour",
                 None => "data",
             };
-            json!({ "name": layer.name, "channels": channels, "role": role })
+            // Grouped by what aov.rs knows of the name; a name whitted never writes goes
+            // with the colour terms or the data by its channels.
+            let group = aov::group_of_layer(&layer.name).unwrap_or(match role {
+                "colour" => "effects",
+                _ => "data",
+            });
+            json!({ "name": layer.name, "channels": channels, "role": role, "group": group })
         })
         .collect();
     let lights: Vec<String> = image
@@ -263,7 +269,8 @@ fn describe(now: &Snapshot) -> serde_json::Value {
 }
 
 /// A layer's values, pixel-major, its channels in display order, little-endian f32; with
-/// `step` > 1 every step-th pixel of every step-th row (`width / step` by `height / step`).
+/// `step` > 1 every step-th pixel of every step-th row (`ceil(width / step)` by
+/// `ceil(height / step)`: a step larger than the image still gives its first pixel).
 /// With a tile (tx, ty), only the `TILE` x `TILE` block of those samples there (fewer at the
 /// right and bottom edges: the samples at x = (tx * TILE + i) * step < width), so that a
 /// zoomed-in page fetches the full resolution of what it shows and nothing else. 404 for no
@@ -271,7 +278,8 @@ fn describe(now: &Snapshot) -> serde_json::Value {
 fn layer_bytes(planes: &Planes, step: usize, tile: Option<(usize, usize)>) -> Reply {
     let (w, h) = (planes.width, planes.height);
     let (x0, y0, columns, rows) = match tile {
-        None => (0, 0, w / step, h / step),
+        // The same grid as the tiles': every sample at x = i * step < width.
+        None => (0, 0, w.div_ceil(step), h.div_ceil(step)),
         Some((tx, ty)) => {
             let origin = |t: usize| t.checked_mul(TILE).and_then(|t| t.checked_mul(step));
             match (origin(tx), origin(ty)) {
@@ -359,6 +367,12 @@ mod tests {
         assert_eq!(squared[0], Metric::SquaredError.apply(a, b));
         let reference = floats(&layer(Which::Reference, 1, None).2);
         assert_eq!(reference[0], b);
+        // Whole layers sample the tiles' grid: 300 at step 7 is 43 columns (x = 0 .. 294), and
+        // a step wider than the image still gives its first pixel.
+        assert_eq!(layer(Which::Main, 7, None).2.len(), 43 * 3 * 4);
+        assert_eq!(layer(Which::Main, 7, Some((0, 0))).2.len(), 43 * 3 * 4);
+        let wide = layer(Which::Main, 1000, None);
+        assert_eq!((wide.0, wide.2.len()), (200, 3 * 4));
     }
 
     #[test]

@@ -136,11 +136,8 @@ async function thumbnails() {
   nav.textContent = "";
   const groups = { beauty: [], effects: [], lights: [], bounces: [], masks: [], data: [] };
   for (const l of state.meta.layers) {
-    const g = l.name === "beauty" ? "beauty"
-      : l.name.startsWith("light_") || l.name.startsWith("unshadowed_") ? "lights"
-      : l.name.startsWith("reflected") ? "bounces"
-      : l.role === "mask" ? "masks" : l.role === "colour" ? "effects" : "data";
-    groups[g].push(l.name);
+    // The server knows which group a layer name is in (aov.rs): no prefixes re-derived here.
+    (groups[l.group] || groups.data).push(l.name);
   }
   const { width, height } = state.meta;
   const step = Math.max(1, Math.ceil(width / 180));
@@ -154,7 +151,7 @@ async function thumbnails() {
       const fig = document.createElement("figure");
       fig.dataset.layer = name;
       if (name === state.selected) fig.className = "selected";
-      const c = Object.assign(document.createElement("canvas"), { width: Math.floor(width / step), height: Math.floor(height / step) });
+      const c = Object.assign(document.createElement("canvas"), { width: Math.ceil(width / step), height: Math.ceil(height / step) });
       const cap = document.createElement("figcaption");
       cap.textContent = name;
       fig.append(c, cap);
