@@ -30,6 +30,7 @@ pub fn metadata(
         comments: format!("scene: {scene_name}; command: {command}"),
         bounces: plan.frame.trace().bounces,
         spp: plan.frame.spp(),
+        shadows: plan.frame.trace().shadows,
         light_names,
         capture_date: plan.stamp_date.then(|| capture_date(SystemTime::now())),
         world_to_ndc: plan.frame.camera().world_to_ndc(),

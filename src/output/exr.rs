@@ -72,6 +72,8 @@ pub struct ExrMetadata {
     pub comments: String,
     pub bounces: u32,
     pub spp: u32,
+    /// Whether shadow rays were cast (`--no-shadows` turns them off).
+    pub shadows: bool,
     /// Light names, in layer order.
     pub light_names: Vec<String>,
     /// `YYYY:MM:DD hh:mm:ss` in UTC, only when asked for: without it files are reproducible.
@@ -121,6 +123,10 @@ pub fn header(
             AttributeValue::I32(clamp_i32(metadata.bounces)),
         ),
         ("render/spp", AttributeValue::I32(clamp_i32(metadata.spp))),
+        (
+            "render/shadows",
+            AttributeValue::I32(i32::from(metadata.shadows)),
+        ),
         (
             "render/lights",
             AttributeValue::Text(text(&metadata.light_names.join(","))),

@@ -200,9 +200,11 @@ fn recorded_tracer(image: &Image, path: &Path, scene: Option<&Path>) -> Result<O
         _ => None,
     }
     .unwrap_or(FrameSpec::default().bounces);
-    // The recorded command (`comments`) is the only place the shadow switch is written down.
-    let shadows = !text_attribute(image, "comments")
-        .is_some_and(|c| c.split_whitespace().any(|w| w == "--no-shadows"));
+    // The writer's own attribute (docs/aovs.md), not the free-text command in `comments`.
+    let shadows = match image.attribute("render/shadows") {
+        Some(Attribute::Integer(on)) => *on != 0,
+        _ => FrameSpec::default().shadows,
+    };
     let window = image.display_window;
     let side = |axis: usize| {
         u32::try_from(window.max[axis] - window.min[axis] + 1)

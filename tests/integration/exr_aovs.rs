@@ -367,6 +367,7 @@ fn header_attributes_are_present_and_correct() {
     );
     assert_eq!(other("render/bounces"), AttributeValue::I32(2));
     assert_eq!(other("render/spp"), AttributeValue::I32(1));
+    assert_eq!(other("render/shadows"), AttributeValue::I32(1));
     assert_eq!(other("render/lights"), AttributeValue::Text("0,1".into()));
     assert_eq!(other("render/zMiss"), AttributeValue::F32(1e10));
     match other("render/invariants") {

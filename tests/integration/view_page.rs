@@ -535,6 +535,28 @@ fn an_exr_of_a_known_scene_shows_its_ray_tree_and_another_scene_is_refused() {
     assert_eq!(trees["reference"], expected, "the tree is explain's");
     assert_eq!(viewer.get("/api/trees?x=80&y=0").0, 404);
     drop(viewer);
+    // Rendered without shadows: the trees are traced so, as the header's own attribute says.
+    let run = whitted(
+        d,
+        &[
+            "render",
+            "-q",
+            "--no-png",
+            "--exr",
+            "flat.exr",
+            "--width",
+            "80",
+            "--height",
+            "60",
+            "--no-shadows",
+        ],
+    );
+    assert!(run.status.success(), "{}", stderr(&run));
+    let viewer = Viewer::start(d, &d.join("flat.exr"));
+    let flat = viewer.json("/api/trees?x=20&y=30");
+    let light = &flat["reference"]["vertices"][0]["lights"][0];
+    assert_eq!(light["shadow_tested"], false, "{light}");
+    drop(viewer);
     // A farm node's region: its pixel (0, 0) is the frame's (20, 30).
     let run = whitted(
         d,
