@@ -13,8 +13,10 @@
 //! limits); every request is parsed into a closed set first (`view/request.rs`) and answered
 //! by a pure function (`view/api.rs`).
 
+mod admission;
 mod api;
 mod content;
+mod held_body;
 mod metric;
 mod planes;
 mod request;
@@ -57,6 +59,8 @@ pub struct Served {
     pub token: String,
     /// The port it listens on, for the Host check.
     pub port: u16,
+    /// Whether the files are watched (`--watch`): the page polls for reloads only then.
+    watching: bool,
     /// What is served, watched: requests that need the content wait for it to be open.
     current: tokio::sync::watch::Sender<State>,
     /// The first load's failure, which the server stops with.
@@ -65,20 +69,28 @@ pub struct Served {
 
 impl Served {
     /// Serving `content`, loaded before the server started.
-    pub fn open(content: Content, token: String, port: u16) -> Served {
-        Served::holding(State::Open(Snapshot::first(content)), token, port)
+    pub fn open(content: Content, token: String, port: u16, watching: bool) -> Served {
+        let first = State::Open(Snapshot::first(content, watching));
+        Served::holding(first, token, port, watching)
     }
 
     /// Serving the page while `what` is read, since `started` (then `opened` gives what it
     /// held).
-    pub fn opening(what: String, started: Instant, token: String, port: u16) -> Served {
-        Served::holding(State::Opening { what, started }, token, port)
+    pub fn opening(
+        what: String,
+        started: Instant,
+        token: String,
+        port: u16,
+        watching: bool,
+    ) -> Served {
+        Served::holding(State::Opening { what, started }, token, port, watching)
     }
 
-    fn holding(state: State, token: String, port: u16) -> Served {
+    fn holding(state: State, token: String, port: u16, watching: bool) -> Served {
         Served {
             token,
             port,
+            watching,
             current: tokio::sync::watch::Sender::new(state),
             failure: Mutex::new(None),
         }
@@ -99,7 +111,7 @@ impl Served {
         match outcome {
             Ok(content) => {
                 self.current
-                    .send_replace(State::Open(Snapshot::first(content)));
+                    .send_replace(State::Open(Snapshot::first(content, self.watching)));
             }
             Err(e) => self.fail(e),
         }
@@ -163,9 +175,9 @@ pub fn serve(source: Source, port: u16, no_browser: bool, watch: bool) -> Result
         .map_err(|e| Error::io("127.0.0.1", "cannot listen", e))?
         .port();
     let (served, pending) = match loaded {
-        Some(content) => (Served::open(content, token::new(), port), None),
+        Some(content) => (Served::open(content, token::new(), port, watch), None),
         None => (
-            Served::opening(source.describe(), started, token::new(), port),
+            Served::opening(source.describe(), started, token::new(), port, watch),
             Some(first_load),
         ),
     };
@@ -265,7 +277,7 @@ mod tests {
 
     #[test]
     fn a_first_load_opens_the_content_or_stops_the_server_once() {
-        let served = Served::opening("a.png".into(), Instant::now(), "t".into(), 1);
+        let served = Served::opening("a.png".into(), Instant::now(), "t".into(), 1, false);
         assert!(matches!(served.now(), State::Opening { .. }));
         let changes = served.changes();
         // A reload before the first load ends is not taken.
@@ -289,7 +301,7 @@ mod tests {
         };
         assert_eq!(snapshot.problem.as_deref(), Some("truncated"));
 
-        let failed = Served::opening("b.exr".into(), Instant::now(), "t".into(), 1);
+        let failed = Served::opening("b.exr".into(), Instant::now(), "t".into(), 1, false);
         failed.opened(Err(Error::Usage("b.exr: not an image".into())));
         assert!(matches!(failed.now(), State::Opening { .. }));
         assert_eq!(

@@ -54,12 +54,15 @@ pub struct Snapshot {
     pub version: u64,
     /// Why the last reload failed, if it did (the content is then the one before).
     pub problem: Option<String>,
+    /// Whether the files are watched (`--watch`): the page polls for reloads only then.
+    pub watching: bool,
 }
 
 impl Snapshot {
     /// The first load's.
-    pub fn first(content: Content) -> Snapshot {
+    pub fn first(content: Content, watching: bool) -> Snapshot {
         Snapshot {
+            watching,
             content: std::sync::Arc::new(content),
             version: 1,
             problem: None,
@@ -96,6 +99,7 @@ pub fn respond(state: &State, request: &ApiRequest) -> Reply {
             "open": true,
             "version": now.version,
             "problem": now.problem,
+            "watching": now.watching,
         })),
         ApiRequest::Check => match &content.check {
             Some(report) => json_reply(report),
@@ -265,7 +269,62 @@ fn describe(now: &Snapshot) -> serde_json::Value {
         "labels": content.labels,
         "version": now.version,
         "problem": now.problem,
+        "watching": now.watching,
     })
+}
+
+/// The samples a layer reply holds, (x0, y0, columns, rows), or None for no such tile.
+fn grid(
+    w: usize,
+    h: usize,
+    step: usize,
+    tile: Option<(usize, usize)>,
+) -> Option<(usize, usize, usize, usize)> {
+    match tile {
+        // The same grid as the tiles': every sample at x = i * step < width.
+        None => Some((0, 0, w.div_ceil(step), h.div_ceil(step))),
+        Some((tx, ty)) => {
+            let origin = |t: usize| t.checked_mul(TILE).and_then(|t| t.checked_mul(step));
+            match (origin(tx), origin(ty)) {
+                (Some(x0), Some(y0)) if x0 < w && y0 < h => Some((
+                    x0,
+                    y0,
+                    TILE.min((w - x0).div_ceil(step)),
+                    TILE.min((h - y0).div_ceil(step)),
+                )),
+                _ => None,
+            }
+        }
+    }
+}
+
+/// At most how many bytes the reply to `request` holds, known before it is computed, so that
+/// the server can charge it against what unsent replies may hold (`admission.rs`). Only a
+/// layer's values can be large; everything else counts as a nominal 64 KiB.
+pub fn reply_bytes(state: &State, request: &ApiRequest) -> u64 {
+    const SMALL: u64 = 64 << 10;
+    let (
+        State::Open(now),
+        ApiRequest::Layer {
+            which,
+            name,
+            step,
+            tile,
+        },
+    ) = (state, request)
+    else {
+        return SMALL;
+    };
+    let Ok(planes) = planes(&now.content, *which, name) else {
+        return SMALL;
+    };
+    match grid(planes.width, planes.height, *step, *tile) {
+        Some((_, _, columns, rows)) => (columns as u64)
+            .saturating_mul(rows as u64)
+            .saturating_mul(4 * planes.count() as u64)
+            .max(SMALL),
+        None => SMALL,
+    }
 }
 
 /// A layer's values, pixel-major, its channels in display order, little-endian f32; with
@@ -276,23 +335,10 @@ fn describe(now: &Snapshot) -> serde_json::Value {
 /// zoomed-in page fetches the full resolution of what it shows and nothing else. 404 for no
 /// such layer or tile, 503 when the reply does not fit in the memory this process may use.
 fn layer_bytes(planes: &Planes, step: usize, tile: Option<(usize, usize)>) -> Reply {
-    let (w, h) = (planes.width, planes.height);
-    let (x0, y0, columns, rows) = match tile {
-        // The same grid as the tiles': every sample at x = i * step < width.
-        None => (0, 0, w.div_ceil(step), h.div_ceil(step)),
-        Some((tx, ty)) => {
-            let origin = |t: usize| t.checked_mul(TILE).and_then(|t| t.checked_mul(step));
-            match (origin(tx), origin(ty)) {
-                (Some(x0), Some(y0)) if x0 < w && y0 < h => (
-                    x0,
-                    y0,
-                    TILE.min((w - x0).div_ceil(step)),
-                    TILE.min((h - y0).div_ceil(step)),
-                ),
-                _ => return text(404, "no such tile"),
-            }
-        }
+    let Some((x0, y0, columns, rows)) = grid(planes.width, planes.height, step, tile) else {
+        return text(404, "no such tile");
     };
+    let w = planes.width;
     let size = (columns as u64)
         .saturating_mul(rows as u64)
         .saturating_mul(4 * planes.count() as u64);
@@ -332,6 +378,7 @@ mod tests {
             }),
             version: 1,
             problem: None,
+            watching: false,
         })
     }
 

@@ -39,6 +39,21 @@ impl ApiRequest {
     pub fn needs_content(&self) -> bool {
         !matches!(self, ApiRequest::Page | ApiRequest::Version)
     }
+
+    /// Whether the answer can take most of a second (a whole layer, statistics over every
+    /// pixel, a hierarchy rebuilt for the trees): those take turns (`admission.rs`) so that
+    /// the others never queue behind them. A tile is bounded by `TILE` and stays cheap.
+    pub fn is_heavy(&self) -> bool {
+        match self {
+            ApiRequest::Layer { tile, .. } => tile.is_none(),
+            ApiRequest::Stats { .. } | ApiRequest::Trees { .. } => true,
+            ApiRequest::Page
+            | ApiRequest::Image
+            | ApiRequest::Version
+            | ApiRequest::Check
+            | ApiRequest::Pixel { .. } => false,
+        }
+    }
 }
 
 /// The parts of an HTTP request the viewer looks at, as the server library hands them over.

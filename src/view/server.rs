@@ -10,7 +10,11 @@
 //! - at most `MAX_CONNECTIONS` at once; others are closed at once, and a failed accept (out
 //!   of descriptors) is waited out, never a panic;
 //! - each reply is computed on one of `WORKERS` blocking threads, so that a slow one (a 4K
-//!   layer's statistics) does not hold up the others, nor the accept loop;
+//!   layer's statistics) does not hold up the accept loop; heavy replies take turns and
+//!   unsent replies share a memory budget (`admission.rs`), so that the cheap routes never
+//!   queue behind heavy ones and clients that never read cannot pin the machine's memory;
+//! - every reply computed from the files says which load it came from (`X-Whitted-Version`),
+//!   so that the page never mixes the tiles of two versions;
 //! - while the first load runs, a request that needs its content (any but the page and the
 //!   version) waits for it as a task, holding no worker, for at most `OPEN_TIMEOUT` (then
 //!   503; a failed first load stops the server sooner), so that a client asking at once gets
@@ -20,12 +24,13 @@ use std::convert::Infallible;
 use std::sync::Arc;
 use std::time::Duration;
 
-use http_body_util::Full;
-use hyper::body::{Bytes, Incoming as Body};
+use hyper::body::Incoming as Body;
 use hyper::header::{HeaderValue, CONTENT_LENGTH, HOST, TRANSFER_ENCODING};
 use hyper::{Request, Response};
 use hyper_util::rt::{TokioIo, TokioTimer};
 
+use super::admission::Admission;
+use super::held_body::HeldBody;
 use super::request::{parse, ApiRequest, Incoming};
 use super::{api, text, Reply, Served, State};
 use crate::error::{Error, Result};
@@ -35,7 +40,7 @@ const MAX_HEAD: usize = 16 * 1024;
 const HEAD_TIMEOUT: Duration = Duration::from_secs(10);
 const CONNECTION_TIME: Duration = Duration::from_secs(120);
 const MAX_CONNECTIONS: usize = 64;
-const WORKERS: usize = 4;
+pub const WORKERS: usize = 4;
 const OPEN_TIMEOUT: Duration = Duration::from_secs(60);
 /// How often the accept loop looks for Ctrl-C.
 const POLL: Duration = Duration::from_millis(100);
@@ -55,6 +60,7 @@ pub fn run(listener: std::net::TcpListener, served: Arc<Served>) -> Result<()> {
         let listener = tokio::net::TcpListener::from_std(listener)
             .map_err(|e| Error::io("127.0.0.1", "cannot listen", e))?;
         let permits = Arc::new(tokio::sync::Semaphore::new(MAX_CONNECTIONS));
+        let admission = Arc::new(Admission::new());
         loop {
             interrupt::check()?;
             if let Some(failure) = served.take_failure() {
@@ -75,25 +81,19 @@ pub fn run(listener: std::net::TcpListener, served: Arc<Served>) -> Result<()> {
                 continue;
             };
             let served = served.clone();
+            let admission = admission.clone();
             tokio::spawn(async move {
                 let _permit = permit;
                 let service = hyper::service::service_fn(move |request: Request<Body>| {
                     let served = served.clone();
+                    let admission = admission.clone();
                     async move {
                         let head = request.method() == hyper::Method::HEAD;
-                        let parsed = checked(&served, &request);
-                        if parsed.as_ref().is_ok_and(ApiRequest::needs_content) {
-                            let mut changes = served.changes();
-                            let open = changes.wait_for(|s| matches!(s, State::Open(_)));
-                            let _ = tokio::time::timeout(OPEN_TIMEOUT, open).await;
-                        }
-                        let reply = tokio::task::spawn_blocking(move || match parsed {
-                            Ok(api_request) => api::respond(&served.now(), &api_request),
-                            Err(refusal) => refusal,
-                        })
-                        .await
-                        .unwrap_or_else(|_| text(500, "internal error"));
-                        Ok::<_, Infallible>(response(reply, head))
+                        let response = match checked(&served, &request) {
+                            Ok(api_request) => answer(served, &admission, api_request).await,
+                            Err(refusal) => (refusal, None, None),
+                        };
+                        Ok::<_, Infallible>(self::response(response, head))
                     }
                 });
                 let connection = hyper::server::conn::http1::Builder::new()
@@ -106,6 +106,50 @@ pub fn run(listener: std::net::TcpListener, served: Arc<Served>) -> Result<()> {
             });
         }
     })
+}
+
+/// The reply to a checked request, the version of the files it was computed from, and its
+/// charge against the budget of unsent replies.
+async fn answer(
+    served: Arc<Served>,
+    admission: &Admission,
+    request: ApiRequest,
+) -> (
+    Reply,
+    Option<u64>,
+    Option<tokio::sync::OwnedSemaphorePermit>,
+) {
+    if request.needs_content() {
+        let mut changes = served.changes();
+        let open = changes.wait_for(|s| matches!(s, State::Open(_)));
+        let _ = tokio::time::timeout(OPEN_TIMEOUT, open).await;
+    }
+    let turn = match request.is_heavy() {
+        true => admission.heavy_turn().await,
+        false => None,
+    };
+    // One snapshot for the whole reply: a reload meanwhile does not change it under it.
+    let state = served.now();
+    let Ok(charge) = admission.charge(api::reply_bytes(&state, &request)).await else {
+        return (
+            text(
+                503,
+                "service unavailable: replies other clients have not read yet hold the viewer's \
+                 memory; ask again shortly",
+            ),
+            None,
+            None,
+        );
+    };
+    let version = match &state {
+        State::Open(now) => Some(now.version),
+        State::Opening { .. } => None,
+    };
+    let reply = tokio::task::spawn_blocking(move || api::respond(&state, &request))
+        .await
+        .unwrap_or_else(|_| text(500, "internal error"));
+    drop(turn);
+    (reply, version, charge)
 }
 
 /// The request parsed and checked (token, Host, no body), or the refusal.
@@ -131,9 +175,16 @@ fn checked(served: &Served, request: &Request<Body>) -> std::result::Result<ApiR
 }
 
 /// A reply as hyper wants it (without its body for a HEAD request).
-fn response((status, kind, body): Reply, head: bool) -> Response<Full<Bytes>> {
+fn response(
+    ((status, kind, body), version, charge): (
+        Reply,
+        Option<u64>,
+        Option<tokio::sync::OwnedSemaphorePermit>,
+    ),
+    head: bool,
+) -> Response<HeldBody> {
     let body = if head { Vec::new() } else { body };
-    let mut response = Response::new(Full::new(Bytes::from(body)));
+    let mut response = Response::new(HeldBody::new(body, charge));
     *response.status_mut() =
         hyper::StatusCode::from_u16(status).unwrap_or(hyper::StatusCode::INTERNAL_SERVER_ERROR);
     let headers = response.headers_mut();
@@ -143,6 +194,9 @@ fn response((status, kind, body): Reply, head: bool) -> Response<Full<Bytes>> {
         (hyper::header::X_CONTENT_TYPE_OPTIONS, "nosniff"),
     ] {
         headers.insert(name, HeaderValue::from_static(value));
+    }
+    if let Some(version) = version {
+        headers.insert("x-whitted-version", HeaderValue::from(version));
     }
     response
 }

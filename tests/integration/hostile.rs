@@ -158,6 +158,48 @@ fn an_address_space_limit_is_a_clear_error_not_an_abort() {
     assert!(!dir.path().join("big.exr").exists() && !dir.path().join("big.png").exists());
 }
 
+/// A 12000 x 12000 PNG of one grey (the reference of a lights-only scene would do): 432 MB of
+/// pixels in under 1 MB of file.
+fn png_bomb(path: &Path) {
+    let file = std::fs::File::create(path).expect("create");
+    let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), 12000, 12000);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_compression(png::Compression::Fast);
+    let mut writer = encoder.write_header().expect("header");
+    let mut stream = writer.stream_writer().expect("stream");
+    let row = vec![25u8; 12000 * 3];
+    for _ in 0..12000 {
+        std::io::Write::write_all(&mut stream, &row).expect("row");
+    }
+    stream.finish().expect("finish");
+}
+
+#[test]
+fn a_png_bomb_is_refused_by_check_before_its_buffers_are_allocated() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let bomb = dir.path().join("bomb.png");
+    png_bomb(&bomb);
+    assert!(std::fs::metadata(&bomb).expect("bomb").len() < 8 << 20);
+    // 1.5 GiB: the decode fits; the check's renders at this size (6 GiB) do not.
+    for extra in [&[][..], &["--json"], &["--view", "--no-browser"]] {
+        let mut args = vec!["check", "bomb.png"];
+        args.extend_from_slice(extra);
+        let run = limited(dir.path(), 1536 << 10, &args);
+        let err = stderr(&run);
+        assert_eq!(run.status.code(), Some(2), "{extra:?}: {err}");
+        assert!(
+            err.contains("cannot allocate")
+                && err.contains("12000x12000")
+                && err.contains("is available"),
+            "{extra:?}: {err}"
+        );
+        assert!(
+            !String::from_utf8_lossy(&run.stdout).contains("http://"),
+            "{extra:?}: no URL for a check that cannot run"
+        );
+    }
+}
+
 #[test]
 fn outputs_that_are_inputs_are_refused() {
     let dir = tempfile::tempdir().expect("tempdir");

@@ -23,4 +23,5 @@ mod scenes;
 mod tonemap;
 mod view;
 mod view_hostile;
+mod view_load;
 mod view_page;

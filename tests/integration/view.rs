@@ -97,6 +97,10 @@ impl Viewer {
         serde_json::from_slice(&body).expect("json")
     }
 
+    pub fn pid(&self) -> u32 {
+        self.child.id()
+    }
+
     pub fn token(&self) -> &str {
         self.url.rsplit_once("token=").expect("a token").1
     }
@@ -453,6 +457,11 @@ fn the_page_probes_and_relights_like_the_command_line() {
     let viewer = Viewer::start(d, &exr);
     let browser = Browser::start();
     browser.open(&viewer.url);
+    // Without --watch the files are read once: the page does not poll for reloads.
+    assert_eq!(
+        browser.script("return window.whitted.following", json!([])),
+        json!(false)
+    );
 
     // The probe shows the EXR's own values.
     let read = read_exr(&exr);

@@ -475,6 +475,10 @@ fn watch_reloads_a_rewritten_image_and_rechecks_it() {
     let browser = Browser::start();
     browser.open(viewer.url());
     assert_eq!(page_rgb(&browser), read_png(&shown).data);
+    assert_eq!(
+        browser.script("return window.whitted.following", json!([])),
+        json!(true)
+    );
     let new = tick_png(d, "new.png", &["--no-shadows"]);
     let expected = read_png(&new).data;
     // Rewritten in place, as a student's program writes its PNG.

@@ -38,6 +38,7 @@ async function render(view, cw, ch, generation) {
 
 /** Shows what went wrong where the status is; the page goes on working. */
 function fail(e) {
+  if (e instanceof Stale) return; // the reload it started draws again
   $("status").textContent = `error: ${e.message}`;
   $("status").className = "problem";
 }
@@ -250,20 +251,31 @@ async function load() {
   }
 }
 
-/** Follows reloads (`--watch`): a new version drops everything fetched and draws again. */
+/** Drops everything fetched, reads the image's description again and draws: after a reload
+ * of the files, seen by `follow` or by a layer of a newer version (one reload at a time). */
+let reloading = null;
+function reload() {
+  reloading ??= (async () => {
+    TILES.clear();
+    state.stats = new Map();
+    await load();
+    await draw();
+    thumbnails();
+    if (state.trees) showTrees(...state.trees).catch(() => {});
+    window.whitted.reloads++;
+  })().finally(() => { reloading = null; });
+  return reloading;
+}
+reloadSoon = () => { reload().catch(fail); };
+
+/** Follows reloads (`--watch` only: without it the files are read once). */
 async function follow() {
   for (;;) {
     await sleep(500);
     try {
       const v = await getJson("/api/version");
       if (v.version !== state.version) {
-        TILES.clear();
-        state.stats = new Map();
-        await load();
-        await draw();
-        thumbnails();
-        if (state.trees) showTrees(...state.trees).catch(() => {});
-        window.whitted.reloads++;
+        await reload();
       } else if (v.problem !== state.meta.problem) {
         state.meta.problem = v.problem;
         showStatus();
@@ -305,7 +317,8 @@ async function start() {
   window.whitted.ready = true;
   await thumbnails();
   window.whitted.thumbnails = true;
-  follow();
+  window.whitted.following = state.meta.watching;
+  if (state.meta.watching) follow();
 }
 
 // What the browser tests (and a curious user's console) drive: the same functions the
@@ -316,6 +329,7 @@ window.whitted = {
 
   thumbnails: false,
   reloads: 0,
+  following: false, // whether the page polls for reloads (with --watch only)
   probe,
   select,
   showTrees,

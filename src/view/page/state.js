@@ -44,14 +44,23 @@ async function fetchOk(path) {
   return response;
 }
 const getJson = async (path) => (await fetchOk(path)).json();
-async function fetchTile(which, name, step, tx, ty) {
-  const q = `name=${encodeURIComponent(name)}&which=${which}&step=${step}&tx=${tx}&ty=${ty}`;
-  return new Float32Array(await (await fetchOk(`/api/layer?${q}`)).arrayBuffer());
+/** A layer computed from another load of the files than the one the page shows (a reload
+ * came in between): never drawn, and the page reloads instead (`reloadSoon`, set by app.js). */
+class Stale extends Error {}
+let reloadSoon = () => {};
+async function layerFloats(q) {
+  const response = await fetchOk(`/api/layer?${q}`);
+  const version = Number(response.headers.get("X-Whitted-Version"));
+  if (version !== state.version) {
+    reloadSoon();
+    throw new Stale(`a reload came in (version ${version}, the page shows ${state.version})`);
+  }
+  return new Float32Array(await response.arrayBuffer());
 }
-async function wholeLayer(name, which, step) {
-  const q = `name=${encodeURIComponent(name)}&which=${which}&step=${step}`;
-  return new Float32Array(await (await fetchOk(`/api/layer?${q}`)).arrayBuffer());
-}
+const fetchTile = (which, name, step, tx, ty) =>
+  layerFloats(`name=${encodeURIComponent(name)}&which=${which}&step=${step}&tx=${tx}&ty=${ty}`);
+const wholeLayer = (name, which, step) =>
+  layerFloats(`name=${encodeURIComponent(name)}&which=${which}&step=${step}`);
 const info = (name) => state.meta.layers.find((l) => l.name === name);
 const isMetric = (compare) => compare !== "a" && compare !== "b";
 const whichOf = (compare) => (compare === "a" ? "main" : compare === "b" ? "reference" : compare);
