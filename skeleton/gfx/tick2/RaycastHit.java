@@ -1,0 +1,36 @@
+package gfx.tick2;
+
+/** Where a ray hit what (whitted's clean-room skeleton: docs/grade.md). */
+public class RaycastHit {
+    private final SceneObject objectHit;
+    private final double distance;
+    private final Vector3 location, normal;
+
+    /** No hit: at infinite distance, of nothing. */
+    public RaycastHit() {
+        this(null, Double.POSITIVE_INFINITY, null, null);
+    }
+
+    public RaycastHit(SceneObject objectHit, double distance, Vector3 location, Vector3 normal) {
+        this.objectHit = objectHit;
+        this.distance = distance;
+        this.location = location;
+        this.normal = normal;
+    }
+
+    public SceneObject getObjectHit() {
+        return objectHit;
+    }
+
+    public Vector3 getLocation() {
+        return location;
+    }
+
+    public Vector3 getNormal() {
+        return normal;
+    }
+
+    public double getDistance() {
+        return distance;
+    }
+}
