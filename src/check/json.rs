@@ -7,6 +7,10 @@ use super::diagnose::Diagnosis;
 use super::numbers::NumberFit;
 use super::progress::Progress;
 use super::terms::TermFit;
+use std::path::Path;
+
+use super::program::{CaseOutcome, Status, SuiteRun};
+use super::reproduce::Reproduce;
 use super::{summary, CaseReport, Findings};
 
 /// A share rounded to three decimals.
@@ -104,5 +108,40 @@ pub fn case_json(case: &CaseReport, findings: Option<&Findings>) -> Value {
     if let Some(findings) = findings {
         add_findings(&mut object, findings);
     }
+    object
+}
+
+fn outcome_json(run: &SuiteRun, outcome: &CaseOutcome, suite_dir: Option<&Path>) -> Value {
+    let report = match &outcome.status {
+        Status::Ok(case) => Some(case.as_ref()),
+        _ => None,
+    };
+    let mut object = report.map_or_else(|| json!({}), |case| case_json(case, None));
+    object["reproduce"] = Reproduce::of(&run.program, suite_dir, &outcome.case, report).json();
+    object["case"] = json!(outcome.name);
+    object["status"] = json!(outcome.status.name());
+    object["stderr_tail"] = json!(outcome.stderr_tail);
+    if let Status::WrongSize { width, height } = outcome.status {
+        object["width"] = json!(width);
+        object["height"] = json!(height);
+    }
+    if let Status::Crashed(message)
+    | Status::NoOutput(message)
+    | Status::OutOfMemory(message)
+    | Status::OutputTooLarge(message) = &outcome.status
+    {
+        object["message"] = json!(message);
+    }
+    object
+}
+
+/// A `--program` run: every case's status and check, and the suite's findings.
+pub fn suite_json(run: &SuiteRun, suite_dir: Option<&Path>) -> Value {
+    let mut object = json!({
+        "program": run.program,
+        "passed": run.passed(),
+        "cases": run.cases.iter().map(|c| outcome_json(run, c, suite_dir)).collect::<Vec<_>>(),
+    });
+    add_findings(&mut object, &run.findings);
     object
 }

@@ -51,6 +51,10 @@ pub enum Status {
     NoOutput(String),
     /// It wrote a PNG of another size.
     WrongSize { width: u32, height: u32 },
+    /// It ran out of the memory it may use (Java's OutOfMemoryError).
+    OutOfMemory(String),
+    /// It wrote more than a file may hold (the sandbox's file size limit).
+    OutputTooLarge(String),
 }
 
 impl Status {
@@ -61,6 +65,8 @@ impl Status {
             Status::Timeout(_) => "timeout",
             Status::NoOutput(_) => "no-output",
             Status::WrongSize { .. } => "wrong-size",
+            Status::OutOfMemory(_) => "out-of-memory",
+            Status::OutputTooLarge(_) => "output-too-large",
         }
     }
 }
@@ -108,11 +114,48 @@ pub fn words(program: &str) -> Result<Vec<String>> {
     }
 }
 
+/// How a case's program is started: as the user gave it (`check --program`), or inside a
+/// sandbox (`whitted grade`). The case's arguments (`--input S --output O --bounces B`, with
+/// paths inside `dir`) are appended to the command it returns.
+pub trait Launch: Sync {
+    /// The command that runs the program, able to read and write `dir`.
+    fn command(&self, dir: &Path) -> Result<Command>;
+    /// Whether everything the program starts dies with the command (a sandbox's own process
+    /// namespace): then no orphan needs adopting, and none is looked for.
+    fn contains_descendants(&self) -> bool;
+}
+
+/// The program as given: its words, run directly.
+pub struct Plain(pub Vec<String>);
+
+impl Launch for Plain {
+    fn command(&self, _dir: &Path) -> Result<Command> {
+        let mut command = Command::new(&self.0[0]);
+        command.args(&self.0[1..]);
+        Ok(command)
+    }
+
+    fn contains_descendants(&self) -> bool {
+        false
+    }
+}
+
 /// Runs `program` over the suite and checks each image at `tolerance`.
 pub fn run_suite(program: &str, tolerance: u8, timeout: u64) -> Result<SuiteRun> {
-    let words = words(program)?;
-    let suite = cases();
-    let finished = run_programs(&words, &suite, Duration::from_secs(timeout))?;
+    let plain = Plain(words(program)?);
+    run_suite_with(&plain, program, &cases(), tolerance, timeout)
+}
+
+/// Runs the program `launch` starts (shown to the user as `program`) over `suite`, and checks
+/// each image at `tolerance`.
+pub fn run_suite_with(
+    launch: &dyn Launch,
+    program: &str,
+    suite: &[SuiteCase],
+    tolerance: u8,
+    timeout: u64,
+) -> Result<SuiteRun> {
+    let finished = run_programs(launch, suite, Duration::from_secs(timeout))?;
     let mut statuses: Vec<Option<Status>> = Vec::new();
     let mut tails = Vec::new();
     let mut scenes: Vec<(usize, Scene)> = Vec::new();
@@ -191,37 +234,45 @@ struct Running {
 /// Runs every case's program, `AT_ONCE` at a time, and returns each one's result and standard
 /// error tail in suite order.
 fn run_programs(
-    words: &[String],
+    launch: &dyn Launch,
     suite: &[SuiteCase],
     timeout: Duration,
 ) -> Result<Vec<(Ran, String)>> {
     let mut results: Vec<Option<(Ran, String)>> = suite.iter().map(|_| None).collect();
     let mut running: Vec<Running> = Vec::new();
     let mut next = 0;
-    orphans::adopt();
+    let orphans = !launch.contains_descendants();
+    let kill_orphans = || {
+        if orphans {
+            orphans::kill_adopted();
+        }
+    };
+    if orphans {
+        orphans::adopt();
+    }
     loop {
         if interrupt::requested() {
             for mut r in running.drain(..) {
                 stop(&mut r);
             }
-            orphans::kill_adopted();
+            kill_orphans();
             interrupt::check()?;
         }
         while running.len() < AT_ONCE && next < suite.len() {
-            match start(words, &suite[next], next) {
+            match start(launch, &suite[next], next) {
                 Ok(r) => running.push(r),
                 Err(e) => {
                     for mut r in running.drain(..) {
                         stop(&mut r);
                     }
-                    orphans::kill_adopted();
+                    kill_orphans();
                     return Err(e);
                 }
             }
             next += 1;
         }
         if running.is_empty() {
-            orphans::kill_adopted();
+            kill_orphans();
             break;
         }
         let mut still = Vec::new();
@@ -261,7 +312,7 @@ fn run_programs(
 }
 
 /// Starts case `index`'s program in a fresh temporary directory and process group.
-fn start(words: &[String], case: &SuiteCase, index: usize) -> Result<Running> {
+fn start(launch: &dyn Launch, case: &SuiteCase, index: usize) -> Result<Running> {
     let dir = tempfile::Builder::new()
         .prefix("whitted-check-")
         .tempdir()
@@ -275,9 +326,8 @@ fn start(words: &[String], case: &SuiteCase, index: usize) -> Result<Running> {
     let scene = dir.path().join(case.file);
     std::fs::write(&scene, case.xml).map_err(|e| Error::io(&scene, "cannot write", e))?;
     let output = output_path(dir.path());
-    let mut command = Command::new(&words[0]);
+    let mut command = launch.command(dir.path())?;
     command
-        .args(&words[1..])
         .arg("--input")
         .arg(&scene)
         .arg("--output")
@@ -289,9 +339,10 @@ fn start(words: &[String], case: &SuiteCase, index: usize) -> Result<Running> {
         .stderr(Stdio::piped());
     #[cfg(unix)]
     std::os::unix::process::CommandExt::process_group(&mut command, 0);
+    let program = command.get_program().to_string_lossy().into_owned();
     let mut child = command
         .spawn()
-        .map_err(|e| Error::Usage(format!("cannot start the program `{}`: {e}", words[0])))?;
+        .map_err(|e| Error::Usage(format!("cannot start the program `{program}`: {e}")))?;
     let stderr = child.stderr.take();
     let stderr_tail = Arc::new(Mutex::new(Vec::new()));
     let tail = Arc::clone(&stderr_tail);
@@ -376,7 +427,7 @@ fn finish(mut r: Running, status: Option<ExitStatus>, timeout: Duration) -> (Ran
     let tail = stop(&mut r);
     let ran = match status {
         None => Ran::Failed(Status::Timeout(timeout.as_secs())),
-        Some(s) if !s.success() => Ran::Failed(Status::Crashed(describe(s))),
+        Some(s) if !s.success() => Ran::Failed(failure(s, &tail)),
         Some(_) => match read_output(&output_path(r.dir.path())) {
             Ok(image) if (image.width, image.height) == (WIDTH, HEIGHT) => Ran::Image(image),
             Ok(image) => Ran::Failed(Status::WrongSize {
@@ -387,6 +438,24 @@ fn finish(mut r: Running, status: Option<ExitStatus>, timeout: Duration) -> (Ran
         },
     };
     (ran, tail)
+}
+
+/// Why a program failed: a limit it hit, named (Java's OutOfMemoryError; a write past the file
+/// size limit, which kills with SIGXFSZ or, where the signal is ignored as the JVM does, fails
+/// with EFBIG, "File too large"), or a crash.
+fn failure(status: ExitStatus, tail: &str) -> Status {
+    const SIGXFSZ: i32 = 25;
+    #[cfg(unix)]
+    let signal = std::os::unix::process::ExitStatusExt::signal(&status);
+    #[cfg(not(unix))]
+    let signal: Option<i32> = None;
+    if tail.contains("OutOfMemoryError") {
+        Status::OutOfMemory(describe(status))
+    } else if signal == Some(SIGXFSZ) || tail.contains("File too large") {
+        Status::OutputTooLarge(describe(status))
+    } else {
+        Status::Crashed(describe(status))
+    }
 }
 
 /// How a program that failed ended.

@@ -4,11 +4,11 @@
 
 use std::path::Path;
 
-use serde_json::{json, Value};
+use serde_json::Value;
 
 use crate::check::diagnose::Diagnosis;
-use crate::check::json::{add_findings, case_json};
-use crate::check::program::{run_suite, CaseOutcome, Status, SuiteRun, HEIGHT, WIDTH};
+use crate::check::json::{case_json, suite_json};
+use crate::check::program::{run_suite, Status, SuiteRun, HEIGHT, WIDTH};
 use crate::check::report::{contact_sheet, heat_map, ReportRow};
 use crate::check::reproduce::{explain_commands, Reproduce};
 use crate::check::suite;
@@ -266,36 +266,6 @@ fn case_text(case: &CaseReport, findings: &Findings, input: Option<&std::path::P
     out.trim_end().to_string()
 }
 
-fn outcome_json(run: &SuiteRun, outcome: &CaseOutcome, suite_dir: Option<&Path>) -> Value {
-    let report = match &outcome.status {
-        Status::Ok(case) => Some(case.as_ref()),
-        _ => None,
-    };
-    let mut object = report.map_or_else(|| json!({}), |case| case_json(case, None));
-    object["reproduce"] = Reproduce::of(&run.program, suite_dir, &outcome.case, report).json();
-    object["case"] = json!(outcome.name);
-    object["status"] = json!(outcome.status.name());
-    object["stderr_tail"] = json!(outcome.stderr_tail);
-    if let Status::WrongSize { width, height } = outcome.status {
-        object["width"] = json!(width);
-        object["height"] = json!(height);
-    }
-    if let Status::Crashed(message) | Status::NoOutput(message) = &outcome.status {
-        object["message"] = json!(message);
-    }
-    object
-}
-
-fn suite_json(run: &SuiteRun, suite_dir: Option<&Path>) -> Value {
-    let mut object = json!({
-        "program": run.program,
-        "passed": run.passed(),
-        "cases": run.cases.iter().map(|c| outcome_json(run, c, suite_dir)).collect::<Vec<_>>(),
-    });
-    add_findings(&mut object, &run.findings);
-    object
-}
-
 fn suite_text(run: &SuiteRun, suite_dir: Option<&Path>) -> String {
     let mut out = format!("{} over {} cases:\n", run.program, run.cases.len());
     for line in opening(&run.findings) {
@@ -312,9 +282,10 @@ fn suite_text(run: &SuiteRun, suite_dir: Option<&Path>) -> String {
             Status::WrongSize { width, height } => {
                 format!("wrong-size: wrote {width}x{height}, expected {WIDTH}x{HEIGHT}")
             }
-            Status::Crashed(message) | Status::NoOutput(message) => {
-                format!("{}: {message}", c.status.name())
-            }
+            Status::Crashed(message)
+            | Status::NoOutput(message)
+            | Status::OutOfMemory(message)
+            | Status::OutputTooLarge(message) => format!("{}: {message}", c.status.name()),
             Status::Timeout(seconds) => format!("timeout: still running after {seconds} s"),
         };
         out += &format!("  {:<28} {detail}\n", c.name);
