@@ -180,7 +180,8 @@ fn a_png_bomb_is_refused_by_check_before_its_buffers_are_allocated() {
     let bomb = dir.path().join("bomb.png");
     png_bomb(&bomb);
     assert!(std::fs::metadata(&bomb).expect("bomb").len() < 8 << 20);
-    // 1.5 GiB: the decode fits; the check's renders at this size (6 GiB) do not.
+    // 1.5 GiB: the decode fits; the check's renders at this size (6 GiB) do not. (With --view
+    // the URL may come first, when reading took longer than the viewer waits before serving.)
     for extra in [&[][..], &["--json"], &["--view", "--no-browser"]] {
         let mut args = vec!["check", "bomb.png"];
         args.extend_from_slice(extra);
