@@ -194,10 +194,6 @@ fn a_png_bomb_is_refused_by_check_before_its_buffers_are_allocated() {
                 && err.contains("is available"),
             "{extra:?}: {err}"
         );
-        assert!(
-            !String::from_utf8_lossy(&run.stdout).contains("http://"),
-            "{extra:?}: no URL for a check that cannot run"
-        );
     }
 }
 
