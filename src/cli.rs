@@ -6,6 +6,7 @@ use std::path::PathBuf;
 use clap::{Args, CommandFactory, FromArgMatches, Parser, Subcommand};
 
 mod check;
+mod grade;
 mod look;
 mod parse;
 mod values;
@@ -16,6 +17,7 @@ use crate::output::exr::ExrOptions;
 use crate::plan::{RenderRequest, ToneRequest};
 use crate::sheet::SheetOptions;
 pub use check::CheckArgs;
+pub use grade::GradeArgs;
 pub use look::{ExplainArgs, RelightArgs, ServeArgs, ViewArgs};
 use parse::*;
 pub use values::{CompressionArg, ToneMapArg};
@@ -82,6 +84,9 @@ pub enum Command {
     /// Test a Tick 2 image (or program) against the reference, and name the mistake that made
     /// it differ.
     Check(CheckArgs),
+    /// Grade a whole class: every submission of Moodle's zip compiled and run in a sandbox,
+    /// checked, and written up (a report per student, the class's mistakes, Moodle's grades).
+    Grade(GradeArgs),
     /// A local web viewer for an EXR (or PNG, JPEG, TIFF, HDR): layers, zoom, tone maps, error metrics, ray trees, relighting.
     View(ViewArgs),
     /// Recombine an EXR's light layers with new gains (light groups), without re-rendering.

@@ -4,6 +4,7 @@ pub mod check;
 pub mod completions;
 pub mod diff;
 pub mod explain;
+pub mod grade;
 pub mod info;
 pub mod man;
 pub mod merge;

@@ -40,6 +40,7 @@ pub mod film;
 pub mod fingerprint;
 pub mod frame;
 pub mod geometry;
+pub mod grade;
 pub mod input;
 pub mod interrupt;
 pub mod memory;

@@ -24,6 +24,7 @@ fn main() -> ExitCode {
         Some(Command::Merge(args)) => commands::merge::run(args).map(|()| true),
         Some(Command::Explain(args)) => commands::explain::run(args).map(|()| true),
         Some(Command::Check(args)) => commands::check::run(args),
+        Some(Command::Grade(args)) => commands::grade::run(args).map(|()| true),
         Some(Command::View(args)) => commands::view::run(args).map(|()| true),
         Some(Command::Relight(args)) => commands::relight::run(args).map(|()| true),
         Some(Command::Regions(args)) => commands::regions::run(args).map(|()| true),

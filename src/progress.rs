@@ -21,10 +21,15 @@ pub struct Progress {
 impl Progress {
     /// A bar over `rows` rows; `quiet` or a non-terminal stderr keep it hidden for good.
     pub fn new(rows: u64, quiet: bool) -> Self {
-        let bar = ProgressBar::with_draw_target(Some(rows), ProgressDrawTarget::hidden());
-        if let Ok(style) = ProgressStyle::with_template(
-            "{spinner} rendering [{bar:40}] {pos}/{len} rows, {eta} left",
-        ) {
+        Progress::counting(rows, quiet, "rendering", "rows")
+    }
+
+    /// A bar over `total` things (`unit`) that `doing` goes through.
+    pub fn counting(total: u64, quiet: bool, doing: &str, unit: &str) -> Self {
+        let bar = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::hidden());
+        if let Ok(style) = ProgressStyle::with_template(&format!(
+            "{{spinner}} {doing} [{{bar:40}}] {{pos}}/{{len}} {unit}, {{eta}} left"
+        )) {
             bar.set_style(style.progress_chars("=> "));
         }
         Progress {

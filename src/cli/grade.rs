@@ -1,0 +1,91 @@
+//! Arguments of `whitted grade` (docs/grade.md).
+
+use std::path::PathBuf;
+
+use clap::Args;
+
+use super::parse::*;
+use crate::grade::{Grading, Rerun};
+
+#[derive(Debug, Clone, Args)]
+pub struct GradeArgs {
+    /// Moodle's "Download all submissions" zip, a folder with a folder per student, or one
+    /// student's project folder
+    #[arg(value_name = "SUBMISSIONS")]
+    pub submissions: PathBuf,
+
+    /// Where the reports, class.csv, mistakes.csv, moodle.csv and index.html go (made if
+    /// missing; a rerun into it skips the students already graded)
+    #[arg(short, long, value_name = "OUTDIR")]
+    pub output: PathBuf,
+
+    /// The course's gfx/tick2 sources to compile against [default: whitted's clean-room
+    /// skeleton, with the same API]
+    #[arg(long, value_name = "DIR")]
+    pub skeleton: Option<PathBuf>,
+
+    /// Students graded at once [default: the cores]
+    #[arg(short, long, value_name = "N", value_parser = parse_jobs)]
+    pub jobs: Option<usize>,
+
+    /// Seconds each compilation and each case may take
+    #[arg(long, value_name = "SECONDS", default_value_t = 60, value_parser = parse_timeout)]
+    pub timeout: u64,
+
+    /// Memory for each program in MiB (the JVM's heap gets half)
+    #[arg(long, value_name = "MIB", default_value_t = 1024, value_parser = parse_memory)]
+    pub memory: u64,
+
+    /// Grade finished students again: `failed` (errors and timeouts) or `all`
+    #[arg(long, value_name = "WHICH", value_enum)]
+    pub rerun: Option<Rerun>,
+
+    /// Run the students' code without a sandbox: only for code you trust (every report says so)
+    #[arg(long)]
+    pub no_sandbox: bool,
+
+    /// The grade, out of 100: `pass-fail` (100 when every case passes) or `fraction` (the
+    /// share of cases passed)
+    #[arg(long, value_name = "HOW", value_enum, default_value = "pass-fail")]
+    pub grade: Grading,
+
+    /// Largest difference of a channel, in LSB, that still passes
+    #[arg(long, value_name = "LSB", default_value_t = 2)]
+    pub tolerance: u8,
+
+    /// Grade only the K-th of N shares of the class (a farm's array task), leaving the class
+    /// files to a run without --part
+    #[arg(long, value_name = "K/N", value_parser = parse_part)]
+    pub part: Option<(usize, usize)>,
+
+    /// No progress bar
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+fn parse_jobs(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(n) if (1..=1024).contains(&n) => Ok(n),
+        _ => Err(format!("expected a whole number from 1 to 1024, got `{s}`")),
+    }
+}
+
+fn parse_memory(s: &str) -> Result<u64, String> {
+    match s.trim().parse::<u64>() {
+        Ok(n) if (64..=1 << 20).contains(&n) => Ok(n),
+        _ => Err(format!("expected MiB from 64 to 1048576, got `{s}`")),
+    }
+}
+
+fn parse_part(s: &str) -> Result<(usize, usize), String> {
+    let parsed = s.split_once('/').and_then(|(k, n)| {
+        Some((
+            k.trim().parse::<usize>().ok()?,
+            n.trim().parse::<usize>().ok()?,
+        ))
+    });
+    match parsed {
+        Some((k, n)) if n >= 1 && (1..=n).contains(&k) && n <= 100_000 => Ok((k, n)),
+        _ => Err(format!("expected K/N with 1 <= K <= N, got `{s}`")),
+    }
+}

@@ -1,0 +1,45 @@
+//! `whitted grade SUBMISSIONS -o OUTDIR`: a whole class (docs/grade.md). Exit 0 when the class
+//! is graded (whatever the students' verdicts), 2 when it cannot be, 130 on Ctrl-C (the
+//! students finished by then are kept).
+
+use crate::cli::GradeArgs;
+use crate::error::Result;
+use crate::grade::{self, Limits, Options};
+use crate::output::stdout;
+
+pub fn run(args: &GradeArgs) -> Result<()> {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let options = Options {
+        submissions: args.submissions.clone(),
+        outdir: args.output.clone(),
+        skeleton: args.skeleton.clone(),
+        jobs: args.jobs.unwrap_or(cores),
+        limits: Limits {
+            memory_mib: args.memory,
+            seconds: args.timeout,
+        },
+        rerun: args.rerun,
+        no_sandbox: args.no_sandbox,
+        grading: args.grade,
+        tolerance: args.tolerance,
+        part: args.part,
+        quiet: args.quiet,
+    };
+    let summary = grade::run(&options)?;
+    let statuses: Vec<String> = summary
+        .statuses
+        .iter()
+        .map(|(status, n)| format!("{n} {status}"))
+        .collect();
+    let mut text = format!(
+        "{} students: {}; graded now {}, already graded {}",
+        summary.students,
+        statuses.join(", "),
+        summary.graded_now,
+        summary.skipped
+    );
+    if let Some(index) = &summary.index {
+        text += &format!("\n{}", index.display());
+    }
+    stdout::print_line(&text)
+}

@@ -1,0 +1,481 @@
+//! `whitted grade SUBMISSIONS -o OUTDIR`: a whole class at once (docs/grade.md). Every
+//! student's `Plane.java` and `Renderer.java` are compiled against the skeleton and run over
+//! the suite in a sandbox, checked as `check --program` checks one student, and written up:
+//! a `result.json` (Gradescope's shape), a report to send, and the class's own pages.
+//!
+//! Runs survive faults: each student's files are written atomically, `result.json` last,
+//! keyed by a hash of what decides the result (their two files, the skeleton, the scenes,
+//! whitted's version and the settings), so a rerun skips whoever is finished and Ctrl-C keeps
+//! them; the class files are made from the `result.json`s alone.
+
+mod archive;
+mod class;
+mod compile;
+mod html;
+mod intake;
+mod moodle;
+mod report;
+mod result;
+mod sandbox;
+mod skeleton;
+mod student;
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
+
+use serde_json::Value;
+
+pub use result::Grading;
+pub use sandbox::Limits;
+
+use crate::check::suite::cases;
+use crate::error::{Error, Result};
+use crate::fingerprint::fingerprint;
+use intake::Submission;
+use sandbox::Sandbox;
+use skeleton::Skeleton;
+use student::{Outcome, Setup};
+
+/// Which finished students a run grades again.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Rerun {
+    /// Only those whose result ended in an error or a timeout.
+    Failed,
+    /// Everyone.
+    All,
+}
+
+/// What `whitted grade` was asked.
+#[derive(Debug, Clone)]
+pub struct Options {
+    pub submissions: PathBuf,
+    pub outdir: PathBuf,
+    pub skeleton: Option<PathBuf>,
+    pub jobs: usize,
+    pub limits: Limits,
+    pub rerun: Option<Rerun>,
+    pub no_sandbox: bool,
+    pub grading: Grading,
+    pub tolerance: u8,
+    /// Only the `k`-th of `n` shares of the class (a Slurm array task); the class files are
+    /// then left to the run that aggregates.
+    pub part: Option<(usize, usize)>,
+    pub quiet: bool,
+}
+
+/// What a run did, for the closing lines.
+#[derive(Debug, Clone, Default)]
+pub struct Summary {
+    pub students: usize,
+    pub graded_now: usize,
+    pub skipped: usize,
+    /// Students per status, over the whole class.
+    pub statuses: Vec<(String, usize)>,
+    /// The class page, when this run wrote it.
+    pub index: Option<PathBuf>,
+}
+
+/// Grades the class of `options`.
+pub fn run(options: &Options) -> Result<Summary> {
+    refuse_outdir_inside(&options.submissions, &options.outdir)?;
+    let submissions = intake::read(&options.submissions)?;
+    let skeleton = match &options.skeleton {
+        Some(dir) => Skeleton::from_dir(dir)?,
+        None => Skeleton::clean_room(),
+    };
+    let java = jdk_tool("java")?;
+    let javac = jdk_tool("javac")?;
+    let sandbox = match options.no_sandbox {
+        true => Sandbox::None,
+        false => Sandbox::bubblewrap(&java)?,
+    };
+    let students_dir = options.outdir.join("students");
+    std::fs::create_dir_all(&students_dir)
+        .map_err(|e| Error::io(&students_dir, "cannot create", e))?;
+    let work = tempfile::Builder::new()
+        .prefix("whitted-grade-")
+        .tempdir()
+        .map_err(|e| Error::io(std::env::temp_dir(), "cannot create a folder", e))?;
+    let setup = Setup {
+        sandbox,
+        java,
+        javac,
+        skeleton,
+        suite: cases(),
+        limits: options.limits,
+        tolerance: options.tolerance,
+        work: work.path().to_path_buf(),
+    };
+    let mine: Vec<&Submission> = submissions
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| options.part.is_none_or(|(k, n)| i % n == k - 1))
+        .map(|(_, s)| s)
+        .collect();
+    let todo: Vec<(&Submission, String)> = mine
+        .iter()
+        .map(|s| (*s, key(&setup, options, s)))
+        .filter(|(s, key)| needs_grading(&students_dir, s, key, options.rerun))
+        .collect();
+    let skipped = mine.len() - todo.len();
+    // Without a sandbox, orphans of a program are found as this process's children, which
+    // would be the other students' programs too: one student at a time then.
+    let jobs = if setup.sandbox.is_none() {
+        1
+    } else {
+        options.jobs.max(1)
+    };
+    grade_all(&setup, options, &students_dir, &todo, jobs)?;
+    let rows = read_rows(&students_dir, &submissions);
+    let mut summary = Summary {
+        students: submissions.len(),
+        graded_now: todo.len(),
+        skipped,
+        statuses: count_statuses(&rows),
+        index: None,
+    };
+    if options.part.is_none() {
+        summary.index = Some(write_class(&options.outdir, &rows)?);
+    }
+    Ok(summary)
+}
+
+/// OUTDIR inside the submissions folder would be read as a student next time.
+fn refuse_outdir_inside(submissions: &Path, outdir: &Path) -> Result<()> {
+    let (Ok(inputs), Some(parent)) = (submissions.canonicalize(), absolute_parent(outdir)) else {
+        return Ok(());
+    };
+    if inputs.is_dir() && parent.starts_with(&inputs) {
+        return Err(Error::Usage(format!(
+            "-o {} is inside the submissions {}: give a folder outside them",
+            outdir.display(),
+            submissions.display()
+        )));
+    }
+    Ok(())
+}
+
+/// `path` made absolute through its nearest existing ancestor.
+fn absolute_parent(path: &Path) -> Option<PathBuf> {
+    let absolute = std::path::absolute(path).ok()?;
+    let mut existing = absolute.as_path();
+    let mut rest = Vec::new();
+    while !existing.exists() {
+        rest.push(existing.file_name()?.to_os_string());
+        existing = existing.parent()?;
+    }
+    let mut resolved = existing.canonicalize().ok()?;
+    for part in rest.iter().rev() {
+        resolved.push(part);
+    }
+    Some(resolved)
+}
+
+/// `java` or `javac`, from PATH.
+fn jdk_tool(name: &str) -> Result<PathBuf> {
+    sandbox::find_in_path(name).ok_or_else(|| {
+        Error::Environment(format!(
+            "whitted grade compiles and runs the students' Java: `{name}` is not on PATH \
+             (`apt install default-jdk-headless`)"
+        ))
+    })
+}
+
+/// What decides a student's result, hashed: their two files, the skeleton, the suite,
+/// whitted's version and the settings that change a verdict or a grade.
+fn key(setup: &Setup, options: &Options, submission: &Submission) -> String {
+    let mut parts: Vec<Vec<u8>> = vec![env!("CARGO_PKG_VERSION").as_bytes().to_vec()];
+    match &submission.files {
+        Ok(files) => {
+            parts.push(files.plane.clone());
+            parts.push(files.renderer.clone());
+        }
+        Err(refusal) => parts.push(refusal.message.as_bytes().to_vec()),
+    }
+    for (name, bytes) in &setup.skeleton.files {
+        parts.push(name.as_bytes().to_vec());
+        parts.push(bytes.clone());
+    }
+    for case in &setup.suite {
+        parts.push(case.xml.as_bytes().to_vec());
+        parts.push(case.bounces.to_le_bytes().to_vec());
+    }
+    let settings = format!(
+        "{:?} {} {} {} {}",
+        options.grading,
+        options.tolerance,
+        options.limits.memory_mib,
+        options.limits.seconds,
+        options.no_sandbox
+    );
+    parts.push(settings.into_bytes());
+    // Each part's length first, so that moving bytes from one part to the next changes it.
+    let framed: Vec<Vec<u8>> = parts
+        .iter()
+        .flat_map(|p| [(p.len() as u64).to_le_bytes().to_vec(), p.clone()])
+        .collect();
+    let slices: Vec<&[u8]> = framed.iter().map(Vec::as_slice).collect();
+    fingerprint(&slices)
+}
+
+/// The result.json a student has, if it can be read.
+fn read_result(students_dir: &Path, id: &str) -> Option<Value> {
+    let path = students_dir.join(id).join("result.json");
+    let bytes = std::fs::read(path).ok()?;
+    serde_json::from_slice(&bytes).ok()
+}
+
+/// Whether `submission` is graded on this run: no result under this key, or `--rerun` says so.
+fn needs_grading(
+    students_dir: &Path,
+    submission: &Submission,
+    key: &str,
+    rerun: Option<Rerun>,
+) -> bool {
+    let Some(row) = read_result(students_dir, &submission.id).and_then(|r| result::row(&r)) else {
+        return true;
+    };
+    match rerun {
+        Some(Rerun::All) => true,
+        Some(Rerun::Failed) => row.failed || row.key != key,
+        None => row.key != key,
+    }
+}
+
+/// Grades `todo`, `jobs` students at a time, each written as soon as it is done.
+fn grade_all(
+    setup: &Setup,
+    options: &Options,
+    students_dir: &Path,
+    todo: &[(&Submission, String)],
+    jobs: usize,
+) -> Result<()> {
+    let progress = crate::progress::Progress::counting(
+        todo.len() as u64,
+        options.quiet,
+        "grading",
+        "students",
+    );
+    let next = AtomicUsize::new(0);
+    let failure: Mutex<Option<Error>> = Mutex::new(None);
+    std::thread::scope(|scope| {
+        for slot in 0..jobs.min(todo.len()) {
+            let (next, failure, progress) = (&next, &failure, &progress);
+            scope.spawn(move || loop {
+                let stop = failure.lock().map(|f| f.is_some()).unwrap_or(true);
+                let i = next.fetch_add(1, Ordering::SeqCst);
+                if stop || i >= todo.len() || crate::interrupt::requested() {
+                    return;
+                }
+                let (submission, key) = &todo[i];
+                match grade_one(setup, options, students_dir, submission, key, slot) {
+                    Ok(()) => progress.advance(1),
+                    Err(e) => {
+                        if let Ok(mut f) = failure.lock() {
+                            f.get_or_insert(e);
+                        }
+                        return;
+                    }
+                }
+            });
+        }
+    });
+    progress.finish();
+    crate::interrupt::check()?;
+    match failure.into_inner().ok().flatten() {
+        Some(e) => Err(e),
+        None => Ok(()),
+    }
+}
+
+/// Grades one student and writes their folder: report.png, report.html, then result.json.
+fn grade_one(
+    setup: &Setup,
+    options: &Options,
+    students_dir: &Path,
+    submission: &Submission,
+    key: &str,
+    slot: usize,
+) -> Result<()> {
+    let outcome = match student::grade(setup, submission, slot) {
+        Ok(outcome) => outcome,
+        Err(e @ Error::Interrupted { .. }) => return Err(e),
+        // Anything else that stops this student (the program could not be started, a
+        // folder not written) is their status, not the class's end.
+        Err(e) => Outcome::Refused {
+            status: "error",
+            message: e.to_string(),
+        },
+    };
+    let sandboxed = !setup.sandbox.is_none();
+    let skeleton = &setup.skeleton.source;
+    let result = result::build(
+        submission,
+        &outcome,
+        key,
+        options.grading,
+        sandboxed,
+        skeleton,
+    );
+    let feedback = result["extra_data"]["feedback"]
+        .as_str()
+        .unwrap_or("")
+        .to_string();
+    let dir = students_dir.join(&submission.id);
+    std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, "cannot create", e))?;
+    let mut png = Vec::new();
+    crate::output::png::write_png(&mut png, &report::sheet(&outcome, &feedback))
+        .map_err(|e| Error::Environment(format!("cannot encode a report: {e}")))?;
+    write_atomic(&dir.join("report.png"), &png)?;
+    let page = report::page(submission, &outcome, &feedback, sandboxed);
+    write_atomic(&dir.join("report.html"), page.as_bytes())?;
+    let json = serde_json::to_string_pretty(&result).unwrap_or_default();
+    write_atomic(&dir.join("result.json"), json.as_bytes())
+}
+
+/// Writes `bytes` to `path` through a temporary file in the same folder, renamed over it.
+fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    use std::io::Write;
+    let dir = path.parent().unwrap_or(Path::new("."));
+    let mut file =
+        tempfile::NamedTempFile::new_in(dir).map_err(|e| Error::io(dir, "cannot write in", e))?;
+    file.write_all(bytes)
+        .and_then(|()| file.as_file().sync_all())
+        .map_err(|e| Error::io(path, "cannot write", e))?;
+    file.persist(path)
+        .map_err(|e| Error::io(path, "cannot write", e.error))?;
+    Ok(())
+}
+
+/// Every student's row, from their result.json; one without is an `error` row.
+fn read_rows(students_dir: &Path, submissions: &[Submission]) -> Vec<result::Row> {
+    submissions
+        .iter()
+        .map(|s| {
+            read_result(students_dir, &s.id)
+                .and_then(|r| result::row(&r))
+                .unwrap_or_else(|| result::Row {
+                    id: s.id.clone(),
+                    name: s.name.clone(),
+                    status: "error".into(),
+                    passed: 0,
+                    cases: 0,
+                    case_passes: Vec::new(),
+                    diagnosis: Vec::new(),
+                    grade: 0.0,
+                    feedback: "not graded yet".into(),
+                    failed: true,
+                    key: String::new(),
+                })
+        })
+        .collect()
+}
+
+fn count_statuses(rows: &[result::Row]) -> Vec<(String, usize)> {
+    let mut counts: std::collections::BTreeMap<String, usize> = Default::default();
+    for r in rows {
+        *counts.entry(r.status.clone()).or_default() += 1;
+    }
+    counts.into_iter().collect()
+}
+
+/// The class files; returns the path of index.html.
+fn write_class(outdir: &Path, rows: &[result::Row]) -> Result<PathBuf> {
+    let now = modified_now();
+    write_atomic(&outdir.join("class.csv"), class::class_csv(rows).as_bytes())?;
+    write_atomic(
+        &outdir.join("mistakes.csv"),
+        class::mistakes_csv(rows).as_bytes(),
+    )?;
+    write_atomic(
+        &outdir.join("moodle.csv"),
+        class::moodle_csv(rows, &now).as_bytes(),
+    )?;
+    let index = outdir.join("index.html");
+    write_atomic(
+        &index,
+        class::index_html(rows, "Tick 2: the class").as_bytes(),
+    )?;
+    Ok(index)
+}
+
+/// "Last modified (grade)" as Moodle writes it in its worksheets: `Wednesday, 2 December 2026,
+/// 9:15 AM`, in UTC.
+fn modified_now() -> String {
+    let seconds = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_secs())
+        .unwrap_or(0);
+    moodle_date(seconds)
+}
+
+/// Civil date of `seconds` since 1970 (UTC), in Moodle's worksheet format. Hand-written (Howard
+/// Hinnant's days-to-civil): one date, not worth a calendar crate in every build.
+fn moodle_date(seconds: u64) -> String {
+    const DAYS: [&str; 7] = [
+        "Thursday",
+        "Friday",
+        "Saturday",
+        "Sunday",
+        "Monday",
+        "Tuesday",
+        "Wednesday",
+    ];
+    const MONTHS: [&str; 12] = [
+        "January",
+        "February",
+        "March",
+        "April",
+        "May",
+        "June",
+        "July",
+        "August",
+        "September",
+        "October",
+        "November",
+        "December",
+    ];
+    let days = (seconds / 86_400) as i64;
+    let (hour, minute) = ((seconds % 86_400) / 3600, (seconds % 3600) / 60);
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let day = doy - (153 * mp + 2) / 5 + 1;
+    let month = if mp < 10 { mp + 3 } else { mp - 9 };
+    let year = yoe + era * 400 + i64::from(month <= 2);
+    let (h12, half) = match hour {
+        0 => (12, "AM"),
+        1..=11 => (hour, "AM"),
+        12 => (12, "PM"),
+        _ => (hour - 12, "PM"),
+    };
+    format!(
+        "{}, {day} {} {year}, {h12}:{minute:02} {half}",
+        DAYS[days.rem_euclid(7) as usize],
+        MONTHS[(month - 1) as usize]
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn moodle_dates_are_civil_dates() {
+        assert_eq!(moodle_date(0), "Thursday, 1 January 1970, 12:00 AM");
+        // 2026-12-02 09:15 UTC.
+        assert_eq!(
+            moodle_date(1_796_202_900),
+            "Wednesday, 2 December 2026, 9:15 AM"
+        );
+        // 2024-02-29 13:05 UTC, a leap day.
+        assert_eq!(
+            moodle_date(1_709_211_900),
+            "Thursday, 29 February 2024, 1:05 PM"
+        );
+    }
+}

@@ -1,0 +1,224 @@
+//! The two files a submission gives (`Plane.java`, `Renderer.java`), found in a zip, a folder or
+//! a zip inside either, without unpacking anything to disk: nothing a submission names is ever
+//! a path we write to, so `../` and absolute names, links and devices cannot reach outside
+//! OUTDIR (they are not even looked at as files). What is read is capped while it is
+//! decompressed, whatever sizes the archive declares (a zip bomb stops at the cap).
+
+use std::io::{Cursor, Read, Seek};
+use std::path::Path;
+
+/// The files a submission gives, by name.
+pub const WANTED: [&str; 2] = ["Plane.java", "Renderer.java"];
+/// A source file larger than this is not a student's Plane or Renderer.
+pub const MAX_SOURCE: u64 = 1 << 20;
+/// A zip inside a submission is read only up to this size.
+const MAX_INNER_ZIP: u64 = 64 << 20;
+/// Entries looked at in one archive, and files in one folder walk.
+const MAX_ENTRIES: usize = 100_000;
+/// How deep a folder walk goes.
+const MAX_DEPTH: usize = 16;
+
+/// One file found: where it was, and its bytes (or why they could not be had).
+#[derive(Debug, Clone)]
+pub struct Found {
+    /// The path in the submission, as text (lossy for names that are not UTF-8).
+    pub path: String,
+    pub bytes: std::result::Result<Vec<u8>, String>,
+}
+
+/// What a submission holds of the wanted files: every copy of each, and what was refused on
+/// the way (said in the student's report).
+#[derive(Debug, Clone, Default)]
+pub struct Holdings {
+    pub found: Vec<Found>,
+    pub notes: Vec<String>,
+}
+
+impl Holdings {
+    fn add(&mut self, path: String, bytes: std::result::Result<Vec<u8>, String>) {
+        self.found.push(Found { path, bytes });
+    }
+}
+
+/// The file name of a path in an archive (either separator).
+fn file_name(path: &str) -> &str {
+    path.rsplit(['/', '\\']).next().unwrap_or(path)
+}
+
+fn is_zip_name(path: &str) -> bool {
+    file_name(path).to_ascii_lowercase().ends_with(".zip")
+}
+
+/// Reads at most `cap` bytes of `reader`; Err when there are more.
+fn read_capped(reader: impl Read, cap: u64, what: &str) -> std::result::Result<Vec<u8>, String> {
+    let mut bytes = Vec::new();
+    match reader.take(cap + 1).read_to_end(&mut bytes) {
+        Ok(_) if bytes.len() as u64 > cap => Err(format!("{what} is larger than {cap} bytes")),
+        Ok(_) => Ok(bytes),
+        Err(e) => Err(format!("{what} cannot be read: {e}")),
+    }
+}
+
+/// The entries of a zip, grouped by their first path component (Moodle's folder per
+/// student): (folder, path within it, index). Entries at the top level have an empty folder.
+pub fn top_folders<R: Read + Seek>(zip: &mut zip::ZipArchive<R>) -> Vec<(String, String, usize)> {
+    (0..zip.len().min(MAX_ENTRIES))
+        .filter_map(|i| {
+            let entry = zip.by_index_raw(i).ok()?;
+            let name = String::from_utf8_lossy(entry.name_raw()).into_owned();
+            let trimmed = name.trim_start_matches(['/', '\\']);
+            Some(match trimmed.split_once(['/', '\\']) {
+                Some((folder, rest)) => (folder.to_string(), rest.to_string(), i),
+                None => (String::new(), trimmed.to_string(), i),
+            })
+        })
+        .collect()
+}
+
+/// Looks in entries `indices` of `zip` (paths `paths`) for the wanted files and for zips to
+/// look into (one level: a zip in a zip in a zip is a note, not a search).
+pub fn search_zip<R: Read + Seek>(
+    zip: &mut zip::ZipArchive<R>,
+    entries: &[(String, usize)],
+    holdings: &mut Holdings,
+    nested: bool,
+) {
+    for (path, i) in entries {
+        let name = file_name(path);
+        let wanted = WANTED.contains(&name);
+        if !wanted && !is_zip_name(path) {
+            continue;
+        }
+        let entry = match zip.by_index(*i) {
+            Ok(entry) => entry,
+            Err(e) => {
+                holdings
+                    .notes
+                    .push(format!("{path}: cannot be read from the zip ({e})"));
+                continue;
+            }
+        };
+        // Links, devices and folders are never read as files.
+        let regular = entry.is_file()
+            && entry
+                .unix_mode()
+                .is_none_or(|mode| mode & 0o170000 == 0o100000 || mode & 0o170000 == 0);
+        if !regular {
+            holdings
+                .notes
+                .push(format!("{path}: not a regular file, ignored"));
+            continue;
+        }
+        if wanted {
+            let bytes = read_capped(entry, MAX_SOURCE, path);
+            holdings.add(path.clone(), bytes);
+        } else if nested {
+            holdings.notes.push(format!(
+                "{path}: a zip inside a zip inside the submission, not opened"
+            ));
+        } else {
+            match read_capped(entry, MAX_INNER_ZIP, path) {
+                Ok(bytes) => search_inner_zip(path, bytes, holdings),
+                Err(e) => holdings.notes.push(e),
+            }
+        }
+    }
+}
+
+/// Looks into a zip found inside a submission.
+fn search_inner_zip(path: &str, bytes: Vec<u8>, holdings: &mut Holdings) {
+    match zip::ZipArchive::new(Cursor::new(bytes)) {
+        Ok(mut inner) => {
+            let entries: Vec<(String, usize)> = top_folders(&mut inner)
+                .into_iter()
+                .map(|(folder, rest, i)| {
+                    let inside = if folder.is_empty() {
+                        rest
+                    } else {
+                        format!("{folder}/{rest}")
+                    };
+                    (format!("{path}/{inside}"), i)
+                })
+                .collect();
+            search_zip(&mut inner, &entries, holdings, true);
+        }
+        Err(e) => holdings
+            .notes
+            .push(format!("{path}: not a zip that can be read ({e})")),
+    }
+}
+
+/// Looks in folder `dir` (and zips in it) for the wanted files. Links are not followed and
+/// nothing but regular files is opened (a FIFO would wait for ever).
+pub fn search_dir(dir: &Path, holdings: &mut Holdings) {
+    let mut stack = vec![(dir.to_path_buf(), 0usize)];
+    let mut seen = 0usize;
+    while let Some((at, depth)) = stack.pop() {
+        let Ok(entries) = std::fs::read_dir(&at) else {
+            holdings
+                .notes
+                .push(format!("{}: cannot be read", shown(dir, &at)));
+            continue;
+        };
+        for entry in entries.flatten() {
+            seen += 1;
+            if seen > MAX_ENTRIES {
+                holdings
+                    .notes
+                    .push("more files than are looked at; the rest ignored".into());
+                return;
+            }
+            let path = entry.path();
+            let Ok(kind) = entry.file_type() else {
+                continue;
+            };
+            let name = entry.file_name().to_string_lossy().into_owned();
+            if kind.is_dir() && depth < MAX_DEPTH {
+                stack.push((path, depth + 1));
+            } else if kind.is_file() && (WANTED.contains(&name.as_str()) || is_zip_name(&name)) {
+                let label = shown(dir, &path);
+                let cap = if is_zip_name(&name) {
+                    MAX_INNER_ZIP
+                } else {
+                    MAX_SOURCE
+                };
+                let bytes = read_regular(&path, cap, &label);
+                match (is_zip_name(&name), bytes) {
+                    (true, Ok(bytes)) => search_inner_zip(&label, bytes, holdings),
+                    (true, Err(e)) => holdings.notes.push(e),
+                    (false, bytes) => holdings.add(label, bytes),
+                }
+            } else if !kind.is_dir() && WANTED.contains(&name.as_str()) {
+                holdings.notes.push(format!(
+                    "{}: not a regular file, ignored",
+                    shown(dir, &path)
+                ));
+            }
+        }
+    }
+}
+
+/// At most `cap` bytes of the regular file at `path`: opened without following a link and
+/// without waiting (a FIFO put there since the folder was listed opens at once, and is then
+/// refused as not regular).
+fn read_regular(path: &Path, cap: u64, label: &str) -> std::result::Result<Vec<u8>, String> {
+    use std::os::unix::fs::OpenOptionsExt;
+    let flags = rustix::fs::OFlags::NOFOLLOW | rustix::fs::OFlags::NONBLOCK;
+    let file = std::fs::OpenOptions::new()
+        .read(true)
+        .custom_flags(flags.bits() as i32)
+        .open(path)
+        .map_err(|e| format!("{label} cannot be read: {e}"))?;
+    match file.metadata() {
+        Ok(m) if m.is_file() => read_capped(file, cap, label),
+        _ => Err(format!("{label}: not a regular file, ignored")),
+    }
+}
+
+/// `path` relative to the submission's folder, for the report.
+fn shown(dir: &Path, path: &Path) -> String {
+    path.strip_prefix(dir)
+        .unwrap_or(path)
+        .to_string_lossy()
+        .into_owned()
+}

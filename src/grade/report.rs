@@ -1,0 +1,173 @@
+//! What a student is sent: `report.html` (one file, images inline) and `report.png` (the
+//! contact sheet `check --report` draws): their image, the reference and where they differ
+//! for each failing case, the mistake in words with where and how to fix it, and how far
+//! through the handout they are.
+
+use super::compile::SHOWN_LINES;
+use super::html::{escape, image, STYLE};
+use super::intake::Submission;
+use super::student::Outcome;
+use crate::canvas::Canvas;
+use crate::check::program::{Status, SuiteRun};
+use crate::check::report::{contact_sheet, heat_map, ReportRow};
+use crate::check::summary;
+use crate::output::png::{PngImage, PngPixels};
+
+/// The report page of `submission`, whose result says `feedback`.
+pub fn page(submission: &Submission, outcome: &Outcome, feedback: &str, sandboxed: bool) -> String {
+    let mut body = format!(
+        "<h1>Tick 2: {}</h1>\n<p class=\"feedback\">{}</p>\n",
+        escape(&submission.name),
+        escape(feedback)
+    );
+    if !sandboxed {
+        body += "<p><strong>Graded with --no-sandbox:</strong> the program ran unconfined.</p>\n";
+    }
+    match outcome {
+        Outcome::Refused { message, .. } => {
+            body += &format!("<p>{}</p>\n", escape(message));
+        }
+        Outcome::CompileError(messages) => {
+            body += &format!(
+                "<h2>javac's first messages (up to {SHOWN_LINES} lines)</h2>\n<pre>{}</pre>\n",
+                escape(messages)
+            );
+        }
+        Outcome::CompileTimeout => body += "<p>javac did not finish within the time limit.</p>\n",
+        Outcome::Ran(run) => body += &ran(run),
+    }
+    if !submission.notes.is_empty() {
+        body += "<h2>Notes on the submission</h2>\n<ul>\n";
+        for note in &submission.notes {
+            body += &format!("<li>{}</li>\n", escape(note));
+        }
+        body += "</ul>\n";
+    }
+    format!(
+        "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
+         <meta name=\"viewport\" content=\"width=device-width\">\
+         <title>Tick 2 report: {}</title><style>{STYLE}</style></head><body>\n{body}</body></html>\n",
+        escape(&submission.name)
+    )
+}
+
+/// The cases, the diagnosis with its fixes, and the progress.
+fn ran(run: &SuiteRun) -> String {
+    let findings = &run.findings;
+    let mut out = String::new();
+    out += &format!("<p>{}</p>\n", escape(&findings.progress.sentence()));
+    if !findings.diagnosis.is_empty() {
+        out += &format!(
+            "<h2>{}</h2>\n<ol>\n",
+            escape(&summary::candidates_heading(findings))
+        );
+        for d in &findings.diagnosis {
+            let lines = summary::diagnosis_lines(d);
+            out += &format!(
+                "<li>{}</li>\n",
+                lines
+                    .iter()
+                    .map(|l| escape(l))
+                    .collect::<Vec<_>>()
+                    .join("<br>")
+            );
+        }
+        out += "</ol>\n";
+    }
+    for line in summary::opening(findings).iter().skip(1) {
+        out += &format!("<p>{}</p>\n", escape(line));
+    }
+    out += "<h2>The cases</h2>\n<table><tr><th>case</th><th>result</th></tr>\n";
+    for case in &run.cases {
+        let class = if case.passed() { "pass" } else { "fail" };
+        let what = match &case.status {
+            Status::Ok(r) if case.passed() => r.difference.verdict.name().to_string(),
+            Status::Ok(r) => format!(
+                "{}: {}",
+                r.difference.verdict.name(),
+                summary::difference_sentence(&r.difference)
+            ),
+            other => other.name().to_string(),
+        };
+        out += &format!(
+            "<tr><td>{}</td><td class=\"{class}\">{}</td></tr>\n",
+            escape(&case.name),
+            escape(&what)
+        );
+    }
+    out += "</table>\n";
+    for case in &run.cases {
+        match &case.status {
+            Status::Ok(r) if !case.passed() => {
+                let (w, h) = (r.student.width, r.student.height);
+                let heat = heat_map(&r.student, &r.reference, r.tolerance);
+                let PngPixels::Eight(heat) = heat.pixels else {
+                    continue;
+                };
+                out += &format!("<h2>{}</h2>\n", escape(&case.name));
+                for (alt, bytes) in [
+                    ("your image", r.student.bytes.clone()),
+                    ("the reference", r.reference.bytes.clone()),
+                    ("where they differ", heat),
+                ] {
+                    out += &format!(
+                        "<figure>{}<figcaption>{alt}</figcaption></figure>\n",
+                        image(w, h, bytes, alt)
+                    );
+                }
+            }
+            Status::Ok(_) => {}
+            _ if !case.stderr_tail.is_empty() => {
+                out += &format!(
+                    "<h2>{}: {}</h2>\n<pre>{}</pre>\n",
+                    escape(&case.name),
+                    case.status.name(),
+                    escape(&case.stderr_tail)
+                );
+            }
+            _ => {}
+        }
+    }
+    out
+}
+
+/// The contact sheet of the failing cases; of the first case when every one passes; of the
+/// feedback alone when nothing ran.
+pub fn sheet(outcome: &Outcome, feedback: &str) -> PngImage {
+    let Outcome::Ran(run) = outcome else {
+        let mut caption = vec![feedback.to_string()];
+        if let Outcome::CompileError(messages) = outcome {
+            caption.extend(messages.lines().take(8).map(str::to_string));
+        }
+        return caption_only(caption);
+    };
+    let mut rows: Vec<ReportRow> = run
+        .cases
+        .iter()
+        .filter_map(|c| match &c.status {
+            Status::Ok(case) if !case.difference.verdict.passes() => {
+                Some(ReportRow::of(&c.name, case, &run.findings))
+            }
+            _ => None,
+        })
+        .collect();
+    if rows.is_empty() {
+        rows.extend(run.cases.iter().find_map(|c| match &c.status {
+            Status::Ok(case) => Some(ReportRow::of(&c.name, case, &run.findings)),
+            _ => None,
+        }));
+    }
+    match rows.is_empty() {
+        true => caption_only(vec![feedback.to_string()]),
+        false => contact_sheet(&rows),
+    }
+}
+
+/// A sheet of one row of blank tiles above `caption`: for a student with no image.
+fn caption_only(caption: Vec<String>) -> PngImage {
+    let blank = || Canvas::new(160, 120, [0; 3]);
+    contact_sheet(&[ReportRow {
+        caption,
+        tiles: [blank(), blank(), blank()],
+    }])
+}

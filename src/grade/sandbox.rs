@@ -1,0 +1,253 @@
+//! Where a student's code runs: bubblewrap (Debian's `bubblewrap`, what Flatpak uses), with
+//! every namespace of its own, so that it sees no network (a loopback of its own only), a
+//! read-only system, a private /tmp, and of the files only the directories it is given: no
+//! other submission, no OUTDIR, no home. Its processes live in a process namespace of their
+//! own, so killing bwrap (`--die-with-parent` for its init) kills every descendant at once,
+//! wherever they moved to.
+//!
+//! The limits, as docs/grade.md asks: a JVM's memory by `-Xmx` (and not `RLIMIT_AS`, which
+//! breaks the JVM's reservations), processes and threads by `RLIMIT_NPROC`, file size by
+//! `RLIMIT_FSIZE`, open files by `RLIMIT_NOFILE`, CPU time by `RLIMIT_CPU` as a backstop to
+//! the wall-clock timeout. `RLIMIT_NPROC` counts per user, and not at all for root: run as
+//! root (a grading server, CI), each slot of `-j` runs as a user of its own (`SLOT_UID` +
+//! slot), so one student's fork bomb cannot starve another's JVM of threads; as any other
+//! user it counts that user's processes, and the limit is set above those already running.
+//! The limits are set by util-linux's `setpriv` and `prlimit` (present on every Debian), which
+//! exec bwrap: no code of ours runs between fork and exec.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use crate::error::{Error, Result};
+
+/// The first user id the slots of `-j` run as, when whitted runs as root: far above the ids
+/// systems give to people (Debian's highest range ends at 65534), below `(uid_t)-1`.
+const SLOT_UID: u32 = 3_000_000;
+/// Processes and threads one sandbox may have (a JVM with the serial collector uses ~20).
+pub const PROCESSES: u32 = 256;
+/// Bytes a file the program writes may have: a 640x480 PNG is under 1 MiB.
+pub const FILE_SIZE: u64 = 64 << 20;
+/// Open files at once.
+const OPEN_FILES: u32 = 1024;
+/// The private /tmp's size.
+const TMP_SIZE: u64 = 64 << 20;
+
+/// The limits one run gets.
+#[derive(Debug, Clone, Copy)]
+pub struct Limits {
+    /// Memory for the program in MiB: the JVM's heap gets half, the rest is its own.
+    pub memory_mib: u64,
+    /// Wall-clock seconds; CPU seconds are limited to a little more.
+    pub seconds: u64,
+}
+
+/// How student code is run: in bubblewrap, or (`--no-sandbox`) as it is.
+#[derive(Debug, Clone)]
+pub enum Sandbox {
+    Bubblewrap {
+        bwrap: PathBuf,
+        /// The JDK's home, bound read-only when it is not under /usr.
+        jdk: Option<PathBuf>,
+        /// Whether whitted runs as root: each slot then runs as a user of its own.
+        root: bool,
+    },
+    None,
+}
+
+impl Sandbox {
+    /// Bubblewrap, tried once with `true` inside so that a system that forbids it (no user
+    /// namespaces) says so before any student runs.
+    pub fn bubblewrap(java: &Path) -> Result<Sandbox> {
+        let bwrap = find_in_path("bwrap").ok_or_else(|| {
+            Error::Environment(
+                "whitted grade runs every student's code in bubblewrap, which is not installed: \
+                 `apt install bubblewrap` (or give --no-sandbox, which trusts every submission)"
+                    .into(),
+            )
+        })?;
+        let jdk = java
+            .canonicalize()
+            .ok()
+            .and_then(|real| real.parent()?.parent().map(Path::to_path_buf))
+            .filter(|home| !home.starts_with("/usr"));
+        let sandbox = Sandbox::Bubblewrap {
+            bwrap,
+            jdk,
+            root: rustix::process::geteuid().is_root(),
+        };
+        let dir = tempfile::tempdir()
+            .map_err(|e| Error::io(std::env::temp_dir(), "cannot create a directory", e))?;
+        let limits = Limits {
+            memory_mib: 64,
+            seconds: 10,
+        };
+        let mut probe = sandbox.command(&[String::from("true")], &[], dir.path(), 0, limits)?;
+        let out = probe
+            .output()
+            .map_err(|e| Error::Environment(format!("cannot run bubblewrap: {e}")))?;
+        if !out.status.success() {
+            return Err(Error::Environment(format!(
+                "bubblewrap cannot make a sandbox here ({}); give --no-sandbox to run every \
+                 submission unconfined",
+                String::from_utf8_lossy(&out.stderr).trim()
+            )));
+        }
+        Ok(sandbox)
+    }
+
+    pub fn is_none(&self) -> bool {
+        matches!(self, Sandbox::None)
+    }
+
+    /// The command that runs `program` (absolute paths or names in /usr/bin) for slot `slot`,
+    /// seeing `readable` read-only and `writable` read-write at the same paths, within
+    /// `limits`. `writable` is handed to the slot's user first.
+    pub fn command(
+        &self,
+        program: &[String],
+        readable: &[&Path],
+        writable: &Path,
+        slot: usize,
+        limits: Limits,
+    ) -> Result<Command> {
+        let Sandbox::Bubblewrap { bwrap, jdk, root } = self else {
+            let mut command = Command::new(&program[0]);
+            command.args(&program[1..]).current_dir(writable);
+            return Ok(command);
+        };
+        let uid = SLOT_UID + slot as u32;
+        if *root {
+            std::os::unix::fs::chown(writable, Some(uid), Some(uid))
+                .map_err(|e| Error::io(writable, "cannot hand over", e))?;
+        }
+        let mut command = Command::new("setpriv");
+        if *root {
+            command.args(["--reuid", &uid.to_string(), "--regid", &uid.to_string()]);
+            command.arg("--clear-groups");
+        }
+        command.arg("--no-new-privs").arg("prlimit");
+        let processes = if *root {
+            PROCESSES
+        } else {
+            running_tasks().saturating_add(PROCESSES)
+        };
+        command.args([
+            format!("--nproc={processes}"),
+            format!("--fsize={FILE_SIZE}"),
+            format!("--nofile={OPEN_FILES}"),
+            format!(
+                "--cpu={}",
+                limits.seconds.saturating_mul(2).saturating_add(5)
+            ),
+            "--core=0".to_string(),
+        ]);
+        command.arg(bwrap);
+        command.args([
+            "--unshare-all",
+            "--die-with-parent",
+            "--new-session",
+            "--hostname",
+            "sandbox",
+        ]);
+        for dir in ["/bin", "/lib", "/lib64", "/sbin"] {
+            system_dir(&mut command, dir);
+        }
+        command.args(["--ro-bind", "/usr", "/usr"]);
+        // What the JDK reads in /etc, and the loader's cache; nothing else of /etc (no passwd).
+        for etc in etc_for_java() {
+            command.arg("--ro-bind").arg(&etc).arg(&etc);
+        }
+        if let Some(jdk) = jdk {
+            command.arg("--ro-bind").arg(jdk).arg(jdk);
+        }
+        command.args(["--proc", "/proc", "--dev", "/dev"]);
+        command.args(["--size", &TMP_SIZE.to_string(), "--tmpfs", "/tmp"]);
+        for dir in readable {
+            command.arg("--ro-bind").arg(dir).arg(dir);
+        }
+        command.arg("--bind").arg(writable).arg(writable);
+        command.arg("--chdir").arg(writable);
+        command.arg("--");
+        command.args(program);
+        command.env_clear();
+        command.envs([
+            ("PATH", "/usr/bin:/bin"),
+            ("HOME", "/tmp"),
+            ("LANG", "C.UTF-8"),
+            ("TMPDIR", "/tmp"),
+        ]);
+        Ok(command)
+    }
+}
+
+/// A system directory as it is here: a symbolic link (merged /usr) as the same link, a
+/// directory bound read-only, nothing when it is missing.
+fn system_dir(command: &mut Command, dir: &str) {
+    match std::fs::symlink_metadata(dir) {
+        Ok(m) if m.file_type().is_symlink() => {
+            if let Ok(target) = std::fs::read_link(dir) {
+                command.arg("--symlink").arg(target).arg(dir);
+            }
+        }
+        Ok(m) if m.is_dir() => {
+            command.args(["--ro-bind", dir, dir]);
+        }
+        _ => {}
+    }
+}
+
+/// What of /etc a JDK reads: its configuration (Debian's /etc/java-*), the alternatives its
+/// links in /usr/bin go through, the loader's cache.
+fn etc_for_java() -> Vec<PathBuf> {
+    let mut found: Vec<PathBuf> = ["/etc/alternatives", "/etc/ld.so.cache"]
+        .iter()
+        .map(PathBuf::from)
+        .filter(|p| p.exists())
+        .collect();
+    if let Ok(entries) = std::fs::read_dir("/etc") {
+        for entry in entries.flatten() {
+            if entry.file_name().to_string_lossy().starts_with("java-") {
+                found.push(entry.path());
+            }
+        }
+    }
+    found.sort();
+    found
+}
+
+/// The tasks (processes and threads) this user runs now, which `RLIMIT_NPROC` counts.
+fn running_tasks() -> u32 {
+    let me = rustix::process::getuid().as_raw();
+    let Ok(entries) = std::fs::read_dir("/proc") else {
+        return 0;
+    };
+    let mut count = 0u32;
+    for entry in entries.flatten() {
+        let status = entry.path().join("status");
+        let Ok(text) = std::fs::read_to_string(status) else {
+            continue;
+        };
+        let uid = text
+            .lines()
+            .find_map(|l| l.strip_prefix("Uid:"))
+            .and_then(|l| l.split_whitespace().next())
+            .and_then(|u| u.parse::<u32>().ok());
+        let threads = text
+            .lines()
+            .find_map(|l| l.strip_prefix("Threads:"))
+            .and_then(|t| t.trim().parse::<u32>().ok())
+            .unwrap_or(1);
+        if uid == Some(me) {
+            count = count.saturating_add(threads);
+        }
+    }
+    count
+}
+
+/// `name` in PATH, as an absolute path.
+pub fn find_in_path(name: &str) -> Option<PathBuf> {
+    let path = std::env::var_os("PATH")?;
+    std::env::split_paths(&path)
+        .map(|dir| dir.join(name))
+        .find(|p| p.is_file())
+}

@@ -1,0 +1,150 @@
+//! One student graded: their two files beside the skeleton's in a work folder, compiled and
+//! run over the suite in the sandbox, checked as `check --program` checks.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use super::compile::{compile, Compiled};
+use super::intake::{Files, Submission};
+use super::sandbox::{Limits, Sandbox};
+use super::skeleton::Skeleton;
+use crate::check::program::{run_suite_with, Launch, SuiteRun};
+use crate::check::suite::SuiteCase;
+use crate::error::{Error, Result};
+
+/// What a class is graded with: the same for every student.
+pub struct Setup {
+    pub sandbox: Sandbox,
+    pub java: PathBuf,
+    pub javac: PathBuf,
+    pub skeleton: Skeleton,
+    pub suite: Vec<SuiteCase>,
+    pub limits: Limits,
+    pub tolerance: u8,
+    /// Where the students' work folders are made (removed at the end).
+    pub work: PathBuf,
+}
+
+/// How far a student got.
+pub enum Outcome {
+    /// The files could not be had: `no-files` or `error`, and why.
+    Refused {
+        status: &'static str,
+        message: String,
+    },
+    /// javac refused them: its first messages.
+    CompileError(String),
+    /// javac did not finish in time.
+    CompileTimeout,
+    /// Run over the suite and checked.
+    Ran(Box<SuiteRun>),
+}
+
+/// Grades `submission` in slot `slot` of the class's workers.
+pub fn grade(setup: &Setup, submission: &Submission, slot: usize) -> Result<Outcome> {
+    let files = match &submission.files {
+        Ok(files) => files,
+        Err(refusal) => {
+            return Ok(Outcome::Refused {
+                status: refusal.status,
+                message: refusal.message.clone(),
+            })
+        }
+    };
+    let work = setup.work.join(&submission.id);
+    let _cleanup = WorkFolder(work.clone());
+    let sources = lay_out(setup, files, &work)?;
+    match compile(
+        &setup.sandbox,
+        &setup.javac,
+        &work,
+        &sources,
+        slot,
+        setup.limits,
+    )? {
+        Compiled::Ok => {}
+        Compiled::Errors(messages) => return Ok(Outcome::CompileError(messages)),
+        Compiled::Timeout => return Ok(Outcome::CompileTimeout),
+    }
+    let launch = SandboxedJava {
+        setup,
+        classes: work.join("classes"),
+        slot,
+    };
+    let run = run_suite_with(
+        &launch,
+        "java gfx.tick2.Tick2",
+        &setup.suite,
+        setup.tolerance,
+        setup.limits.seconds,
+    )?;
+    Ok(Outcome::Ran(Box::new(run)))
+}
+
+/// The work folder, removed when the student is done (or the grading stops).
+struct WorkFolder(PathBuf);
+
+impl Drop for WorkFolder {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+/// `work/src/gfx/tick2/` with the skeleton's files and the student's two, and an empty
+/// `work/classes`; returns the sources' paths.
+fn lay_out(setup: &Setup, files: &Files, work: &Path) -> Result<Vec<String>> {
+    let _ = std::fs::remove_dir_all(work);
+    let package = work.join("src/gfx/tick2");
+    let classes = work.join("classes");
+    for dir in [&package, &classes] {
+        std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, "cannot create", e))?;
+    }
+    let theirs = [
+        ("Plane.java", files.plane.as_slice()),
+        ("Renderer.java", files.renderer.as_slice()),
+    ];
+    let ours = setup
+        .skeleton
+        .files
+        .iter()
+        .map(|(name, bytes)| (name.as_str(), bytes.as_slice()));
+    let mut sources = Vec::new();
+    for (name, bytes) in ours.chain(theirs) {
+        let path = package.join(name);
+        std::fs::write(&path, bytes).map_err(|e| Error::io(&path, "cannot write", e))?;
+        sources.push(path.display().to_string());
+    }
+    Ok(sources)
+}
+
+/// The student's compiled program, run in the sandbox: `java gfx.tick2.Tick2` with the case's
+/// arguments appended.
+struct SandboxedJava<'a> {
+    setup: &'a Setup,
+    classes: PathBuf,
+    slot: usize,
+}
+
+impl Launch for SandboxedJava<'_> {
+    fn command(&self, dir: &Path) -> Result<Command> {
+        let limits = self.setup.limits;
+        let program = vec![
+            self.setup.java.display().to_string(),
+            format!("-Xmx{}m", (limits.memory_mib / 2).max(32)),
+            "-XX:+UseSerialGC".into(),
+            "-XX:-UsePerfData".into(),
+            "-Djava.awt.headless=true".into(),
+            "-cp".into(),
+            self.classes.display().to_string(),
+            "gfx.tick2.Tick2".into(),
+        ];
+        let classes = self.classes.as_path();
+        self.setup
+            .sandbox
+            .command(&program, &[classes], dir, self.slot, limits)
+    }
+
+    fn contains_descendants(&self) -> bool {
+        !self.setup.sandbox.is_none()
+    }
+}
