@@ -183,7 +183,8 @@ fn jdk_tool(name: &str) -> Result<PathBuf> {
 }
 
 /// What decides a student's result, hashed: their two files, the skeleton, the suite,
-/// whitted's version and the settings that change a verdict or a grade.
+/// whitted's version and the settings that change a verdict or a grade. The limits are not in
+/// it: they change only the results that hit one, which `--rerun failed` grades again.
 fn key(setup: &Setup, options: &Options, submission: &Submission) -> String {
     let mut parts: Vec<Vec<u8>> = vec![env!("CARGO_PKG_VERSION").as_bytes().to_vec()];
     match &submission.files {
@@ -202,12 +203,8 @@ fn key(setup: &Setup, options: &Options, submission: &Submission) -> String {
         parts.push(case.bounces.to_le_bytes().to_vec());
     }
     let settings = format!(
-        "{:?} {} {} {} {}",
-        options.grading,
-        options.tolerance,
-        options.limits.memory_mib,
-        options.limits.seconds,
-        options.no_sandbox
+        "{:?} {} {}",
+        options.grading, options.tolerance, options.no_sandbox
     );
     parts.push(settings.into_bytes());
     // Each part's length first, so that moving bytes from one part to the next changes it.

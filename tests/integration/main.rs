@@ -12,6 +12,8 @@ mod figures;
 mod fuzz_corpus;
 mod golden_exr;
 mod golden_png;
+mod grade;
+mod grade_hostile;
 mod hostile;
 mod inspect;
 mod properties;

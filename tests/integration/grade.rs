@@ -1,0 +1,331 @@
+//! `whitted grade`: a synthetic class built from the Java fixture's mistakes, stages and pairs
+//! (tests/java/submission: a submission's Plane.java and Renderer.java, compiled against
+//! skeleton/), in a Moodle-shaped zip with blind-marking and 3.x folder names; each student
+//! named in class.csv and mistakes.csv, moodle.csv read back, a rerun that runs nothing, and
+//! the class page in Chromium. Hostile submissions each get their status with nothing
+//! escaping the sandbox and no process left (tests/integration/grade_hostile.rs).
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use serde_json::Value;
+
+use crate::common::*;
+use crate::view::Browser;
+
+/// The fixture's two files with `bugs` switched on in the source (as a student's code has
+/// them), not by a property the grader would have to pass.
+pub fn submission(bugs: &[&str]) -> (String, String) {
+    let dir = root().join("tests/java/submission/gfx/tick2");
+    let plane = std::fs::read_to_string(dir.join("Plane.java")).expect("Plane.java");
+    let renderer = std::fs::read_to_string(dir.join("Renderer.java")).expect("Renderer.java");
+    let baked = renderer.replace(
+        "System.getProperty(\"bug\", \"\")",
+        &format!("\"{}\"", bugs.join(",")),
+    );
+    assert_ne!(
+        baked, renderer,
+        "the fixture reads its mistakes from one place"
+    );
+    (plane, baked)
+}
+
+/// A submission's Renderer.java with `code` run first thing in `render`.
+pub fn hostile(code: &str) -> (String, String) {
+    let (plane, renderer) = submission(&[]);
+    let marker = "public BufferedImage render(Scene scene) {";
+    assert!(renderer.contains(marker));
+    (
+        plane,
+        renderer.replace(marker, &format!("{marker}\n{code}\n")),
+    )
+}
+
+/// `whitted grade ARGS` in `dir`.
+pub fn grade(dir: &Path, args: &[&str]) -> std::process::Output {
+    let mut all = vec!["grade", "-q"];
+    all.extend_from_slice(args);
+    whitted(dir, &all)
+}
+
+/// A CSV file's rows of fields (quotes and doubled quotes, CRLF), as a spreadsheet reads it.
+pub fn read_csv(path: &Path) -> Vec<Vec<String>> {
+    let text = std::fs::read_to_string(path).expect("csv");
+    let mut rows = Vec::new();
+    let (mut row, mut field, mut quoted, mut chars) =
+        (Vec::new(), String::new(), false, text.chars().peekable());
+    while let Some(c) = chars.next() {
+        match (c, quoted) {
+            ('"', true) if chars.peek() == Some(&'"') => {
+                field.push('"');
+                chars.next();
+            }
+            ('"', true) => quoted = false,
+            ('"', false) if field.is_empty() => quoted = true,
+            (',', false) => row.push(std::mem::take(&mut field)),
+            ('\r', false) => {}
+            ('\n', false) => {
+                row.push(std::mem::take(&mut field));
+                rows.push(std::mem::take(&mut row));
+            }
+            (c, _) => field.push(c),
+        }
+    }
+    rows
+}
+
+/// The rows of a CSV as maps from its header's names.
+pub fn records(path: &Path) -> Vec<std::collections::BTreeMap<String, String>> {
+    let rows = read_csv(path);
+    let header = rows[0].clone();
+    rows[1..]
+        .iter()
+        .map(|r| header.iter().cloned().zip(r.iter().cloned()).collect())
+        .collect()
+}
+
+/// The synthetic class: (folder name in the zip, Moodle id, the mistakes it is built with,
+/// what class.csv must name).
+fn class() -> Vec<(String, String, Vec<&'static str>, &'static str)> {
+    let students: [(&[&str], &str); 22] = [
+        (&[], ""),
+        (&[], ""),
+        (&["no-shadows"], "no-shadows"),
+        (&["no-ambient"], "no-ambient"),
+        (&["no-falloff"], "no-falloff"),
+        (&["diffuse-no-colour"], "diffuse-no-colour"),
+        (&["specular-object-colour"], "specular-object-colour"),
+        (&["reflection-wrong-sign"], "reflection-wrong-sign"),
+        (&["reflection-unweighted"], "reflection-unweighted"),
+        (&["shadow-any-hit"], "shadow-any-hit"),
+        (&["first-light-only"], "first-light-only"),
+        (&["last-light-wins"], "last-light-wins"),
+        (&["bounces-plus-one"], "bounces-plus-one"),
+        (&["plane-behind"], "plane-behind"),
+        // Stages not written yet.
+        (&["planes-missing"], "planes-missing"),
+        (&["lights-missing"], "lights-missing"),
+        (&["reflection-missing"], "reflection-missing"),
+        (&["reflection-ignored"], "reflection-ignored"),
+        // Pairs.
+        (
+            &["no-shadows", "reflection-wrong-sign"],
+            "no-shadows+reflection-wrong-sign",
+        ),
+        (
+            &["no-ambient", "reflect-unclamped"],
+            "reflect-unclamped+no-ambient",
+        ),
+        (
+            &["planes-missing", "no-falloff"],
+            "no-falloff+planes-missing",
+        ),
+        (
+            &["reflection-missing", "no-shadows"],
+            "no-shadows+reflection-missing",
+        ),
+    ];
+    students
+        .iter()
+        .enumerate()
+        .map(|(i, (bugs, named))| {
+            let id = (31_000 + i).to_string();
+            // Blind marking for some, Moodle 3.x's trailing `_` for others.
+            let folder = match i % 3 {
+                0 => format!("Participant_{id}_assignsubmission_file"),
+                1 => format!("Student Number{i}_{id}_assignsubmission_file_"),
+                _ => format!("Ada O'Brien-{i}_{id}_assignsubmission_file"),
+            };
+            (folder, id, bugs.to_vec(), *named)
+        })
+        .collect()
+}
+
+/// Moodle's zip of `students`: each student's files in a project layout of their own, one
+/// of them as a zip inside the folder.
+fn moodle_zip(path: &Path, students: &[(String, String, Vec<&str>, &str)]) {
+    let file = std::fs::File::create(path).expect("zip");
+    let mut zip = zip::ZipWriter::new(file);
+    let options = zip::write::SimpleFileOptions::default();
+    for (i, (folder, _, bugs, _)) in students.iter().enumerate() {
+        let (plane, renderer) = submission(bugs);
+        if i == 4 {
+            // A student who zipped their project.
+            let mut inner = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
+            for (name, text) in [("Plane.java", &plane), ("Renderer.java", &renderer)] {
+                inner
+                    .start_file(format!("tick2/src/gfx/tick2/{name}"), options)
+                    .expect("entry");
+                inner.write_all(text.as_bytes()).expect("write");
+            }
+            let bytes = inner.finish().expect("inner zip").into_inner();
+            zip.start_file(format!("{folder}/project.zip"), options)
+                .expect("entry");
+            zip.write_all(&bytes).expect("write");
+            continue;
+        }
+        let layout = ["src/gfx/tick2", "gfx/tick2", ""][i % 3];
+        for (name, text) in [("Plane.java", &plane), ("Renderer.java", &renderer)] {
+            let path = [folder.as_str(), layout, name]
+                .iter()
+                .filter(|p| !p.is_empty())
+                .cloned()
+                .collect::<Vec<_>>()
+                .join("/");
+            zip.start_file(path, options).expect("entry");
+            zip.write_all(text.as_bytes()).expect("write");
+        }
+    }
+    zip.finish().expect("zip");
+}
+
+fn result_json(out: &Path, id: &str) -> Value {
+    let text = std::fs::read_to_string(out.join("students").join(id).join("result.json"))
+        .expect("result.json");
+    serde_json::from_str(&text).expect("json")
+}
+
+fn modified(path: &Path) -> std::time::SystemTime {
+    std::fs::metadata(path)
+        .and_then(|m| m.modified())
+        .expect("mtime")
+}
+
+#[test]
+fn a_class_is_graded_named_written_up_and_rerun_for_nothing() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let students = class();
+    let zip = d.join("submissions.zip");
+    moodle_zip(&zip, &students);
+    let out = d.join("out");
+    let run = grade(d, &["submissions.zip", "-o", "out", "--timeout", "30"]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let said = String::from_utf8_lossy(&run.stdout).to_string();
+    assert!(said.contains("22 students: 22 graded"), "{said}");
+    assert!(said.trim_end().ends_with("index.html"), "{said}");
+
+    // class.csv names each student's mistake.
+    let rows = records(&out.join("class.csv"));
+    assert_eq!(rows.len(), students.len());
+    let misnamed: Vec<String> = students
+        .iter()
+        .filter_map(|(_, id, bugs, named)| {
+            let row = rows.iter().find(|r| &r["id"] == id)?;
+            (&row["diagnosis"] != named).then(|| format!("{bugs:?} named {}", row["diagnosis"]))
+        })
+        .collect();
+    assert!(misnamed.is_empty(), "{misnamed:#?}");
+    for (folder, id, bugs, _) in &students {
+        let row = rows
+            .iter()
+            .find(|r| &r["id"] == id)
+            .expect("the student's row");
+        assert_eq!(row["status"], "graded", "{folder}");
+        let all_pass = bugs.is_empty();
+        assert_eq!(row["passed"] == "7", all_pass, "{folder}: {row:?}");
+        assert_eq!(row["grade"], if all_pass { "100" } else { "0" });
+        if folder.starts_with("Participant") {
+            assert_eq!(row["name"], "Participant");
+        }
+    }
+
+    // mistakes.csv counts them.
+    let mistakes = records(&out.join("mistakes.csv"));
+    for (id, kind, students_with) in [
+        ("no-shadows", "unfinished stage", "3"),
+        ("planes-missing", "unfinished stage", "2"),
+        ("reflection-wrong-sign", "mistake", "2"),
+        ("no-falloff", "mistake", "2"),
+    ] {
+        let row = mistakes.iter().find(|r| r["id"] == id).expect(id);
+        assert_eq!(
+            (row["kind"].as_str(), row["students"].as_str()),
+            (kind, students_with),
+            "{id}"
+        );
+    }
+
+    // moodle.csv, read back as Moodle's import reads it: by Identifier, grade with feedback.
+    let moodle = records(&out.join("moodle.csv"));
+    assert_eq!(moodle.len(), students.len());
+    for (_, id, bugs, named) in &students {
+        let row = moodle
+            .iter()
+            .find(|r| r["Identifier"] == format!("Participant {id}"))
+            .expect("a worksheet row");
+        assert_eq!(row["Grade"], if bugs.is_empty() { "100" } else { "0" });
+        assert_eq!(row["Maximum Grade"], "100");
+        assert!(!row["Last modified (grade)"].is_empty());
+        let feedback = &row["Feedback comments"];
+        match named.is_empty() {
+            true => assert_eq!(feedback, "passes all 7 cases"),
+            false => assert!(
+                feedback.contains(named.split('+').next().unwrap_or("")),
+                "{feedback}"
+            ),
+        }
+    }
+
+    // result.json in Gradescope's shape.
+    let (_, id, bugs, _) = &students[2];
+    let result = result_json(&out, id);
+    assert_eq!(result["score"], 0.0);
+    let tests = result["tests"].as_array().expect("tests");
+    assert_eq!(tests.len(), 7);
+    for test in tests {
+        for field in ["name", "score", "max_score", "status", "output", "tags"] {
+            assert!(!test[field].is_null(), "{field}: {test}");
+        }
+        if test["status"] == "failed" {
+            assert_eq!(test["tags"][0], bugs[0]);
+        }
+    }
+    assert_eq!(result["extra_data"]["status"], "graded");
+    assert_eq!(result["extra_data"]["progress"]["shadows"], "missing");
+    let report = std::fs::read_to_string(out.join("students").join(id).join("report.html"))
+        .expect("report.html");
+    assert!(report.contains("data:image/png;base64,") && report.contains("no-shadows"));
+    let png = read_png(&out.join("students").join(id).join("report.png"));
+    assert!(png.width > 300 && png.height > 100);
+
+    // A rerun grades no one: every result is kept as it was.
+    let before = modified(&out.join("students").join(id).join("result.json"));
+    let rerun = grade(d, &["submissions.zip", "-o", "out"]);
+    assert!(rerun.status.success(), "{}", stderr(&rerun));
+    let said = String::from_utf8_lossy(&rerun.stdout).to_string();
+    assert!(said.contains("graded now 0, already graded 22"), "{said}");
+    assert_eq!(
+        modified(&out.join("students").join(id).join("result.json")),
+        before
+    );
+
+    // The class page, offline, in a real browser.
+    let browser = Browser::start();
+    let index: PathBuf = out.join("index.html").canonicalize().expect("index.html");
+    browser.navigate(&format!("file://{}", index.display()));
+    let page = browser.script(
+        "return {rows: document.querySelectorAll('#students tr').length - 1, \
+                 bars: document.querySelectorAll('#mistakes rect').length, \
+                 scenes: document.querySelectorAll('#scenes rect').length, \
+                 links: [...document.querySelectorAll('#students a')].map(a => a.getAttribute('href')), \
+                 totals: document.getElementById('totals').textContent}",
+        serde_json::json!([]),
+    );
+    assert_eq!(page["rows"], students.len());
+    let distinct: std::collections::BTreeSet<&str> = students
+        .iter()
+        .flat_map(|(_, _, _, named)| named.split('+'))
+        .filter(|n| !n.is_empty())
+        .collect();
+    assert_eq!(page["bars"], distinct.len());
+    assert_eq!(page["scenes"], 7);
+    assert!(page["totals"]
+        .as_str()
+        .expect("totals")
+        .contains("2 pass every case"));
+    for link in page["links"].as_array().expect("links") {
+        let target = out.join(link.as_str().expect("href"));
+        assert!(target.is_file(), "{}", target.display());
+    }
+}

@@ -1,0 +1,297 @@
+//! `whitted grade` against hostile submissions (docs/grade.md, "Bad input"): each gets its
+//! status in class.csv and its report, nothing escapes the sandbox (no file outside its
+//! folder, no connection, no secret read), no process is left, and the class is still graded.
+
+use std::io::Write;
+use std::net::TcpListener;
+use std::os::unix::ffi::OsStrExt;
+use std::path::Path;
+use std::time::Duration;
+
+use crate::common::*;
+use crate::grade::{grade, hostile, records, submission};
+
+fn student(root: &Path, folder: &str, files: (String, String)) {
+    let dir = root.join(folder).join("src/gfx/tick2");
+    std::fs::create_dir_all(&dir).expect("mkdir");
+    std::fs::write(dir.join("Plane.java"), files.0).expect("Plane.java");
+    std::fs::write(dir.join("Renderer.java"), files.1).expect("Renderer.java");
+}
+
+/// Processes whose command line holds `marker`.
+fn processes_with(marker: &str) -> usize {
+    let Ok(entries) = std::fs::read_dir("/proc") else {
+        return 0;
+    };
+    entries
+        .flatten()
+        .filter(|e| {
+            std::fs::read(e.path().join("cmdline"))
+                .is_ok_and(|c| String::from_utf8_lossy(&c).contains(marker))
+        })
+        .count()
+}
+
+#[test]
+fn hostile_programs_get_their_status_and_nothing_escapes() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let class = d.join("class");
+    let outside = d.join("escaped.txt");
+    let listener = TcpListener::bind("127.0.0.1:0").expect("listen");
+    listener.set_nonblocking(true).expect("nonblocking");
+    let port = listener.local_addr().expect("addr").port();
+    let java_string = |p: &Path| format!("{:?}", p.display().to_string());
+    let cases: Vec<(&str, String, &str)> = vec![
+        ("exits-early", "System.exit(0);".into(), "no-output"),
+        (
+            "reads-passwd",
+            "try { System.err.println(new String(java.nio.file.Files.readAllBytes(\
+             java.nio.file.Path.of(\"/etc/passwd\")))); } catch (java.io.IOException e) \
+             { throw new RuntimeException(\"no /etc/passwd: \" + e); }"
+                .into(),
+            "crashed",
+        ),
+        (
+            "opens-a-socket",
+            format!(
+                "try {{ new java.net.Socket(\"127.0.0.1\", {port}).close(); }} catch \
+                 (java.io.IOException e) {{ throw new RuntimeException(\"no network: \" + e); }}"
+            ),
+            "crashed",
+        ),
+        (
+            "writes-outside",
+            format!(
+                "try {{ java.nio.file.Files.writeString(java.nio.file.Path.of({}), \"x\"); }} \
+                 catch (java.io.IOException e) {{ throw new RuntimeException(e); }}",
+                java_string(&outside)
+            ),
+            "crashed",
+        ),
+        (
+            "sleeps-forever",
+            "try { Thread.sleep(Long.MAX_VALUE); } catch (InterruptedException e) {}".into(),
+            "timeout",
+        ),
+        (
+            "allocates-forever",
+            "java.util.List<long[]> hog = new java.util.ArrayList<>(); \
+             while (scene != null) hog.add(new long[1 << 20]);"
+                .into(),
+            "out-of-memory",
+        ),
+        (
+            "forks-forever",
+            "try { while (scene != null) new ProcessBuilder(\"sleep\", \"4242\").start(); } catch \
+             (java.io.IOException e) { throw new RuntimeException(e); }"
+                .into(),
+            "crashed",
+        ),
+        (
+            "writes-too-much",
+            "try (java.io.OutputStream o = new java.io.FileOutputStream(\"big.bin\")) { \
+             byte[] mb = new byte[1 << 20]; for (int i = 0; i < 200; i++) o.write(mb); } \
+             catch (java.io.IOException e) { throw new RuntimeException(e); }"
+                .into(),
+            "output-too-large",
+        ),
+    ];
+    for (name, code, _) in &cases {
+        student(&class, name, hostile(code));
+    }
+    // One that does not compile, one without Renderer.java, one correct.
+    let (plane, renderer) = submission(&[]);
+    student(
+        &class,
+        "compile-error",
+        (
+            plane.clone(),
+            renderer.replace("return colour;", "return colour"),
+        ),
+    );
+    std::fs::create_dir_all(class.join("no-renderer")).expect("mkdir");
+    std::fs::write(class.join("no-renderer/Plane.java"), &plane).expect("write");
+    student(&class, "correct", (plane, renderer));
+    let out = d.join("out");
+    let run = grade(
+        d,
+        &[
+            "class",
+            "-o",
+            "out",
+            "--timeout",
+            "8",
+            "--memory",
+            "256",
+            "-j",
+            "2",
+        ],
+    );
+    assert!(run.status.success(), "{}", stderr(&run));
+
+    let rows = records(&out.join("class.csv"));
+    let status_of = |id: &str| {
+        rows.iter()
+            .find(|r| r["id"] == id)
+            .map(|r| r["status"].clone())
+            .unwrap_or_default()
+    };
+    assert_eq!(status_of("correct"), "graded");
+    assert_eq!(status_of("compile-error"), "compile-error");
+    assert_eq!(status_of("no-renderer"), "no-files");
+    let report =
+        std::fs::read_to_string(out.join("students/compile-error/report.html")).expect("report");
+    assert!(
+        report.contains("Renderer.java") && report.contains("error"),
+        "{report}"
+    );
+    for (name, _, expected) in &cases {
+        assert_eq!(status_of(name), "graded", "{name}");
+        let result: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(out.join("students").join(name).join("result.json"))
+                .expect("result.json"),
+        )
+        .expect("json");
+        let first = &result["extra_data"]["check"]["cases"][0];
+        assert_eq!(first["status"], *expected, "{name}: {first}");
+    }
+    // Nothing escaped: no file outside, no connection, no secret in any report.
+    assert!(!outside.exists(), "a program wrote outside its folder");
+    assert!(
+        listener.accept().is_err(),
+        "a program reached the host's network"
+    );
+    let passwd = std::fs::read_to_string("/etc/passwd").unwrap_or_default();
+    let secret = passwd.lines().next().unwrap_or("root:x:0:0");
+    for entry in std::fs::read_dir(out.join("students"))
+        .expect("students")
+        .flatten()
+    {
+        for file in ["report.html", "result.json"] {
+            let text = std::fs::read_to_string(entry.path().join(file)).unwrap_or_default();
+            assert!(
+                !text.contains(secret),
+                "{}: /etc/passwd leaked",
+                entry.path().display()
+            );
+        }
+    }
+    // No process left behind.
+    std::thread::sleep(Duration::from_millis(500));
+    assert_eq!(
+        processes_with("4242"),
+        0,
+        "a forked process outlived its case"
+    );
+    assert_eq!(
+        processes_with("gfx.tick2.Tick2"),
+        0,
+        "a JVM outlived its case"
+    );
+    let _ = std::io::stdout().flush();
+}
+
+#[test]
+fn hostile_archives_and_folders_are_refused_or_read_without_writing_a_name_they_hold() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let (plane, renderer) = submission(&[]);
+    let zip_path = d.join("class.zip");
+    let mut zip = zip::ZipWriter::new(std::fs::File::create(&zip_path).expect("zip"));
+    let options = zip::write::SimpleFileOptions::default();
+    let mut add = |name: &str, bytes: &[u8]| {
+        zip.start_file(name, options).expect("entry");
+        zip.write_all(bytes).expect("write");
+    };
+    // Zip-slip and absolute names: read for their bytes, never written by their names.
+    add(
+        "Slip_1_assignsubmission_file/../../escaped/Renderer.java",
+        renderer.as_bytes(),
+    );
+    add(
+        "/Slip_1_assignsubmission_file/../../escaped/Plane.java",
+        plane.as_bytes(),
+    );
+    // A zip bomb: 256 MiB of zeros as Renderer.java, a few hundred KiB compressed.
+    add("Bomb_2_assignsubmission_file/Plane.java", plane.as_bytes());
+    zip.start_file("Bomb_2_assignsubmission_file/Renderer.java", options)
+        .expect("entry");
+    let zeros = vec![0u8; 1 << 20];
+    for _ in 0..256 {
+        zip.write_all(&zeros).expect("bomb");
+    }
+    // Links: a Renderer.java that is a symbolic link to /etc/passwd.
+    zip.start_file("Link_3_assignsubmission_file/Plane.java", options)
+        .expect("entry");
+    zip.write_all(plane.as_bytes()).expect("write");
+    zip.add_symlink(
+        "Link_3_assignsubmission_file/Renderer.java",
+        "/etc/passwd",
+        options,
+    )
+    .expect("link");
+    // Two folders with one id.
+    for who in ["Twin A", "Twin B"] {
+        for (name, text) in [("Plane.java", &plane), ("Renderer.java", &renderer)] {
+            zip.start_file(format!("{who}_4_assignsubmission_file/{name}"), options)
+                .expect("entry");
+            zip.write_all(text.as_bytes()).expect("write");
+        }
+    }
+    zip.finish().expect("zip");
+    let run = grade(d, &["class.zip", "-o", "out", "--timeout", "30"]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let rows = records(&d.join("out/class.csv"));
+    let status_of = |id: &str| -> Vec<String> {
+        rows.iter()
+            .filter(|r| r["id"] == id)
+            .map(|r| r["status"].clone())
+            .collect()
+    };
+    assert_eq!(status_of("1"), ["graded"]);
+    assert_eq!(status_of("2"), ["no-files"]);
+    assert_eq!(status_of("3"), ["no-files"]);
+    // Both twins refused, and said so.
+    assert_eq!(status_of("4"), ["error", "error"]);
+    let twins = std::fs::read_to_string(d.join("out/students/4/result.json")).expect("twins");
+    assert!(twins.contains("2 submissions have the id 4"), "{twins}");
+    // Nothing was written by a name the archive holds.
+    for escaped in [
+        d.join("escaped"),
+        d.join("out/escaped"),
+        d.parent().expect("tmp").join("escaped"),
+    ] {
+        assert!(!escaped.exists(), "{}", escaped.display());
+    }
+    let bomb = std::fs::read_to_string(d.join("out/students/2/result.json")).expect("bomb");
+    assert!(bomb.contains("larger than"), "{bomb}");
+
+    // A folder of students: a name that is not UTF-8, links and a FIFO where files should be.
+    let folders = d.join("folders");
+    let odd = std::ffi::OsStr::from_bytes(b"Caf\xe9_6_assignsubmission_file");
+    let student = folders.join(odd).join("gfx/tick2");
+    std::fs::create_dir_all(&student).expect("mkdir");
+    std::fs::write(student.join("Plane.java"), &plane).expect("write");
+    std::fs::write(student.join("Renderer.java"), &renderer).expect("write");
+    let linked = folders.join("Linked_7_assignsubmission_file");
+    std::fs::create_dir_all(&linked).expect("mkdir");
+    std::os::unix::fs::symlink("/etc/passwd", linked.join("Renderer.java")).expect("link");
+    std::os::unix::fs::symlink(&student, linked.join("elsewhere")).expect("link");
+    let fifo = folders.join("Fifo_8_assignsubmission_file");
+    std::fs::create_dir_all(&fifo).expect("mkdir");
+    std::fs::write(fifo.join("Plane.java"), &plane).expect("write");
+    let made = std::process::Command::new("mkfifo")
+        .arg(fifo.join("Renderer.java"))
+        .status()
+        .expect("mkfifo");
+    assert!(made.success());
+    let run = grade(d, &["folders", "-o", "out2", "--timeout", "30"]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let rows = records(&d.join("out2/class.csv"));
+    let row = |id: &str| rows.iter().find(|r| r["id"] == id).cloned().expect(id);
+    assert_eq!(row("6")["status"], "graded");
+    assert_eq!(row("6")["name"], "Caf\u{fffd}");
+    assert_eq!(row("7")["status"], "no-files");
+    assert_eq!(row("8")["status"], "no-files");
+}
