@@ -17,6 +17,7 @@ mod moodle;
 mod report;
 mod result;
 mod sandbox;
+mod scenes;
 mod skeleton;
 mod student;
 
@@ -52,6 +53,8 @@ pub struct Options {
     pub submissions: PathBuf,
     pub outdir: PathBuf,
     pub skeleton: Option<PathBuf>,
+    /// The course's hidden scenes, added to the suite.
+    pub scenes: Option<PathBuf>,
     pub jobs: usize,
     pub limits: Limits,
     pub rerun: Option<Rerun>,
@@ -84,6 +87,10 @@ pub fn run(options: &Options) -> Result<Summary> {
         Some(dir) => Skeleton::from_dir(dir)?,
         None => Skeleton::clean_room(),
     };
+    let mut suite = cases();
+    if let Some(dir) = &options.scenes {
+        suite.extend(scenes::read(dir)?);
+    }
     let java = jdk_tool("java")?;
     let javac = jdk_tool("javac")?;
     let sandbox = match options.no_sandbox {
@@ -102,7 +109,7 @@ pub fn run(options: &Options) -> Result<Summary> {
         java,
         javac,
         skeleton,
-        suite: cases(),
+        suite,
         limits: options.limits,
         tolerance: options.tolerance,
         work: work.path().to_path_buf(),

@@ -164,7 +164,7 @@ pub fn run_suite_with(
         tails.push(stderr_tail);
         match result {
             Ran::Image(image) => {
-                scenes.push((i, scene::parse_str(case.file, case.xml)?));
+                scenes.push((i, scene::parse_str(&case.file, &case.xml)?));
                 images.push(image);
                 statuses.push(None);
             }
@@ -176,7 +176,7 @@ pub fn run_suite_with(
     let mut reports = Vec::new();
     for ((i, scene), image) in scenes.iter().zip(images) {
         let case = &suite[*i];
-        let (c, report) = prepare(scene, case.file, case.bounces, tolerance, image, count)?;
+        let (c, report) = prepare(scene, &case.file, case.bounces, tolerance, image, count)?;
         interrupt::check()?;
         prepared.push(c);
         reports.push(report);
@@ -200,7 +200,7 @@ pub fn run_suite_with(
             });
             CaseOutcome {
                 name: case.name(),
-                case: *case,
+                case: case.clone(),
                 status,
                 stderr_tail,
             }
@@ -323,8 +323,9 @@ fn start(launch: &dyn Launch, case: &SuiteCase, index: usize) -> Result<Running>
                 e,
             )
         })?;
-    let scene = dir.path().join(case.file);
-    std::fs::write(&scene, case.xml).map_err(|e| Error::io(&scene, "cannot write", e))?;
+    let scene = dir.path().join(&*case.file);
+    std::fs::write(&scene, case.xml.as_bytes())
+        .map_err(|e| Error::io(&scene, "cannot write", e))?;
     let output = output_path(dir.path());
     let mut command = launch.command(dir.path())?;
     command

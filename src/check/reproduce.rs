@@ -63,7 +63,7 @@ impl Reproduce {
         report: Option<&CaseReport>,
     ) -> Self {
         let scene = match suite_dir {
-            Some(dir) => dir.join(case.file).display().to_string(),
+            Some(dir) => dir.join(&*case.file).display().to_string(),
             None => format!("DIR/{}", case.file),
         };
         let output = case.output_name();

@@ -12,7 +12,7 @@ use crate::mistakes::{Bug, Mistakes, Number, Parameter, Stage, Variant};
 /// image.
 fn failing_case(mistakes: Mistakes) -> (SuiteCase, Scene, Rgb8) {
     for case in cases() {
-        let scene = crate::scene::parse_str(case.file, case.xml).expect("scene");
+        let scene = crate::scene::parse_str(&case.file, &case.xml).expect("scene");
         let r = Renderer::new(&scene, 640, 480, case.bounces).expect("renderer");
         let image = r.image(mistakes).expect("image");
         let fails = difference(&image, &r.reference().expect("reference"), 2).beyond_tolerance > 0;
@@ -53,7 +53,7 @@ fn suite_images(variant: Variant) -> Vec<(SuiteCase, Scene, Rgb8)> {
     cases()
         .into_iter()
         .map(|case| {
-            let scene = crate::scene::parse_str(case.file, case.xml).expect("scene");
+            let scene = crate::scene::parse_str(&case.file, &case.xml).expect("scene");
             let r = Renderer::new(&scene, 640, 480, case.bounces).expect("renderer");
             let image = r.variant_image(&variant).expect("image");
             (case, scene, image)
@@ -68,7 +68,7 @@ fn suite_findings(images: &[(SuiteCase, Scene, Rgb8)]) -> Findings {
         .map(|(case, scene, image)| {
             prepare(
                 scene,
-                case.file,
+                &case.file,
                 case.bounces,
                 2,
                 image.clone(),
@@ -86,7 +86,7 @@ fn every_entry_is_named_first_on_its_own_render() {
     for bug in Bug::ALL {
         let wanted = Mistakes::of(&[bug]);
         let (case, scene, image) = failing_case(wanted);
-        let (_, findings) = check_image(&scene, case.file, case.bounces, 2, image).expect("check");
+        let (_, findings) = check_image(&scene, &case.file, case.bounces, 2, image).expect("check");
         assert!(
             named_first(&findings.diagnosis, wanted),
             "{}: {:?}",
@@ -119,7 +119,7 @@ fn pairs_with_stages_are_found_in_the_top_three() {
     for pair in pairs {
         let wanted = Mistakes::of(&pair);
         let (case, scene, image) = failing_case(wanted);
-        let (_, findings) = check_image(&scene, case.file, case.bounces, 2, image).expect("check");
+        let (_, findings) = check_image(&scene, &case.file, case.bounces, 2, image).expect("check");
         assert_in_top_three(&findings.diagnosis, wanted);
     }
 }

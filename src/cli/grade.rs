@@ -24,6 +24,11 @@ pub struct GradeArgs {
     #[arg(long, value_name = "DIR")]
     pub skeleton: Option<PathBuf>,
 
+    /// A folder of the course's hidden scenes (*.xml), added to the suite, each at the bounces
+    /// its name says (`hidden_b2.xml`; 2 when it says none)
+    #[arg(long, value_name = "DIR")]
+    pub scenes: Option<PathBuf>,
+
     /// Students graded at once [default: the cores]
     #[arg(short, long, value_name = "N", value_parser = parse_jobs)]
     pub jobs: Option<usize>,

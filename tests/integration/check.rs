@@ -46,8 +46,8 @@ fn program(bugs: &[&str]) -> String {
 
 /// Runs the Java program on one case, returning the PNG it wrote.
 fn java_render(dir: &Path, case: &SuiteCase, bugs: &[&str], name: &str) -> PathBuf {
-    let scene = dir.join(case.file);
-    std::fs::write(&scene, case.xml).expect("scene");
+    let scene = dir.join(&*case.file);
+    std::fs::write(&scene, case.xml.as_bytes()).expect("scene");
     let out = dir.join(name);
     let mut java = Command::new("java");
     if !bugs.is_empty() {
@@ -70,7 +70,7 @@ fn java_render(dir: &Path, case: &SuiteCase, bugs: &[&str], name: &str) -> PathB
 /// of them: the case that separates them.
 fn separating_case(mistakes: Mistakes) -> SuiteCase {
     for case in cases() {
-        let scene = whitted::scene::parse_str(case.file, case.xml).expect("scene");
+        let scene = whitted::scene::parse_str(&case.file, &case.xml).expect("scene");
         let r = Renderer::new(&scene, 640, 480, case.bounces).expect("renderer");
         let image = r.image(mistakes).expect("image");
         let fails = difference(&image, &r.reference().expect("reference"), 2).beyond_tolerance > 0;
@@ -86,7 +86,7 @@ fn separating_case(mistakes: Mistakes) -> SuiteCase {
 
 /// `whitted check PNG -i SCENE -b B --json` on `case`.
 fn check_json(dir: &Path, png: &Path, case: &SuiteCase) -> serde_json::Value {
-    let scene = dir.join(case.file);
+    let scene = dir.join(&*case.file);
     let run = whitted(
         dir,
         &[

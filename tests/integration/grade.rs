@@ -329,3 +329,56 @@ fn a_class_is_graded_named_written_up_and_rerun_for_nothing() {
         assert!(target.is_file(), "{}", target.display());
     }
 }
+
+#[test]
+fn one_project_with_hidden_scenes_and_a_fractional_grade() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let (plane, renderer) = submission(&["planes-missing"]);
+    let package = d.join("tick2-project/src/gfx/tick2");
+    std::fs::create_dir_all(&package).expect("mkdir");
+    std::fs::write(package.join("Plane.java"), plane).expect("write");
+    std::fs::write(package.join("Renderer.java"), renderer).expect("write");
+    // A hidden scene without planes: a program without planes renders it right.
+    let hidden = d.join("hidden");
+    std::fs::create_dir_all(&hidden).expect("mkdir");
+    std::fs::write(
+        hidden.join("hidden_b1.xml"),
+        "<scene>\n  <point-light x=\"1\" y=\"2\" z=\"1\" colour=\"#FFFFFF\" intensity=\"80\"/>\n  \
+         <sphere x=\"0\" y=\"0\" z=\"4\" radius=\"1\" colour=\"#3060E0\"/>\n  \
+         <sphere x=\"0.8\" y=\"0.6\" z=\"2.8\" radius=\"0.3\" colour=\"#E0E0E0\"/>\n</scene>\n",
+    )
+    .expect("write");
+    let run = grade(
+        d,
+        &[
+            "tick2-project",
+            "-o",
+            "out",
+            "--scenes",
+            "hidden",
+            "--grade",
+            "fraction",
+        ],
+    );
+    assert!(run.status.success(), "{}", stderr(&run));
+    let result = result_json(&d.join("out"), "tick2-project");
+    let tests = result["tests"].as_array().expect("tests");
+    assert_eq!(tests.len(), 8);
+    assert_eq!(tests[7]["name"], "hidden_b1.xml -b 1");
+    assert_eq!(tests[7]["status"], "passed", "{}", tests[7]);
+    let passed = tests.iter().filter(|t| t["status"] == "passed").count();
+    let expected = (10000.0 * passed as f64 / 8.0).round() / 100.0;
+    assert_eq!(result["score"].as_f64(), Some(expected));
+    assert_eq!(result["extra_data"]["diagnosis"][0], "planes-missing");
+    // A scene the course's loader could not read is refused before anyone is graded.
+    std::fs::write(hidden.join("broken_b2.xml"), "<scene><sphear/></scene>").expect("write");
+    let refused = grade(d, &["tick2-project", "-o", "out2", "--scenes", "hidden"]);
+    assert_eq!(refused.status.code(), Some(2));
+    assert!(
+        stderr(&refused).contains("broken_b2.xml"),
+        "{}",
+        stderr(&refused)
+    );
+    assert!(!d.join("out2/class.csv").exists());
+}
