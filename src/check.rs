@@ -9,6 +9,7 @@
 pub mod case;
 pub mod diagnose;
 pub mod difference;
+pub mod image_cache;
 pub mod json;
 pub mod numbers;
 pub mod orphans;
@@ -182,7 +183,8 @@ pub struct CaseReport {
     pub reference: Rgb8,
 }
 
-/// One case ready to diagnose, and its report without a diagnosis yet.
+/// One case ready to diagnose, and its report without a diagnosis yet. `scene_key` names the
+/// scene for the cache of whole images (`image_cache.rs`), when it is one many checks share.
 pub fn prepare<'a>(
     scene: &'a Scene,
     scene_name: &str,
@@ -190,8 +192,10 @@ pub fn prepare<'a>(
     tolerance: u8,
     student: Rgb8,
     cases: usize,
+    scene_key: Option<String>,
 ) -> Result<(Case<'a>, CaseReport)> {
-    let renderer = Renderer::new(scene, student.width, student.height, bounces)?;
+    let renderer =
+        Renderer::new(scene, student.width, student.height, bounces)?.remembered_as(scene_key);
     let case = Case::new(renderer, student, cases)?;
     let report = CaseReport {
         scene_name: scene_name.to_string(),
@@ -214,7 +218,7 @@ pub fn check_image(
     tolerance: u8,
     student: Rgb8,
 ) -> Result<(CaseReport, Findings)> {
-    let (case, mut report) = prepare(scene, scene_name, bounces, tolerance, student, 1)?;
+    let (case, mut report) = prepare(scene, scene_name, bounces, tolerance, student, 1, None)?;
     let passes = report.difference.verdict.passes();
     let findings = find(std::slice::from_ref(&case), passes)?;
     report.diagnosis = findings.diagnosis.clone();

@@ -176,7 +176,16 @@ pub fn run_suite_with(
     let mut reports = Vec::new();
     for ((i, scene), image) in scenes.iter().zip(images) {
         let case = &suite[*i];
-        let (c, report) = prepare(scene, &case.file, case.bounces, tolerance, image, count)?;
+        let key = crate::fingerprint::fingerprint(&[case.xml.as_bytes()]);
+        let (c, report) = prepare(
+            scene,
+            &case.file,
+            case.bounces,
+            tolerance,
+            image,
+            count,
+            Some(key),
+        )?;
         interrupt::check()?;
         prepared.push(c);
         reports.push(report);

@@ -30,6 +30,8 @@ const BYTES_PER_PIXEL: u64 = 48;
 /// Renders one scene at one size and bounce count under any candidate.
 pub struct Renderer<'a> {
     pub scene: &'a Scene,
+    /// Names the scene for the image cache (`image_cache.rs`); None renders every time.
+    scene_key: Option<String>,
     spec: FrameSpec,
     bvh: Accelerator,
     brute: Accelerator,
@@ -48,10 +50,18 @@ impl<'a> Renderer<'a> {
         Frame::new(scene, &spec)?;
         Ok(Renderer {
             scene,
+            scene_key: None,
             spec,
             bvh: Accelerator::build(&scene.objects),
             brute: Accelerator::brute_force(&scene.objects),
         })
+    }
+
+    /// This renderer's whole images kept for any other renderer of the scene `key` names
+    /// (its XML's fingerprint): a class's students share the suite's renders.
+    pub fn remembered_as(mut self, key: Option<String>) -> Self {
+        self.scene_key = key;
+        self
     }
 
     pub fn width(&self) -> u32 {
@@ -115,9 +125,26 @@ impl<'a> Renderer<'a> {
         })
     }
 
+    /// The whole image of `variant` (None: the course's model), from the cache when this
+    /// renderer's scene has a key.
+    fn remembered(&self, variant: Option<&Variant>) -> Result<Rgb8> {
+        let render = || match variant {
+            None => self.image_with(&crate::model::Tick, &self.frame(Mistakes::NONE)?),
+            Some(v) => self.image_with(v, &self.frame(v.mistakes)?),
+        };
+        match &self.scene_key {
+            None => render(),
+            Some(scene) => {
+                // Debug prints a number's exact value: equal keys are equal programs.
+                let key = format!("{scene} {:?} {variant:?}", self.spec);
+                crate::check::image_cache::get_or_render(key, render)
+            }
+        }
+    }
+
     /// The reference: the course's model.
     pub fn reference(&self) -> Result<Rgb8> {
-        self.image_with(&crate::model::Tick, &self.frame(Mistakes::NONE)?)
+        self.remembered(None)
     }
 
     /// The whole image a program with `mistakes` renders.
@@ -127,7 +154,7 @@ impl<'a> Renderer<'a> {
 
     /// The whole image `variant` renders.
     pub fn variant_image(&self, variant: &Variant) -> Result<Rgb8> {
-        self.image_with(variant, &self.frame(variant.mistakes)?)
+        self.remembered(Some(variant))
     }
 
     /// The reference's every layer at `pixels` (for the term fit).

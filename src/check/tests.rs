@@ -73,6 +73,7 @@ fn suite_findings(images: &[(SuiteCase, Scene, Rgb8)]) -> Findings {
                 2,
                 image.clone(),
                 images.len(),
+                None,
             )
             .expect("case")
         })

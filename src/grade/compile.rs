@@ -37,6 +37,8 @@ pub fn compile(
     let mut program = vec![
         javac.display().to_string(),
         format!("-J-Xmx{}m", (limits.memory_mib / 2).max(32)),
+        // javac runs for about a second: the C2 compiler would cost more CPU than it saves.
+        "-J-XX:TieredStopAtLevel=1".into(),
         "-J-XX:+UseSerialGC".into(),
         "-J-XX:-UsePerfData".into(),
         "-proc:none".into(),
