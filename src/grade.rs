@@ -122,7 +122,7 @@ pub fn run(options: &Options) -> Result<Summary> {
         .collect();
     let todo: Vec<(&Submission, String)> = mine
         .iter()
-        .map(|s| (*s, key(&setup, options, s)))
+        .map(|s| (*s, key(&setup.skeleton, &setup.suite, options, s)))
         .filter(|(s, key)| needs_grading(&students_dir, s, key, options.rerun))
         .collect();
     let skipped = mine.len() - todo.len();
@@ -146,6 +146,29 @@ pub fn run(options: &Options) -> Result<Summary> {
         summary.index = Some(write_class(&options.outdir, &rows)?);
     }
     Ok(summary)
+}
+
+/// Every student in class order, and whether OUTDIR holds their finished result: what a farm
+/// needs to share the class out and to resume it. Needs neither a JDK nor a sandbox.
+pub fn list(options: &Options) -> Result<Vec<(String, bool)>> {
+    let submissions = intake::read(&options.submissions)?;
+    let skeleton = match &options.skeleton {
+        Some(dir) => Skeleton::from_dir(dir)?,
+        None => Skeleton::clean_room(),
+    };
+    let mut suite = cases();
+    if let Some(dir) = &options.scenes {
+        suite.extend(scenes::read(dir)?);
+    }
+    let students_dir = options.outdir.join("students");
+    Ok(submissions
+        .iter()
+        .map(|s| {
+            let key = key(&skeleton, &suite, options, s);
+            let done = !needs_grading(&students_dir, s, &key, options.rerun);
+            (s.id.clone(), done)
+        })
+        .collect())
 }
 
 /// OUTDIR inside the submissions folder would be read as a student next time.
@@ -192,7 +215,12 @@ fn jdk_tool(name: &str) -> Result<PathBuf> {
 /// What decides a student's result, hashed: their two files, the skeleton, the suite,
 /// whitted's version and the settings that change a verdict or a grade. The limits are not in
 /// it: they change only the results that hit one, which `--rerun failed` grades again.
-fn key(setup: &Setup, options: &Options, submission: &Submission) -> String {
+fn key(
+    skeleton: &Skeleton,
+    suite: &[crate::check::suite::SuiteCase],
+    options: &Options,
+    submission: &Submission,
+) -> String {
     let mut parts: Vec<Vec<u8>> = vec![env!("CARGO_PKG_VERSION").as_bytes().to_vec()];
     match &submission.files {
         Ok(files) => {
@@ -201,11 +229,11 @@ fn key(setup: &Setup, options: &Options, submission: &Submission) -> String {
         }
         Err(refusal) => parts.push(refusal.message.as_bytes().to_vec()),
     }
-    for (name, bytes) in &setup.skeleton.files {
+    for (name, bytes) in &skeleton.files {
         parts.push(name.as_bytes().to_vec());
         parts.push(bytes.clone());
     }
-    for case in &setup.suite {
+    for case in suite {
         parts.push(case.xml.as_bytes().to_vec());
         parts.push(case.bounces.to_le_bytes().to_vec());
     }

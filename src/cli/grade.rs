@@ -19,6 +19,11 @@ pub struct GradeArgs {
     #[arg(short, long, value_name = "OUTDIR")]
     pub output: PathBuf,
 
+    /// Grade no one: print each student's id and whether OUTDIR holds their finished result
+    /// (`done`) or not (`todo`), one per line, in the order --part shares them out
+    #[arg(long)]
+    pub list: bool,
+
     /// The course's gfx/tick2 sources to compile against [default: whitted's clean-room
     /// skeleton, with the same API]
     #[arg(long, value_name = "DIR")]

@@ -26,6 +26,13 @@ pub fn run(args: &GradeArgs) -> Result<()> {
         part: args.part,
         quiet: args.quiet,
     };
+    if args.list {
+        let lines: Vec<String> = grade::list(&options)?
+            .into_iter()
+            .map(|(id, done)| format!("{id}\t{}", if done { "done" } else { "todo" }))
+            .collect();
+        return stdout::print_line(&lines.join("\n"));
+    }
     let summary = grade::run(&options)?;
     let statuses: Vec<String> = summary
         .statuses
