@@ -67,21 +67,22 @@ pub fn class_csv(rows: &[Row]) -> String {
     out
 }
 
-/// How many students have each entry (their top diagnosis holds it), in catalogue order, the
-/// entries no one has left out.
+/// How many students have each entry (their top diagnosis holds it), the most common first
+/// (what to teach again), ties in catalogue order; the entries no one has left out.
 pub fn counts(rows: &[Row]) -> Vec<(Bug, usize)> {
-    Bug::ALL
+    let has = |b: Bug| {
+        rows.iter()
+            .filter(|r| r.diagnosis.iter().any(|d| d == b.id()))
+            .count()
+    };
+    let mut counts: Vec<(Bug, usize)> = Bug::ALL
         .iter()
-        .map(|&b| {
-            (
-                b,
-                rows.iter()
-                    .filter(|r| r.diagnosis.iter().any(|d| d == b.id()))
-                    .count(),
-            )
-        })
+        .map(|&b| (b, has(b)))
         .filter(|&(_, n)| n > 0)
-        .collect()
+        .collect();
+    // A stable sort keeps the catalogue order among equal counts.
+    counts.sort_by_key(|&(_, n)| std::cmp::Reverse(n));
+    counts
 }
 
 pub fn mistakes_csv(rows: &[Row]) -> String {
