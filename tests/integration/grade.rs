@@ -382,3 +382,173 @@ fn one_project_with_hidden_scenes_and_a_fractional_grade() {
     );
     assert!(!d.join("out2/class.csv").exists());
 }
+
+/// A folder of students named `names`, each built with the fixture and `code` run first in
+/// `render` (None: the plain fixture).
+fn folder_class(root: &Path, students: &[(&str, Option<&str>)]) {
+    for (name, code) in students {
+        let (plane, renderer) = match code {
+            Some(code) => hostile(code),
+            None => submission(&[]),
+        };
+        let dir = root.join(name).join("gfx/tick2");
+        std::fs::create_dir_all(&dir).expect("mkdir");
+        std::fs::write(dir.join("Plane.java"), plane).expect("write");
+        std::fs::write(dir.join("Renderer.java"), renderer).expect("write");
+    }
+}
+
+#[test]
+fn rerun_failed_grades_only_timeouts_and_ctrl_c_keeps_finished_students() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let sleeper = "try { Thread.sleep(Long.MAX_VALUE); } catch (InterruptedException e) {}";
+    folder_class(
+        &d.join("class"),
+        &[("a-fine", None), ("b-sleeps", Some(sleeper))],
+    );
+    let first = grade(d, &["class", "-o", "out", "--timeout", "2", "-j", "1"]);
+    assert!(first.status.success(), "{}", stderr(&first));
+    let rows = records(&d.join("out/class.csv"));
+    assert_eq!(rows.len(), 2);
+    let slept = result_json(&d.join("out"), "b-sleeps");
+    assert_eq!(
+        slept["extra_data"]["check"]["cases"][0]["status"],
+        "timeout"
+    );
+    assert_eq!(slept["extra_data"]["failed"], true);
+    // --rerun failed: only the student whose cases timed out.
+    let again = grade(
+        d,
+        &["class", "-o", "out", "--timeout", "2", "--rerun", "failed"],
+    );
+    assert!(again.status.success(), "{}", stderr(&again));
+    let said = String::from_utf8_lossy(&again.stdout).to_string();
+    assert!(said.contains("graded now 1, already graded 1"), "{said}");
+
+    // Ctrl-C while the sleeper runs: the student finished before it is kept, exit 130, no
+    // JVM left, no work folder left behind, and the next run grades only what is left.
+    let tmp = d.join("tmp");
+    std::fs::create_dir_all(&tmp).expect("tmp");
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_whitted"))
+        .args([
+            "grade",
+            "-q",
+            "class",
+            "-o",
+            "out2",
+            "--timeout",
+            "60",
+            "-j",
+            "1",
+        ])
+        .current_dir(d)
+        .env("TMPDIR", &tmp)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .expect("grade starts");
+    let finished = d.join("out2/students/a-fine/result.json");
+    let started = std::time::Instant::now();
+    while !finished.exists() {
+        assert!(
+            started.elapsed().as_secs() < 120,
+            "the first student never finished"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(100));
+    }
+    // The sleeper's cases are running now.
+    std::thread::sleep(std::time::Duration::from_secs(3));
+    let _ = std::process::Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status();
+    let status = child.wait().expect("wait");
+    assert_eq!(status.code(), Some(130));
+    assert!(finished.is_file());
+    assert!(!d.join("out2/students/b-sleeps/result.json").exists());
+    let left: Vec<_> = std::fs::read_dir(&tmp).expect("tmp").flatten().collect();
+    assert!(
+        left.is_empty(),
+        "left behind: {:?}",
+        left.iter().map(|e| e.path()).collect::<Vec<_>>()
+    );
+    std::thread::sleep(std::time::Duration::from_millis(300));
+    let jvms = std::fs::read_dir("/proc")
+        .expect("proc")
+        .flatten()
+        .filter(|e| {
+            std::fs::read(e.path().join("cmdline")).is_ok_and(|c| {
+                let c = String::from_utf8_lossy(&c);
+                c.contains("gfx.tick2.Tick2") && c.contains(&*tmp.to_string_lossy())
+            })
+        })
+        .count();
+    assert_eq!(jvms, 0, "a JVM outlived Ctrl-C");
+    let resumed = grade(d, &["class", "-o", "out2", "--timeout", "2"]);
+    assert!(resumed.status.success(), "{}", stderr(&resumed));
+    let said = String::from_utf8_lossy(&resumed.stdout).to_string();
+    assert!(said.contains("graded now 1, already graded 1"), "{said}");
+}
+
+#[test]
+fn the_fixture_as_two_files_on_the_skeleton_renders_the_single_file_fixture_s_bytes() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let compile = |out: &str, sources: Vec<PathBuf>| {
+        let javac = std::process::Command::new("javac")
+            .args(["-proc:none", "-d", out])
+            .args(&sources)
+            .current_dir(d)
+            .output()
+            .expect("javac");
+        assert!(javac.status.success(), "{}", stderr(&javac));
+    };
+    let java_files = |dir: PathBuf| -> Vec<PathBuf> {
+        std::fs::read_dir(dir)
+            .expect("dir")
+            .flatten()
+            .map(|e| e.path())
+            .filter(|p| p.extension().is_some_and(|x| x == "java"))
+            .collect()
+    };
+    let mut two_files = java_files(root().join("skeleton/gfx/tick2"));
+    two_files.extend(java_files(root().join("tests/java/submission/gfx/tick2")));
+    compile("submission", two_files);
+    compile(
+        "single",
+        vec![root().join("tests/java/gfx/tick2/Tick2.java")],
+    );
+    let render = |classes: &str, bug: &str, scene: &Path, bounces: &str, out: &str| {
+        let run = std::process::Command::new("java")
+            .arg(format!("-Dbug={bug}"))
+            .args(["-cp", classes, "gfx.tick2.Tick2", "--input"])
+            .arg(scene)
+            .args(["--output", out, "--bounces", bounces])
+            .current_dir(d)
+            .stdout(std::process::Stdio::null())
+            .output()
+            .expect("java");
+        assert!(run.status.success(), "{}", stderr(&run));
+        read_png(&d.join(out)).data
+    };
+    let mirrors = root().join("scenes/check/mirrors.xml");
+    let tick2 = root().join("scenes/tick2.xml");
+    for (bug, scene, bounces) in [
+        ("", &tick2, "2"),
+        ("", &mirrors, "3"),
+        ("reflection-wrong-sign", &mirrors, "3"),
+        ("plane-behind", &mirrors, "3"),
+        ("no-falloff", &tick2, "2"),
+        ("view-from-ray-origin", &mirrors, "3"),
+        ("reflect-unclamped,no-shadow-bias", &tick2, "2"),
+        ("planes-missing,bounces-minus-one", &tick2, "2"),
+    ] {
+        let ours = render("submission", bug, scene, bounces, "a.png");
+        let theirs = render("single", bug, scene, bounces, "b.png");
+        assert!(
+            ours == theirs,
+            "-Dbug={bug} on {}: the pixels differ",
+            scene.display()
+        );
+    }
+}
