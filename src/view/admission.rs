@@ -25,7 +25,7 @@ use tokio::sync::{OwnedSemaphorePermit, Semaphore};
 /// Heavy replies computed at once: one fewer than the server's worker threads.
 pub const HEAVY_AT_ONCE: usize = super::server::WORKERS - 1;
 /// What replies computed but not yet sent may hold at once.
-pub const REPLY_BUDGET: u64 = 512 << 20;
+pub const REPLY_BUDGET: u64 = 256 << 20;
 /// The budget's unit: replies are charged in whole units.
 const UNIT: u64 = 64 << 10;
 /// Replies up to this size are not charged (a 256 x 256 tile of four channels).

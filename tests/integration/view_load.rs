@@ -105,9 +105,9 @@ fn unread_replies_are_bounded() {
         peak = peak.max(resident_mib(viewer.pid()));
         std::thread::sleep(Duration::from_millis(100));
     }
-    // The budget of unsent replies (512 MiB) and a few replies being computed.
+    // The budget of unsent replies (256 MiB) and a few replies being computed.
     assert!(
-        peak < before + 700,
+        peak < before + 400,
         "unread replies hold {} MiB",
         peak - before
     );
