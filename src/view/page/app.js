@@ -307,6 +307,8 @@ async function opened() {
 async function start() {
   await opened();
   await load();
+  // Known before the page says it is ready: the reloads are followed once the first draw is done.
+  window.whitted.following = state.meta.watching;
   // A check opens on where the image differs, in false colour.
   if (state.meta.check) state.compare = "absolute-error";
   // The controls are wired first: a layer that fails to load below leaves them working.
@@ -317,7 +319,6 @@ async function start() {
   window.whitted.ready = true;
   await thumbnails();
   window.whitted.thumbnails = true;
-  window.whitted.following = state.meta.watching;
   if (state.meta.watching) follow();
 }
 
