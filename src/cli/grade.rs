@@ -38,7 +38,7 @@ pub struct GradeArgs {
     #[arg(short, long, value_name = "N", value_parser = parse_jobs)]
     pub jobs: Option<usize>,
 
-    /// Seconds each compilation and each case may take
+    /// Seconds each case may take (a compilation gets at least 60)
     #[arg(long, value_name = "SECONDS", default_value_t = 60, value_parser = parse_timeout)]
     pub timeout: u64,
 

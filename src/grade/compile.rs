@@ -11,6 +11,9 @@ use crate::error::{Error, Result};
 
 /// Bytes of javac's messages kept (the first ones: the first error is the one to fix).
 const MESSAGES: u64 = 64 << 10;
+/// javac's own time limit, at least: `--timeout` is a case's, and a busy machine can take
+/// seconds to start a JVM; a source that keeps javac busy for a minute is a timeout all the same.
+const COMPILE_SECONDS: u64 = 60;
 /// Lines of them shown in a report.
 pub const SHOWN_LINES: usize = 30;
 
@@ -72,7 +75,7 @@ pub fn compile(
         kept
     });
     let started = Instant::now();
-    let timeout = Duration::from_secs(limits.seconds);
+    let timeout = Duration::from_secs(limits.seconds.max(COMPILE_SECONDS));
     let status = loop {
         if crate::interrupt::requested() || started.elapsed() > timeout {
             kill(&child);

@@ -407,7 +407,8 @@ fn rerun_failed_grades_only_timeouts_and_ctrl_c_keeps_finished_students() {
         &d.join("class"),
         &[("a-fine", None), ("b-sleeps", Some(sleeper))],
     );
-    let first = grade(d, &["class", "-o", "out", "--timeout", "2", "-j", "1"]);
+    // 4 s: far more than a case takes, even on a loaded machine.
+    let first = grade(d, &["class", "-o", "out", "--timeout", "4", "-j", "1"]);
     assert!(first.status.success(), "{}", stderr(&first));
     let rows = records(&d.join("out/class.csv"));
     assert_eq!(rows.len(), 2);
@@ -420,7 +421,7 @@ fn rerun_failed_grades_only_timeouts_and_ctrl_c_keeps_finished_students() {
     // --rerun failed: only the student whose cases timed out.
     let again = grade(
         d,
-        &["class", "-o", "out", "--timeout", "2", "--rerun", "failed"],
+        &["class", "-o", "out", "--timeout", "4", "--rerun", "failed"],
     );
     assert!(again.status.success(), "{}", stderr(&again));
     let said = String::from_utf8_lossy(&again.stdout).to_string();
@@ -484,7 +485,7 @@ fn rerun_failed_grades_only_timeouts_and_ctrl_c_keeps_finished_students() {
         })
         .count();
     assert_eq!(jvms, 0, "a JVM outlived Ctrl-C");
-    let resumed = grade(d, &["class", "-o", "out2", "--timeout", "2"]);
+    let resumed = grade(d, &["class", "-o", "out2", "--timeout", "4"]);
     assert!(resumed.status.success(), "{}", stderr(&resumed));
     let said = String::from_utf8_lossy(&resumed.stdout).to_string();
     assert!(said.contains("graded now 1, already graded 1"), "{said}");
