@@ -59,6 +59,13 @@ pub fn read(submissions: &Path) -> Result<Vec<Submission>> {
             submissions.display()
         )));
     };
+    if students.is_empty() {
+        return Err(Error::Usage(format!(
+            "{}: no students there (give Moodle's zip of the submissions, a folder of \
+             students' folders, or one project folder)",
+            submissions.display()
+        )));
+    }
     Ok(settle(students))
 }
 

@@ -306,4 +306,15 @@ fn hostile_archives_and_folders_are_refused_or_read_without_writing_a_name_they_
     assert_eq!(row("6")["name"], "Caf\u{fffd}");
     assert_eq!(row("7")["status"], "no-files");
     assert_eq!(row("8")["status"], "no-files");
+
+    // A folder with no student in it is a wrong path, not an empty class.
+    std::fs::create_dir_all(d.join("empty")).expect("mkdir");
+    let run = grade(d, &["empty", "-o", "out3"]);
+    assert_eq!(run.status.code(), Some(2));
+    assert!(
+        stderr(&run).contains("no students there"),
+        "{}",
+        stderr(&run)
+    );
+    assert!(!d.join("out3").exists());
 }
