@@ -9,8 +9,8 @@
 //! breaks the JVM's reservations), processes and threads by `RLIMIT_NPROC`, file size by
 //! `RLIMIT_FSIZE`, open files by `RLIMIT_NOFILE`, CPU time by `RLIMIT_CPU` as a backstop to
 //! the wall-clock timeout. `RLIMIT_NPROC` counts per user, and not at all for root: run as
-//! root (a grading server, CI), each slot of `-j` runs as a user of its own (`SLOT_UID` +
-//! slot), so one student's fork bomb cannot starve another's JVM of threads; as any other
+//! root (a grading server, CI), each slot of `-j` runs as a user of its own (`slot_uid`: one
+//! per process and slot), so one student's fork bomb cannot starve another's JVM of threads; as any other
 //! user it counts that user's processes, and the limit is set above those already running.
 //! The limits are set by util-linux's `setpriv` and `prlimit` (present on every Debian), which
 //! exec bwrap: no code of ours runs between fork and exec.
@@ -22,7 +22,16 @@ use crate::error::{Error, Result};
 
 /// The first user id the slots of `-j` run as, when whitted runs as root: far above the ids
 /// systems give to people (Debian's highest range ends at 65534), below `(uid_t)-1`.
-const SLOT_UID: u32 = 3_000_000;
+const SLOT_UID: u32 = 1_000_000_000;
+
+/// The user id slot `slot` of this process runs student code as: one of its own per process
+/// and slot, so that two grading runs on one machine (two Slurm tasks on a node, two tests)
+/// never share an `RLIMIT_NPROC` count. 1024 ids per process, processes told apart by their
+/// pid modulo 2^21 (ids up to 1e9 + 2^31, below `(uid_t)-1`).
+fn slot_uid(slot: usize) -> u32 {
+    let pid = std::process::id() % (1 << 21);
+    SLOT_UID + pid * 1024 + (slot % 1024) as u32
+}
 /// Processes and threads one sandbox may have (a JVM with the serial collector uses ~20).
 pub const PROCESSES: u32 = 256;
 /// Bytes a file the program writes may have: a 640x480 PNG is under 1 MiB.
@@ -115,7 +124,7 @@ impl Sandbox {
             command.args(&program[1..]).current_dir(writable);
             return Ok(command);
         };
-        let uid = SLOT_UID + slot as u32;
+        let uid = slot_uid(slot);
         if *root {
             std::os::unix::fs::chown(writable, Some(uid), Some(uid))
                 .map_err(|e| Error::io(writable, "cannot hand over", e))?;
