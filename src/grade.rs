@@ -33,6 +33,7 @@ pub use sandbox::Limits;
 use crate::check::suite::cases;
 use crate::error::{Error, Result};
 use crate::fingerprint::fingerprint;
+use crate::output::atomic::AtomicFile;
 use intake::Submission;
 use sandbox::Sandbox;
 use skeleton::Skeleton;
@@ -83,14 +84,7 @@ pub struct Summary {
 pub fn run(options: &Options) -> Result<Summary> {
     refuse_outdir_inside(&options.submissions, &options.outdir)?;
     let submissions = intake::read(&options.submissions)?;
-    let skeleton = match &options.skeleton {
-        Some(dir) => Skeleton::from_dir(dir)?,
-        None => Skeleton::clean_room(),
-    };
-    let mut suite = cases();
-    if let Some(dir) = &options.scenes {
-        suite.extend(scenes::read(dir)?);
-    }
+    let (skeleton, suite) = course(options)?;
     let java = jdk_tool("java")?;
     let javac = jdk_tool("javac")?;
     let sandbox = match options.no_sandbox {
@@ -152,14 +146,7 @@ pub fn run(options: &Options) -> Result<Summary> {
 /// needs to share the class out and to resume it. Needs neither a JDK nor a sandbox.
 pub fn list(options: &Options) -> Result<Vec<(String, bool)>> {
     let submissions = intake::read(&options.submissions)?;
-    let skeleton = match &options.skeleton {
-        Some(dir) => Skeleton::from_dir(dir)?,
-        None => Skeleton::clean_room(),
-    };
-    let mut suite = cases();
-    if let Some(dir) = &options.scenes {
-        suite.extend(scenes::read(dir)?);
-    }
+    let (skeleton, suite) = course(options)?;
     let students_dir = options.outdir.join("students");
     Ok(submissions
         .iter()
@@ -169,6 +156,19 @@ pub fn list(options: &Options) -> Result<Vec<(String, bool)>> {
             (s.id.clone(), done)
         })
         .collect())
+}
+
+/// What every student is graded against: the skeleton and the suite (with `--scenes`).
+fn course(options: &Options) -> Result<(Skeleton, Vec<crate::check::suite::SuiteCase>)> {
+    let skeleton = match &options.skeleton {
+        Some(dir) => Skeleton::from_dir(dir)?,
+        None => Skeleton::clean_room(),
+    };
+    let mut suite = cases();
+    if let Some(dir) = &options.scenes {
+        suite.extend(scenes::read(dir)?);
+    }
+    Ok((skeleton, suite))
 }
 
 /// OUTDIR inside the submissions folder would be read as a student next time.
@@ -366,18 +366,14 @@ fn grade_one(
     write_atomic(&dir.join("result.json"), json.as_bytes())
 }
 
-/// Writes `bytes` to `path` through a temporary file in the same folder, renamed over it.
+/// Writes `bytes` to `path` whole or not at all (`output::atomic`).
 fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     use std::io::Write;
-    let dir = path.parent().unwrap_or(Path::new("."));
-    let mut file =
-        tempfile::NamedTempFile::new_in(dir).map_err(|e| Error::io(dir, "cannot write in", e))?;
-    file.write_all(bytes)
-        .and_then(|()| file.as_file().sync_all())
-        .map_err(|e| Error::io(path, "cannot write", e))?;
-    file.persist(path)
-        .map_err(|e| Error::io(path, "cannot write", e.error))?;
-    Ok(())
+    let mut file = AtomicFile::create(path)?;
+    file.file()
+        .write_all(bytes)
+        .map_err(|e| Error::io(path, "cannot write output", e))?;
+    file.commit()
 }
 
 /// Every student's row, from their result.json; one without is an `error` row.
@@ -442,8 +438,7 @@ fn modified_now() -> String {
     moodle_date(seconds)
 }
 
-/// Civil date of `seconds` since 1970 (UTC), in Moodle's worksheet format. Hand-written (Howard
-/// Hinnant's days-to-civil): one date, not worth a calendar crate in every build.
+/// `seconds` since 1970 (UTC) in Moodle's worksheet format.
 fn moodle_date(seconds: u64) -> String {
     const DAYS: [&str; 7] = [
         "Thursday",
@@ -470,15 +465,7 @@ fn moodle_date(seconds: u64) -> String {
     ];
     let days = (seconds / 86_400) as i64;
     let (hour, minute) = ((seconds % 86_400) / 3600, (seconds % 3600) / 60);
-    let z = days + 719_468;
-    let era = z.div_euclid(146_097);
-    let doe = z - era * 146_097;
-    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
-    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-    let mp = (5 * doy + 2) / 153;
-    let day = doy - (153 * mp + 2) / 5 + 1;
-    let month = if mp < 10 { mp + 3 } else { mp - 9 };
-    let year = yoe + era * 400 + i64::from(month <= 2);
+    let (year, month, day) = crate::calendar::civil_from_days(days);
     let (h12, half) = match hour {
         0 => (12, "AM"),
         1..=11 => (hour, "AM"),

@@ -28,6 +28,7 @@
 
 pub mod accel;
 pub mod aov;
+pub mod calendar;
 pub mod camera;
 pub mod canvas;
 pub mod check;

@@ -69,6 +69,21 @@ impl Status {
             Status::OutputTooLarge(_) => "output-too-large",
         }
     }
+
+    /// How a case that wrote no image to check ended, in a line (None for `Ok`).
+    pub fn failure_line(&self) -> Option<String> {
+        Some(match self {
+            Status::Ok(_) => return None,
+            Status::WrongSize { width, height } => {
+                format!("wrong-size: wrote {width}x{height}, expected {WIDTH}x{HEIGHT}")
+            }
+            Status::Crashed(message)
+            | Status::NoOutput(message)
+            | Status::OutOfMemory(message)
+            | Status::OutputTooLarge(message) => format!("{}: {message}", self.name()),
+            Status::Timeout(seconds) => format!("timeout: still running after {seconds} s"),
+        })
+    }
 }
 
 /// One case's result.

@@ -4,6 +4,7 @@
 
 use crate::canvas::{fit, Canvas, LINE_HEIGHT};
 use crate::check::difference::pixel_difference;
+use crate::check::program::{Status, SuiteRun};
 use crate::check::student_png::Rgb8;
 use crate::check::summary::{fits, largest};
 use crate::check::{CaseReport, Findings};
@@ -108,6 +109,19 @@ impl ReportRow {
         }
         ReportRow { caption, tiles }
     }
+}
+
+/// The rows of a `--program` run's failing cases, in suite order.
+pub fn failing_rows(run: &SuiteRun) -> Vec<ReportRow> {
+    run.cases
+        .iter()
+        .filter_map(|c| match &c.status {
+            Status::Ok(case) if !case.difference.verdict.passes() => {
+                Some(ReportRow::of(&c.name, case, &run.findings))
+            }
+            _ => None,
+        })
+        .collect()
 }
 
 /// Rows of [student | reference | heat map], each with its caption below.

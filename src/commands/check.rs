@@ -8,8 +8,8 @@ use serde_json::Value;
 
 use crate::check::diagnose::Diagnosis;
 use crate::check::json::{case_json, suite_json};
-use crate::check::program::{run_suite, Status, SuiteRun, HEIGHT, WIDTH};
-use crate::check::report::{contact_sheet, heat_map, ReportRow};
+use crate::check::program::{run_suite, Status, SuiteRun};
+use crate::check::report::{contact_sheet, failing_rows, heat_map, ReportRow};
 use crate::check::reproduce::{explain_commands, Reproduce};
 use crate::check::suite;
 use crate::check::summary::{self, candidates_heading, opening};
@@ -128,16 +128,7 @@ fn run_program(args: &CheckArgs, program: &str) -> Result<bool> {
     let mut report = args.report.as_deref().map(Destination::open).transpose()?;
     let run = run_suite(program, args.tolerance, args.timeout)?;
     if let Some(out) = report.as_mut() {
-        let rows: Vec<ReportRow> = run
-            .cases
-            .iter()
-            .filter_map(|c| match &c.status {
-                Status::Ok(case) if !case.difference.verdict.passes() => {
-                    Some(ReportRow::of(&c.name, case, &run.findings))
-                }
-                _ => None,
-            })
-            .collect();
+        let rows = failing_rows(&run);
         out.write_png(&contact_sheet(&rows))?;
     }
     if let Some(out) = report {
@@ -279,14 +270,7 @@ fn suite_text(run: &SuiteRun, suite_dir: Option<&Path>) -> String {
         };
         let detail = match &c.status {
             Status::Ok(case) => case_line(case),
-            Status::WrongSize { width, height } => {
-                format!("wrong-size: wrote {width}x{height}, expected {WIDTH}x{HEIGHT}")
-            }
-            Status::Crashed(message)
-            | Status::NoOutput(message)
-            | Status::OutOfMemory(message)
-            | Status::OutputTooLarge(message) => format!("{}: {message}", c.status.name()),
-            Status::Timeout(seconds) => format!("timeout: still running after {seconds} s"),
+            other => other.failure_line().unwrap_or_default(),
         };
         out += &format!("  {:<28} {detail}\n", c.name);
         if !c.stderr_tail.is_empty() && report.is_none() {

@@ -9,7 +9,7 @@ use super::intake::Submission;
 use super::student::Outcome;
 use crate::canvas::Canvas;
 use crate::check::program::{Status, SuiteRun};
-use crate::check::report::{contact_sheet, heat_map, ReportRow};
+use crate::check::report::{contact_sheet, failing_rows, heat_map, ReportRow};
 use crate::check::summary;
 use crate::output::png::{PngImage, PngPixels};
 
@@ -141,16 +141,7 @@ pub fn sheet(outcome: &Outcome, feedback: &str) -> PngImage {
         }
         return caption_only(caption);
     };
-    let mut rows: Vec<ReportRow> = run
-        .cases
-        .iter()
-        .filter_map(|c| match &c.status {
-            Status::Ok(case) if !case.difference.verdict.passes() => {
-                Some(ReportRow::of(&c.name, case, &run.findings))
-            }
-            _ => None,
-        })
-        .collect();
+    let mut rows = failing_rows(run);
     if rows.is_empty() {
         rows.extend(run.cases.iter().find_map(|c| match &c.status {
             Status::Ok(case) => Some(ReportRow::of(&c.name, case, &run.findings)),

@@ -180,19 +180,7 @@ fn test(case: &CaseOutcome) -> Value {
 
 /// A case that wrote no image to check: how it ended, and the end of its standard error.
 fn status_line(status: &Status, tail: &str) -> String {
-    let what = match status {
-        Status::Timeout(s) => format!("timeout: still running after {s} s"),
-        Status::WrongSize { width, height } => {
-            format!("wrong-size: wrote {width}x{height}, expected 640x480")
-        }
-        Status::Crashed(m)
-        | Status::NoOutput(m)
-        | Status::OutOfMemory(m)
-        | Status::OutputTooLarge(m) => {
-            format!("{}: {m}", status.name())
-        }
-        Status::Ok(_) => "ok".into(),
-    };
+    let what = status.failure_line().unwrap_or_else(|| "ok".into());
     match tail.lines().last() {
         Some(last) if !last.trim().is_empty() => format!("{what}\n{tail}"),
         _ => what,

@@ -13,20 +13,23 @@ use crate::view::{http, Viewer};
 
 /// A 1920x1080 image and a different reference of it, open in a viewer.
 fn full_hd_pair(d: &Path) -> Viewer {
-    for (name, bounces) in [("a.png", "2"), ("b.png", "0")] {
-        let out = whitted(
-            d,
-            &[
-                "render", "--width", "1920", "--height", "1080", "-b", bounces, "-o", name,
-            ],
-        );
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-    }
+    render(d, "a.png", (1920, 1080), "2");
+    render(d, "b.png", (1920, 1080), "0");
     Viewer::start_with(d, &["a.png", "--reference", "b.png"])
+}
+
+/// tick2 at `size` and `bounces`, as the PNG `name` in `d`.
+fn render(d: &Path, name: &str, (width, height): (u32, u32), bounces: &str) {
+    let (width, height) = (width.to_string(), height.to_string());
+    let args = [
+        "render", "--width", &width, "--height", &height, "-b", bounces, "-o", name,
+    ];
+    let out = whitted(d, &args);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 #[test]
@@ -144,20 +147,7 @@ fn version_header(viewer: &Viewer, path: &str) -> Option<u64> {
 fn replies_say_which_load_they_come_from() {
     let dir = tempfile::tempdir().expect("tempdir");
     let d = dir.path();
-    let render = |name: &str, bounces: &str| {
-        let out = whitted(
-            d,
-            &[
-                "render", "--width", "64", "--height", "48", "-b", bounces, "-o", name,
-            ],
-        );
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-    };
-    render("a.png", "2");
+    render(d, "a.png", (64, 48), "2");
     let viewer = Viewer::start_with(d, &["a.png", "--watch"]);
     let routes = [
         "/api/layer?name=beauty&tx=0&ty=0",
@@ -168,7 +158,7 @@ fn replies_say_which_load_they_come_from() {
     for route in routes {
         assert_eq!(version_header(&viewer, route), Some(1), "{route}");
     }
-    render("new.png", "0");
+    render(d, "new.png", (64, 48), "0");
     std::fs::rename(d.join("new.png"), d.join("a.png")).expect("replace");
     let started = Instant::now();
     while viewer.json("/api/version")["version"] == 1 {
