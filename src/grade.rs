@@ -20,6 +20,7 @@ mod sandbox;
 mod scenes;
 mod skeleton;
 mod student;
+mod warm_javac;
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -38,6 +39,7 @@ use intake::Submission;
 use sandbox::Sandbox;
 use skeleton::Skeleton;
 use student::{Outcome, Setup};
+use warm_javac::WarmJavac;
 
 /// Which finished students a run grades again.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -294,20 +296,34 @@ fn grade_all(
     std::thread::scope(|scope| {
         for slot in 0..jobs.min(todo.len()) {
             let (next, failure, progress) = (&next, &failure, &progress);
-            scope.spawn(move || loop {
-                let stop = failure.lock().map(|f| f.is_some()).unwrap_or(true);
-                let i = next.fetch_add(1, Ordering::SeqCst);
-                if stop || i >= todo.len() || crate::interrupt::requested() {
-                    return;
-                }
-                let (submission, key) = &todo[i];
-                match grade_one(setup, options, students_dir, submission, key, slot) {
-                    Ok(()) => progress.advance(1),
-                    Err(e) => {
-                        if let Ok(mut f) = failure.lock() {
-                            f.get_or_insert(e);
-                        }
+            scope.spawn(move || {
+                let compilers = setup.work.join("javac");
+                let mut javac =
+                    WarmJavac::new(&setup.sandbox, &setup.java, &compilers, slot, setup.limits);
+                loop {
+                    let stop = failure.lock().map(|f| f.is_some()).unwrap_or(true);
+                    let i = next.fetch_add(1, Ordering::SeqCst);
+                    if stop || i >= todo.len() || crate::interrupt::requested() {
                         return;
+                    }
+                    let (submission, key) = &todo[i];
+                    let graded = grade_one(
+                        setup,
+                        options,
+                        students_dir,
+                        submission,
+                        key,
+                        slot,
+                        &mut javac,
+                    );
+                    match graded {
+                        Ok(()) => progress.advance(1),
+                        Err(e) => {
+                            if let Ok(mut f) = failure.lock() {
+                                f.get_or_insert(e);
+                            }
+                            return;
+                        }
                     }
                 }
             });
@@ -329,8 +345,9 @@ fn grade_one(
     submission: &Submission,
     key: &str,
     slot: usize,
+    javac: &mut WarmJavac,
 ) -> Result<()> {
-    let outcome = match student::grade(setup, submission, slot) {
+    let outcome = match student::grade(setup, submission, slot, javac) {
         Ok(outcome) => outcome,
         Err(e @ Error::Interrupted { .. }) => return Err(e),
         // Anything else that stops this student (the program could not be started, a

@@ -438,7 +438,8 @@ fn stop(r: &mut Running) -> String {
     tail_text(&tail)
 }
 
-fn kill_group(child: &Child) {
+/// Kills `child`'s process group (it was started as its leader).
+pub(crate) fn kill_group(child: &Child) {
     #[cfg(unix)]
     if let Some(pid) = rustix::process::Pid::from_child(child).into() {
         // The group may be gone already (everything exited): nothing to do then.

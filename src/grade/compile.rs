@@ -1,5 +1,7 @@
 //! `javac` over a student's two files and the skeleton, in the sandbox: the first errors it
-//! prints are what the student's report shows for `compile-error`.
+//! prints are what the student's report shows for `compile-error`. A JVM of its own per
+//! student: what the warm compiler (`warm_javac.rs`) falls back to, and what names the end of
+//! a compilation that killed it.
 
 use std::io::Read;
 use std::path::Path;
@@ -7,13 +9,14 @@ use std::process::Stdio;
 use std::time::{Duration, Instant};
 
 use super::sandbox::{Limits, Sandbox};
+use crate::check::program::kill_group;
 use crate::error::{Error, Result};
 
 /// Bytes of javac's messages kept (the first ones: the first error is the one to fix).
-const MESSAGES: u64 = 64 << 10;
+pub const MESSAGES: u64 = 64 << 10;
 /// javac's own time limit, at least: `--timeout` is a case's, and a busy machine can take
 /// seconds to start a JVM; a source that keeps javac busy for a minute is a timeout all the same.
-const COMPILE_SECONDS: u64 = 60;
+pub const COMPILE_SECONDS: u64 = 60;
 /// Lines of them shown in a report.
 pub const SHOWN_LINES: usize = 30;
 
@@ -44,14 +47,8 @@ pub fn compile(
         "-J-XX:TieredStopAtLevel=1".into(),
         "-J-XX:+UseSerialGC".into(),
         "-J-XX:-UsePerfData".into(),
-        "-proc:none".into(),
-        "-encoding".into(),
-        "UTF-8".into(),
-        "-Xmaxerrs".into(),
-        "20".into(),
-        "-d".into(),
-        work.join("classes").display().to_string(),
     ];
+    program.extend(javac_options(&work.join("classes")));
     program.extend(sources.iter().cloned());
     let (src, classes) = (work.join("src"), work.join("classes"));
     let mut command = sandbox.command(&program, &[&src], &classes, slot, limits)?;
@@ -78,7 +75,7 @@ pub fn compile(
     let timeout = Duration::from_secs(limits.seconds.max(COMPILE_SECONDS));
     let status = loop {
         if crate::interrupt::requested() || started.elapsed() > timeout {
-            kill(&child);
+            kill_group(&child);
             let _ = child.wait();
             crate::interrupt::check()?;
             break None;
@@ -87,7 +84,7 @@ pub fn compile(
             Ok(Some(status)) => break Some(status),
             Ok(None) => std::thread::sleep(Duration::from_millis(20)),
             Err(e) => {
-                kill(&child);
+                kill_group(&child);
                 return Err(Error::Environment(format!("cannot wait for javac: {e}")));
             }
         }
@@ -96,20 +93,23 @@ pub fn compile(
     Ok(match status {
         None => Compiled::Timeout,
         Some(s) if s.success() => Compiled::Ok,
-        Some(_) => Compiled::Errors(first_lines(&messages, work)),
+        Some(_) => Compiled::Errors(first_lines(&messages, &src)),
     })
 }
 
-fn kill(child: &std::process::Child) {
-    if let Some(pid) = rustix::process::Pid::from_child(child).into() {
-        let _ = rustix::process::kill_process_group(pid, rustix::process::Signal::KILL);
-    }
+/// What javac is told besides its sources: no annotation processors (they would run code
+/// from the classpath), the course's encoding, the first 20 errors, where the classes go.
+pub fn javac_options(classes: &Path) -> Vec<String> {
+    let options = ["-proc:none", "-encoding", "UTF-8", "-Xmaxerrs", "20", "-d"];
+    let mut all: Vec<String> = options.iter().map(|o| o.to_string()).collect();
+    all.push(classes.display().to_string());
+    all
 }
 
-/// javac's first `SHOWN_LINES` lines, paths relative to the sources' folder.
-fn first_lines(messages: &[u8], work: &Path) -> String {
+/// javac's first `SHOWN_LINES` lines, paths relative to the sources' folder `src`.
+pub fn first_lines(messages: &[u8], src: &Path) -> String {
     let text = String::from_utf8_lossy(messages);
-    let prefix = format!("{}/src/", work.display());
+    let prefix = format!("{}/", src.display());
     text.lines()
         .take(SHOWN_LINES)
         .map(|l| l.replace(&prefix, ""))

@@ -8,6 +8,7 @@ use super::compile::{compile, Compiled};
 use super::intake::{Files, Submission};
 use super::sandbox::{Limits, Sandbox};
 use super::skeleton::Skeleton;
+use super::warm_javac::WarmJavac;
 use crate::check::program::{run_suite_with, Launch, SuiteRun};
 use crate::check::suite::SuiteCase;
 use crate::error::{Error, Result};
@@ -40,8 +41,13 @@ pub enum Outcome {
     Ran(Box<SuiteRun>),
 }
 
-/// Grades `submission` in slot `slot` of the class's workers.
-pub fn grade(setup: &Setup, submission: &Submission, slot: usize) -> Result<Outcome> {
+/// Grades `submission` in slot `slot` of the class's workers, compiled by the slot's `javac`.
+pub fn grade(
+    setup: &Setup,
+    submission: &Submission,
+    slot: usize,
+    javac: &mut WarmJavac,
+) -> Result<Outcome> {
     let files = match &submission.files {
         Ok(files) => files,
         Err(refusal) => {
@@ -51,24 +57,32 @@ pub fn grade(setup: &Setup, submission: &Submission, slot: usize) -> Result<Outc
             })
         }
     };
-    let work = setup.work.join(&submission.id);
+    let work = setup.work.join("students").join(&submission.id);
     let _cleanup = WorkFolder(work.clone());
-    let sources = lay_out(setup, files, &work)?;
-    match compile(
-        &setup.sandbox,
-        &setup.javac,
-        &work,
-        &sources,
-        slot,
-        setup.limits,
-    )? {
+    let sources = sources(setup, files);
+    let classes = work.join("classes");
+    let compiled = match javac.compile(&sources, &classes)? {
+        Some(compiled) => compiled,
+        None => {
+            let paths = lay_out(&sources, &work)?;
+            compile(
+                &setup.sandbox,
+                &setup.javac,
+                &work,
+                &paths,
+                slot,
+                setup.limits,
+            )?
+        }
+    };
+    match compiled {
         Compiled::Ok => {}
         Compiled::Errors(messages) => return Ok(Outcome::CompileError(messages)),
         Compiled::Timeout => return Ok(Outcome::CompileTimeout),
     }
     let launch = SandboxedJava {
         setup,
-        classes: work.join("classes"),
+        classes,
         slot,
     };
     let run = run_suite_with(
@@ -90,31 +104,36 @@ impl Drop for WorkFolder {
     }
 }
 
-/// `work/src/gfx/tick2/` with the skeleton's files and the student's two, and an empty
-/// `work/classes`; returns the sources' paths.
-fn lay_out(setup: &Setup, files: &Files, work: &Path) -> Result<Vec<String>> {
+/// What is compiled: the skeleton's files and the student's two, by name.
+fn sources<'a>(setup: &'a Setup, files: &'a Files) -> Vec<(&'a str, &'a [u8])> {
+    let ours = setup
+        .skeleton
+        .files
+        .iter()
+        .map(|(name, bytes)| (name.as_str(), bytes.as_slice()));
+    let theirs = [
+        ("Plane.java", files.plane.as_slice()),
+        ("Renderer.java", files.renderer.as_slice()),
+    ];
+    ours.chain(theirs).collect()
+}
+
+/// `work/src/gfx/tick2/` with `sources` and an empty `work/classes`; returns the sources'
+/// paths.
+fn lay_out(sources: &[(&str, &[u8])], work: &Path) -> Result<Vec<String>> {
     let _ = std::fs::remove_dir_all(work);
     let package = work.join("src/gfx/tick2");
     let classes = work.join("classes");
     for dir in [&package, &classes] {
         std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, "cannot create", e))?;
     }
-    let theirs = [
-        ("Plane.java", files.plane.as_slice()),
-        ("Renderer.java", files.renderer.as_slice()),
-    ];
-    let ours = setup
-        .skeleton
-        .files
-        .iter()
-        .map(|(name, bytes)| (name.as_str(), bytes.as_slice()));
-    let mut sources = Vec::new();
-    for (name, bytes) in ours.chain(theirs) {
+    let mut paths = Vec::new();
+    for (name, bytes) in sources {
         let path = package.join(name);
         std::fs::write(&path, bytes).map_err(|e| Error::io(&path, "cannot write", e))?;
-        sources.push(path.display().to_string());
+        paths.push(path.display().to_string());
     }
-    Ok(sources)
+    Ok(paths)
 }
 
 /// The student's compiled program, run in the sandbox: `java gfx.tick2.Tick2` with the case's
