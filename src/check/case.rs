@@ -12,6 +12,12 @@ pub const SAMPLE: usize = 2000;
 /// Each case looks at no fewer pixels of a kind than this, however many cases there are.
 const MIN_PER_CASE: usize = 300;
 
+/// The right pixels sampled are drawn from a lattice this many times denser than the sample,
+/// the same for every student of a case: a candidate's bytes on it are rendered once per
+/// class (`Renderer::lattice_bytes`), and each student picks the lattice's pixels they got
+/// right.
+const LATTICE_DENSITY: usize = 4;
+
 /// The pixels of one case that every candidate renders first: up to a share of `SAMPLE` of
 /// those the student got wrong, then as many of those they got right, each standing for its
 /// share of the image.
@@ -27,6 +33,10 @@ pub struct PixelSample {
     /// The student's and the reference's bytes at `positions`, three a pixel.
     pub student: Vec<u8>,
     pub reference: Vec<u8>,
+    /// The case's lattice, the same for every image of its size in a run of as many cases.
+    pub lattice: Vec<(u32, u32)>,
+    /// Where in `lattice` each sampled right pixel (`positions[wrong..]`) is.
+    pub right_in_lattice: Vec<usize>,
 }
 
 impl PixelSample {
@@ -70,7 +80,14 @@ impl<'a> Case<'a> {
         let (wrong, right): (Vec<usize>, Vec<usize>) =
             (0..pixels).partition(|&i| pixel_difference(&student.bytes, &reference.bytes, i) > 0);
         let per_kind = (SAMPLE / cases.max(1)).max(MIN_PER_CASE);
-        let (wrong_sample, right_sample) = (spread(&wrong, per_kind), spread(&right, per_kind));
+        let step = pixels.div_ceil(per_kind * LATTICE_DENSITY).max(1);
+        let lattice: Vec<usize> = (0..pixels).step_by(step).collect();
+        let right_on_lattice: Vec<usize> = (0..lattice.len())
+            .filter(|&k| pixel_difference(&student.bytes, &reference.bytes, lattice[k]) == 0)
+            .collect();
+        let right_in_lattice = spread(&right_on_lattice, per_kind);
+        let right_sample: Vec<usize> = right_in_lattice.iter().map(|&k| lattice[k]).collect();
+        let wrong_sample = spread(&wrong, per_kind);
         let looked: Vec<usize> = wrong_sample.iter().chain(&right_sample).copied().collect();
         let pick = |image: &Rgb8| -> Vec<u8> {
             looked
@@ -85,6 +102,11 @@ impl<'a> Case<'a> {
             right_weight: right.len() as f64 / right_sample.len().max(1) as f64,
             student: pick(&student),
             reference: pick(&reference),
+            lattice: lattice
+                .iter()
+                .map(|&i| position(student.width, i))
+                .collect(),
+            right_in_lattice,
         };
         Ok(Case {
             renderer,

@@ -6,8 +6,9 @@
 //! Two stages keep a 640x480 check within a second on two cores. First every candidate
 //! renders only each case's sample (`check::case`): every single entry and every pair, then
 //! a beam of the best pairs extended by one more entry where that lowers the cost. Then the
-//! best `FINALISTS` render every case whole, and their numbers are exact. On a tie of cost,
-//! fewer entries rank first, then catalogue order.
+//! best `FINALISTS` render every case whole, and their numbers are exact; after one that
+//! reproduces the student's images exactly, only those that could be its twins. On a tie of
+//! cost, fewer entries rank first, then catalogue order.
 
 use std::collections::HashMap;
 
@@ -157,13 +158,25 @@ impl Search {
             .take_while(|s| s.cost() <= best * CLOSE + margin)
             .map(|s| s.variant.mistakes)
             .collect();
+        let mut exact: Option<Mistakes> = None;
         for mistakes in finalists {
             if let Some(s) = self
                 .scored
                 .iter_mut()
                 .find(|s| s.variant.mistakes == mistakes)
             {
+                // Once a finalist renders every case exactly as the student did, only its
+                // twins are listed (`rank`): one that already differs from the student on
+                // the sample is no twin, and its whole images would change nothing shown,
+                // unless it is the exact one less an entry (`in_case` compares those).
+                let needed = exact.is_none_or(|e| e.one_smaller().contains(&mistakes));
+                if !needed && s.differs_on_sample() {
+                    continue;
+                }
                 *s = s.made_whole(cases)?;
+                if exact.is_none() && s.cost() == 0.0 {
+                    exact = Some(mistakes);
+                }
             }
         }
         Ok(())

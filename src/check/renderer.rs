@@ -6,6 +6,7 @@
 use rayon::prelude::*;
 
 use crate::accel::Accelerator;
+use crate::check::case::PixelSample;
 use crate::check::student_png::Rgb8;
 use crate::error::Result;
 use crate::frame::{Acceleration, Frame, FrameSpec};
@@ -103,6 +104,50 @@ impl<'a> Renderer<'a> {
             trace_pixels::<false, _>(model, self.scene, accel, frame, pixels, |s| s.beauty);
         interrupt::check()?;
         Ok(tick_bytes(&beauty))
+    }
+
+    /// `variant`'s bytes at `sample`'s positions: the wrong pixels rendered, the right ones
+    /// picked from its lattice's bytes.
+    pub fn sample_bytes(
+        &self,
+        variant: &Variant,
+        frame: &Frame,
+        sample: &PixelSample,
+    ) -> Result<Vec<u8>> {
+        let Some(lattice) = self.lattice_bytes(variant, frame, &sample.lattice)? else {
+            return self.bytes_at(variant, frame, &sample.positions);
+        };
+        let mut bytes = self.bytes_at(variant, frame, &sample.positions[..sample.wrong])?;
+        for &k in &sample.right_in_lattice {
+            bytes.extend_from_slice(&lattice.bytes[3 * k..3 * k + 3]);
+        }
+        Ok(bytes)
+    }
+
+    /// `variant`'s bytes on the whole `lattice`, rendered once per class and kept with the
+    /// whole images; None where nothing is shared (a single check, a fitted number).
+    fn lattice_bytes(
+        &self,
+        variant: &Variant,
+        frame: &Frame,
+        lattice: &[(u32, u32)],
+    ) -> Result<Option<Rgb8>> {
+        let Some(scene) = self.scene_key.as_ref().filter(|_| variant.number.is_none()) else {
+            return Ok(None);
+        };
+        let key = format!(
+            "{scene} {:?} {variant:?} lattice of {}",
+            self.spec,
+            lattice.len()
+        );
+        let render = || {
+            Ok(Rgb8 {
+                width: lattice.len() as u32,
+                height: 1,
+                bytes: self.bytes_at(variant, frame, lattice)?,
+            })
+        };
+        crate::check::image_cache::get_or_render(key, render).map(Some)
     }
 
     /// The whole image under `model` in `frame`, on every core.

@@ -52,6 +52,9 @@ pub struct CaseScore {
     pub changes_image: bool,
     /// The fingerprint of what it rendered on the sample.
     pub sample_fingerprint: u64,
+    /// Whether it rendered a sampled pixel otherwise than the student (kept when the case
+    /// is counted whole: the sample's pixels are the whole image's too).
+    pub differs_on_sample: bool,
     /// The fingerprint of the whole image, once it was rendered whole (the numbers are then
     /// counts, not estimates).
     pub image_fingerprint: Option<u64>,
@@ -65,6 +68,7 @@ impl CaseScore {
             wrongly_changed: 0.0,
             changes_image: false,
             sample_fingerprint,
+            differs_on_sample: false,
             image_fingerprint: None,
         }
     }
@@ -85,6 +89,7 @@ impl CaseScore {
         let sample = &case.sample;
         let mut s = CaseScore::empty(fingerprint(bytes));
         s.changes_image = bytes != sample.reference.as_slice();
+        s.differs_on_sample = bytes != sample.student.as_slice();
         for j in 0..sample.positions.len() {
             let (weight, was_wrong) = sample.kind(j);
             s.tally(
@@ -99,6 +104,7 @@ impl CaseScore {
     /// The counts over the whole `image`, keeping the sample's fingerprint of `estimate`.
     pub fn on_image(case: &Case, image: &Rgb8, estimate: &CaseScore) -> Self {
         let mut s = CaseScore::empty(estimate.sample_fingerprint);
+        s.differs_on_sample = estimate.differs_on_sample;
         s.changes_image = image.bytes != case.reference.bytes;
         s.image_fingerprint = Some(fingerprint(&image.bytes));
         let mut wrong = case.wrong.iter().peekable();
@@ -141,9 +147,7 @@ impl Scored {
             .iter()
             .map(|case| {
                 let frame = case.renderer.frame(variant.mistakes)?;
-                let bytes = case
-                    .renderer
-                    .bytes_at(&variant, &frame, &case.sample.positions)?;
+                let bytes = case.renderer.sample_bytes(&variant, &frame, &case.sample)?;
                 Ok(CaseScore::on_sample(case, &bytes))
             })
             .collect::<Result<_>>()?;
@@ -183,6 +187,12 @@ impl Scored {
 
     pub fn changes_any(&self) -> bool {
         self.cases.iter().any(|c| c.changes_image)
+    }
+
+    /// Whether some sampled pixel of some case differs from the student's: then its whole
+    /// images do too, and it cannot reproduce them exactly.
+    pub fn differs_on_sample(&self) -> bool {
+        self.cases.iter().any(|c| c.differs_on_sample)
     }
 
     /// Whether every case was counted over its whole image.
