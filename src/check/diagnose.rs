@@ -5,10 +5,11 @@
 //!
 //! Two stages keep a 640x480 check within a second on two cores. First every candidate
 //! renders only each case's sample (`check::case`): every single entry and every pair, then
-//! a beam of the best pairs extended by one more entry where that lowers the cost. Then the
-//! best `FINALISTS` render every case whole, and their numbers are exact; after one that
-//! reproduces the student's images exactly, only those that could be its twins. On a tie of
-//! cost, fewer entries rank first, then catalogue order.
+//! (unless the best of those reproduces every case exactly) a beam of the best pairs extended
+//! by one more entry where that lowers the cost. Then the best `FINALISTS` render every case
+//! whole, and their numbers are exact; after one that reproduces the student's images
+//! exactly, only those that could be its twins. On a tie of cost, fewer entries rank first,
+//! then catalogue order.
 
 use std::collections::HashMap;
 
@@ -89,10 +90,33 @@ impl Search {
         let mut search = Search {
             scored: score_all(cases, &singles_and_pairs())?,
         };
-        let triples = search.triples();
-        search.scored.extend(score_all(cases, &triples)?);
+        if !search.exactly_explained(cases)? {
+            let triples = search.triples();
+            search.scored.extend(score_all(cases, &triples)?);
+        }
         search.finalise(cases)?;
         Ok(search)
+    }
+
+    /// Whether the best candidate so far reproduces every case exactly (it is then made
+    /// whole): no triple can do better, and on a tie the fewer entries rank first, so the
+    /// triples need not be scored.
+    fn exactly_explained(&mut self, cases: &[Case]) -> Result<bool> {
+        let mut order: Vec<&Scored> = self.useful().collect();
+        order.sort_by(ranking);
+        let Some(best) = order.first().filter(|s| s.cost() == 0.0) else {
+            return Ok(false);
+        };
+        let mistakes = best.variant.mistakes;
+        let Some(s) = self
+            .scored
+            .iter_mut()
+            .find(|s| s.variant.mistakes == mistakes)
+        else {
+            return Ok(false);
+        };
+        *s = s.made_whole(cases)?;
+        Ok(s.cost() == 0.0)
     }
 
     /// The candidate for exactly `mistakes` (no number), if it was scored.
@@ -173,7 +197,9 @@ impl Search {
                 if !needed && s.differs_on_sample() {
                     continue;
                 }
-                *s = s.made_whole(cases)?;
+                if !s.is_whole() {
+                    *s = s.made_whole(cases)?;
+                }
                 if exact.is_none() && s.cost() == 0.0 {
                     exact = Some(mistakes);
                 }

@@ -125,14 +125,16 @@ impl<'a> Renderer<'a> {
     }
 
     /// `variant`'s bytes on the whole `lattice`, rendered once per class and kept with the
-    /// whole images; None where nothing is shared (a single check, a fitted number).
+    /// whole images; None where little would be shared: a single check, a fitted number, a
+    /// triple (each student's beam extends their own best pairs).
     fn lattice_bytes(
         &self,
         variant: &Variant,
         frame: &Frame,
         lattice: &[(u32, u32)],
     ) -> Result<Option<Rgb8>> {
-        let Some(scene) = self.scene_key.as_ref().filter(|_| variant.number.is_none()) else {
+        let shared = variant.number.is_none() && variant.mistakes.len() <= 2;
+        let Some(scene) = self.scene_key.as_ref().filter(|_| shared) else {
             return Ok(None);
         };
         let key = format!(

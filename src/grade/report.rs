@@ -4,7 +4,7 @@
 //! through the handout they are.
 
 use super::compile::SHOWN_LINES;
-use super::html::{escape, image, STYLE};
+use super::html::{escape, image, shared_image, STYLE};
 use super::intake::Submission;
 use super::student::Outcome;
 use crate::canvas::Canvas;
@@ -105,15 +105,18 @@ fn ran(run: &SuiteRun) -> String {
                     continue;
                 };
                 out += &format!("<h2>{}</h2>\n", escape(&case.name));
-                for (alt, bytes) in [
-                    ("your image", r.student.bytes.clone()),
-                    ("the reference", r.reference.bytes.clone()),
-                    ("where they differ", heat),
+                for (alt, html) in [
+                    (
+                        "your image",
+                        image(w, h, r.student.bytes.clone(), "your image"),
+                    ),
+                    (
+                        "the reference",
+                        shared_image(w, h, &r.reference.bytes, "the reference"),
+                    ),
+                    ("where they differ", image(w, h, heat, "where they differ")),
                 ] {
-                    out += &format!(
-                        "<figure>{}<figcaption>{alt}</figcaption></figure>\n",
-                        image(w, h, bytes, alt)
-                    );
+                    out += &format!("<figure>{html}<figcaption>{alt}</figcaption></figure>\n");
                 }
             }
             Status::Ok(_) => {}
