@@ -13,6 +13,7 @@ mod class;
 mod compile;
 mod html;
 mod intake;
+mod memory_cgroup;
 mod moodle;
 mod report;
 mod result;

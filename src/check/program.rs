@@ -138,6 +138,11 @@ pub trait Launch: Sync {
     /// Whether everything the program starts dies with the command (a sandbox's own process
     /// namespace): then no orphan needs adopting, and none is looked for.
     fn contains_descendants(&self) -> bool;
+    /// Called once the run in `dir` is over and its processes are gone: whether the kernel
+    /// killed it at a memory limit of the launcher's (a sandbox's cgroup).
+    fn ended(&self, _dir: &Path) -> bool {
+        false
+    }
 }
 
 /// The program as given: its words, run directly.
@@ -304,11 +309,11 @@ fn run_programs(
             match r.child.try_wait() {
                 Ok(Some(status)) => {
                     let index = r.index;
-                    results[index] = Some(finish(r, Some(status), timeout));
+                    results[index] = Some(finish(launch, r, Some(status), timeout));
                 }
                 Ok(None) if r.started.elapsed() > timeout => {
                     let index = r.index;
-                    results[index] = Some(finish(r, None, timeout));
+                    results[index] = Some(finish(launch, r, None, timeout));
                 }
                 Ok(None) => still.push(r),
                 Err(e) => {
@@ -449,10 +454,20 @@ pub(crate) fn kill_group(child: &Child) {
 
 /// The result of a case whose program exited with `status` (`None`: timed out). Every
 /// process of the case is gone before its output is read.
-fn finish(mut r: Running, status: Option<ExitStatus>, timeout: Duration) -> (Ran, String) {
+fn finish(
+    launch: &dyn Launch,
+    mut r: Running,
+    status: Option<ExitStatus>,
+    timeout: Duration,
+) -> (Ran, String) {
     let tail = stop(&mut r);
+    let memory_limit = launch.ended(r.dir.path());
     let ran = match status {
         None => Ran::Failed(Status::Timeout(timeout.as_secs())),
+        Some(s) if !s.success() && memory_limit => Ran::Failed(Status::OutOfMemory(format!(
+            "{}: killed at its memory limit",
+            describe(s)
+        ))),
         Some(s) if !s.success() => Ran::Failed(failure(s, &tail)),
         Some(_) => match read_output(&output_path(r.dir.path())) {
             Ok(image) if (image.width, image.height) == (WIDTH, HEIGHT) => Ran::Image(image),

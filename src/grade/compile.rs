@@ -51,7 +51,7 @@ pub fn compile(
     program.extend(javac_options(&work.join("classes")));
     program.extend(sources.iter().cloned());
     let (src, classes) = (work.join("src"), work.join("classes"));
-    let mut command = sandbox.command(&program, &[&src], &classes, slot, limits)?;
+    let (mut command, cgroup) = sandbox.command(&program, &[&src], &classes, slot, limits)?;
     command
         .stdin(Stdio::null())
         .stdout(Stdio::null())
@@ -93,6 +93,10 @@ pub fn compile(
     Ok(match status {
         None => Compiled::Timeout,
         Some(s) if s.success() => Compiled::Ok,
+        Some(_) if cgroup.as_ref().is_some_and(|c| c.oom_killed()) => Compiled::Errors(format!(
+            "javac was killed at its memory limit (--memory {} MiB)",
+            limits.memory_mib
+        )),
         Some(_) => Compiled::Errors(first_lines(&messages, &src)),
     })
 }

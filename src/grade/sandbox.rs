@@ -6,7 +6,8 @@
 //! wherever they moved to.
 //!
 //! The limits, as docs/grade.md asks: a JVM's memory by `-Xmx` (and not `RLIMIT_AS`, which
-//! breaks the JVM's reservations), processes and threads by `RLIMIT_NPROC`, file size by
+//! breaks the JVM's reservations) and, where one can be made, a cgroup's memory limit on the
+//! whole sandbox (`memory_cgroup.rs`), processes and threads by `RLIMIT_NPROC`, file size by
 //! `RLIMIT_FSIZE`, open files by `RLIMIT_NOFILE`, CPU time by `RLIMIT_CPU` as a backstop to
 //! the wall-clock timeout. `RLIMIT_NPROC` counts per user, and not at all for root: run as
 //! root (a grading server, CI), each slot of `-j` runs as a user of its own (`slot_uid`: one
@@ -18,6 +19,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+use super::memory_cgroup::{CgroupRoot, RunCgroup};
 use crate::error::{Error, Result};
 
 /// The first user id the slots of `-j` run as, when whitted runs as root: far above the ids
@@ -59,6 +61,8 @@ pub enum Sandbox {
         jdk: Option<PathBuf>,
         /// Whether whitted runs as root: each slot then runs as a user of its own.
         root: bool,
+        /// Where each run gets a cgroup with its memory limit, if anywhere.
+        cgroups: Option<CgroupRoot>,
     },
     None,
 }
@@ -83,6 +87,7 @@ impl Sandbox {
             bwrap,
             jdk,
             root: rustix::process::geteuid().is_root(),
+            cgroups: CgroupRoot::find(),
         };
         let dir = tempfile::tempdir()
             .map_err(|e| Error::io(std::env::temp_dir(), "cannot create a directory", e))?;
@@ -90,7 +95,8 @@ impl Sandbox {
             memory_mib: 64,
             seconds: 10,
         };
-        let mut probe = sandbox.command(&[String::from("true")], &[], dir.path(), 0, limits)?;
+        let (mut probe, _cgroup) =
+            sandbox.command(&[String::from("true")], &[], dir.path(), 0, limits)?;
         let out = probe
             .output()
             .map_err(|e| Error::Environment(format!("cannot run bubblewrap: {e}")))?;
@@ -110,7 +116,8 @@ impl Sandbox {
 
     /// The command that runs `program` (absolute paths or names in /usr/bin) for slot `slot`,
     /// seeing `readable` read-only and `writable` read-write at the same paths, within
-    /// `limits`. `writable` is handed to the slot's user first.
+    /// `limits`, and the cgroup holding its memory limit where there is one (keep it until the
+    /// run has ended). `writable` is handed to the slot's user first.
     pub fn command(
         &self,
         program: &[String],
@@ -118,18 +125,38 @@ impl Sandbox {
         writable: &Path,
         slot: usize,
         limits: Limits,
-    ) -> Result<Command> {
-        let Sandbox::Bubblewrap { bwrap, jdk, root } = self else {
+    ) -> Result<(Command, Option<RunCgroup>)> {
+        let Sandbox::Bubblewrap {
+            bwrap,
+            jdk,
+            root,
+            cgroups,
+        } = self
+        else {
             let mut command = Command::new(&program[0]);
             command.args(&program[1..]).current_dir(writable);
-            return Ok(command);
+            return Ok((command, None));
         };
         let uid = slot_uid(slot);
         if *root {
             std::os::unix::fs::chown(writable, Some(uid), Some(uid))
                 .map_err(|e| Error::io(writable, "cannot hand over", e))?;
         }
-        let mut command = Command::new("setpriv");
+        let cgroup = cgroups
+            .as_ref()
+            .and_then(|c| c.child(limits.memory_mib.saturating_mul(1 << 20)));
+        let mut command = match &cgroup {
+            // The shell enters the cgroup, then becomes setpriv: nothing of the run exists
+            // outside it.
+            Some(cgroup) => {
+                let mut sh = Command::new("/bin/sh");
+                sh.args(["-c", "echo 0 > \"$0\" && exec \"$@\""])
+                    .arg(cgroup.procs())
+                    .arg("setpriv");
+                sh
+            }
+            None => Command::new("setpriv"),
+        };
         if *root {
             command.args(["--reuid", &uid.to_string(), "--regid", &uid.to_string()]);
             command.arg("--clear-groups");
@@ -185,7 +212,7 @@ impl Sandbox {
             ("LANG", "C.UTF-8"),
             ("TMPDIR", "/tmp"),
         ]);
-        Ok(command)
+        Ok((command, cgroup))
     }
 }
 

@@ -1,11 +1,14 @@
 //! One student graded: their two files beside the skeleton's in a work folder, compiled and
 //! run over the suite in the sandbox, checked as `check --program` checks.
 
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use std::sync::Mutex;
 
 use super::compile::{compile, Compiled};
 use super::intake::{Files, Submission};
+use super::memory_cgroup::RunCgroup;
 use super::sandbox::{Limits, Sandbox};
 use super::skeleton::Skeleton;
 use super::warm_javac::WarmJavac;
@@ -84,6 +87,7 @@ pub fn grade(
         setup,
         classes,
         slot,
+        cgroups: Mutex::default(),
     };
     let run = run_suite_with(
         &launch,
@@ -142,6 +146,8 @@ struct SandboxedJava<'a> {
     setup: &'a Setup,
     classes: PathBuf,
     slot: usize,
+    /// Each running case's cgroup, by its folder (removed when dropped).
+    cgroups: Mutex<HashMap<PathBuf, RunCgroup>>,
 }
 
 impl Launch for SandboxedJava<'_> {
@@ -163,12 +169,29 @@ impl Launch for SandboxedJava<'_> {
             "gfx.tick2.Tick2".into(),
         ];
         let classes = self.classes.as_path();
-        self.setup
-            .sandbox
-            .command(&program, &[classes], dir, self.slot, limits)
+        let (command, cgroup) =
+            self.setup
+                .sandbox
+                .command(&program, &[classes], dir, self.slot, limits)?;
+        if let Some(cgroup) = cgroup {
+            self.cgroups
+                .lock()
+                .unwrap_or_else(|e| e.into_inner())
+                .insert(dir.to_path_buf(), cgroup);
+        }
+        Ok(command)
     }
 
     fn contains_descendants(&self) -> bool {
         !self.setup.sandbox.is_none()
+    }
+
+    fn ended(&self, dir: &Path) -> bool {
+        let cgroup = self
+            .cgroups
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .remove(dir);
+        cgroup.is_some_and(|c| c.oom_killed())
     }
 }

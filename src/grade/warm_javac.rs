@@ -17,6 +17,7 @@ use std::sync::mpsc::{self, Receiver, RecvTimeoutError};
 use std::time::{Duration, Instant};
 
 use super::compile::{first_lines, javac_options, Compiled, COMPILE_SECONDS, MESSAGES};
+use super::memory_cgroup::RunCgroup;
 use super::sandbox::{Limits, Sandbox};
 use crate::check::program::kill_group;
 use crate::error::{Error, Result};
@@ -51,6 +52,8 @@ struct Server {
     stdin: ChildStdin,
     replies: Receiver<Reply>,
     compiled: usize,
+    /// Its memory limit's cgroup, removed after it (fields drop after `stop` killed it).
+    _cgroup: Option<RunCgroup>,
 }
 
 /// One answer read from the compiler.
@@ -201,7 +204,7 @@ impl<'a> WarmJavac<'a> {
             seconds: self.limits.seconds.max(COMPILE_SECONDS),
             ..self.limits
         };
-        let mut command =
+        let (mut command, cgroup) =
             self.sandbox
                 .command(&program, &[&src, &source], &classes, self.slot, limits)?;
         command
@@ -233,6 +236,7 @@ impl<'a> WarmJavac<'a> {
             stdin,
             replies,
             compiled: 0,
+            _cgroup: cgroup,
         })
     }
 

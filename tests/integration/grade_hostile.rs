@@ -86,6 +86,18 @@ fn hostile_programs_get_their_status_and_nothing_escapes() {
             "out-of-memory",
         ),
         (
+            // Outside the heap, where -Xmx does not reach: the sandbox's cgroup does. 2 GiB
+            // at most, so that a machine without one is never at risk.
+            "allocates-natively",
+            "try { java.lang.reflect.Field f = sun.misc.Unsafe.class.getDeclaredField(\
+             \"theUnsafe\"); f.setAccessible(true); sun.misc.Unsafe u = (sun.misc.Unsafe) \
+             f.get(null); for (int i = 0; i < 32 && scene != null; i++) { long a = \
+             u.allocateMemory(1L << 26); u.setMemory(a, 1L << 26, (byte) 1); } } catch \
+             (ReflectiveOperationException e) { throw new RuntimeException(e); }"
+                .into(),
+            "out-of-memory",
+        ),
+        (
             "forks-forever",
             "try { while (scene != null) new ProcessBuilder(\"sleep\", \"4242\").start(); } catch \
              (java.io.IOException e) { throw new RuntimeException(e); }"
