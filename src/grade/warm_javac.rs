@@ -337,20 +337,24 @@ mod tests {
         }
     }
 
-    /// The JDK's `java`, which the grade tests need (tools/test installs it).
-    fn java() -> PathBuf {
-        crate::grade::sandbox::find_in_path("java").expect("a JDK on PATH")
+    /// A warm compiler in `root`, unsandboxed, with the JDK's `java` (the grade tests need a
+    /// JDK; tools/test installs it).
+    fn warm(root: &Path) -> WarmJavac<'static> {
+        static NO_SANDBOX: Sandbox = Sandbox::None;
+        static JAVA: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+        let java = JAVA
+            .get_or_init(|| crate::grade::sandbox::find_in_path("java").expect("a JDK on PATH"));
+        let limits = Limits {
+            memory_mib: 512,
+            seconds: 60,
+        };
+        WarmJavac::new(&NO_SANDBOX, java, root, 0, limits)
     }
 
     #[test]
     fn one_jvm_compiles_student_after_student_and_says_what_a_single_javac_says() {
         let root = tempfile::tempdir().expect("tempdir");
-        let java = java();
-        let limits = Limits {
-            memory_mib: 512,
-            seconds: 60,
-        };
-        let mut javac = WarmJavac::new(&Sandbox::None, &java, root.path(), 0, limits);
+        let mut javac = warm(root.path());
         let good = b"package gfx.tick2; public class A { int f() { return 1; } }";
         let bad = b"package gfx.tick2; public class A { int f() { return 1 } }";
         for round in 0..3 {
@@ -374,12 +378,7 @@ mod tests {
     #[test]
     fn a_compiler_that_died_is_replaced_and_the_student_is_compiled_otherwise() {
         let root = tempfile::tempdir().expect("tempdir");
-        let java = java();
-        let limits = Limits {
-            memory_mib: 512,
-            seconds: 60,
-        };
-        let mut javac = WarmJavac::new(&Sandbox::None, &java, root.path(), 0, limits);
+        let mut javac = warm(root.path());
         let good = b"package gfx.tick2; public class A {}";
         let into = root.path().join("out");
         assert_eq!(
