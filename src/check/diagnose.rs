@@ -108,11 +108,7 @@ impl Search {
             return Ok(false);
         };
         let mistakes = best.variant.mistakes;
-        let Some(s) = self
-            .scored
-            .iter_mut()
-            .find(|s| s.variant.mistakes == mistakes)
-        else {
+        let Some(s) = self.get_mut(mistakes) else {
             return Ok(false);
         };
         *s = s.made_whole(cases)?;
@@ -122,6 +118,12 @@ impl Search {
     /// The candidate for exactly `mistakes` (no number), if it was scored.
     pub fn get(&self, mistakes: Mistakes) -> Option<&Scored> {
         self.scored.iter().find(|s| s.variant.mistakes == mistakes)
+    }
+
+    fn get_mut(&mut self, mistakes: Mistakes) -> Option<&mut Scored> {
+        self.scored
+            .iter_mut()
+            .find(|s| s.variant.mistakes == mistakes)
     }
 
     /// The best pairs, each extended by every entry it admits, where no triple of the same
@@ -184,11 +186,7 @@ impl Search {
             .collect();
         let mut exact: Option<Mistakes> = None;
         for mistakes in finalists {
-            if let Some(s) = self
-                .scored
-                .iter_mut()
-                .find(|s| s.variant.mistakes == mistakes)
-            {
+            if let Some(s) = self.get_mut(mistakes) {
                 // Once a finalist renders every case exactly as the student did, only its
                 // twins are listed (`rank`): one that already differs from the student on
                 // the sample is no twin, and its whole images would change nothing shown,

@@ -142,10 +142,7 @@ impl<'a> WarmJavac<'a> {
             self.stop();
         }
         if self.running.is_none() {
-            match self.start() {
-                Ok(server) => self.running = Some(server),
-                Err(_) => return Ok(None),
-            }
+            self.running = self.start().ok();
         }
         let Some(server) = self.running.as_mut() else {
             return Ok(None);
