@@ -8,8 +8,20 @@ use clap::error::ErrorKind;
 use whitted::cli::{Cli, Command};
 use whitted::commands;
 
-fn main() -> ExitCode {
+/// Probes descriptor 1 before Rust's runtime hides a closed one (output::stdout::probe). Hand
+/// written rather than a constructor crate: it is one static in the binary's own object file,
+/// which the linker always keeps.
+#[cfg(target_os = "linux")]
+#[used]
+#[link_section = ".init_array"]
+static PROBE_STDOUT_BEFORE_RUNTIME: extern "C" fn() = probe_stdout;
+
+#[cfg(target_os = "linux")]
+extern "C" fn probe_stdout() {
     whitted::output::stdout::probe();
+}
+
+fn main() -> ExitCode {
     let cli = match Cli::parse_args() {
         Ok(cli) => cli,
         Err(e) => return usage_error(&e),

@@ -10,23 +10,15 @@ use crate::error::{Error, Result};
 /// Whether descriptor 1 was closed when the process started.
 static CLOSED: AtomicBool = AtomicBool::new(false);
 
-/// Finds out whether the process was started with descriptor 1 closed (`>&-`). Rust's
-/// runtime reopens a closed standard descriptor on `/dev/null` before `main`, read-write,
-/// where a shell's `> /dev/null` opens it write-only; Linux shows both in `/proc`.
+/// Finds out whether the process was started with descriptor 1 closed (`>&-`). It must run
+/// before Rust's runtime, which reopens a closed standard descriptor on `/dev/null` read-write,
+/// exactly as Python's `subprocess.DEVNULL` opens it: afterwards the two cannot be told apart.
+/// The binary calls it from an `.init_array` constructor (src/main.rs).
 pub fn probe() {
     #[cfg(target_os = "linux")]
     {
-        let target = std::fs::read_link("/proc/self/fd/1");
-        let info = std::fs::read_to_string("/proc/self/fdinfo/1").unwrap_or_default();
-        let read_write = info
-            .lines()
-            .find_map(|l| l.strip_prefix("flags:"))
-            .and_then(|f| u32::from_str_radix(f.trim(), 8).ok())
-            .is_some_and(|flags| flags & 0o3 == 0o2);
-        let closed = match target {
-            Ok(path) => path == std::path::Path::new("/dev/null") && read_write,
-            Err(_) => std::path::Path::new("/proc/self/fd").is_dir(),
-        };
+        let closed = std::fs::read_link("/proc/self/fd/1").is_err()
+            && std::path::Path::new("/proc/self/fd").is_dir();
         CLOSED.store(closed, Ordering::Relaxed);
     }
 }

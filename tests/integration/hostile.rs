@@ -418,4 +418,13 @@ fn standard_output_that_goes_away_is_quiet_and_closed_or_full_is_an_error() {
         assert_eq!(run.status.code(), Some(2), "{script}");
         assert!(String::from_utf8_lossy(&run.stderr).contains("standard output"));
     }
+    // Python's subprocess.DEVNULL opens /dev/null read-write, as Rust's runtime reopens a
+    // closed descriptor: that is not a closed standard output.
+    let run = shell("exec \"$0\" info a.exr 1<>/dev/null");
+    assert_eq!(
+        run.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
 }
