@@ -29,7 +29,7 @@ use crate::check::diagnose::{CaseFinding, Diagnosis, Search};
 use crate::check::difference::{difference, Difference};
 use crate::check::numbers::NumberFit;
 use crate::check::progress::{Evidence, Progress};
-use crate::check::renderer::Renderer;
+use crate::check::renderer::{Renderer, SharedScene};
 use crate::check::student_png::Rgb8;
 use crate::check::terms::{TermCase, TermFit};
 use crate::error::Result;
@@ -183,7 +183,7 @@ pub struct CaseReport {
     pub reference: Rgb8,
 }
 
-/// One case ready to diagnose, and its report without a diagnosis yet. `scene_key` names the
+/// One case ready to diagnose, and its report without a diagnosis yet. `shared` names the
 /// scene for the cache of whole images (`image_cache.rs`), when it is one many checks share.
 pub fn prepare<'a>(
     scene: &'a Scene,
@@ -192,10 +192,10 @@ pub fn prepare<'a>(
     tolerance: u8,
     student: Rgb8,
     cases: usize,
-    scene_key: Option<String>,
+    shared: Option<SharedScene>,
 ) -> Result<(Case<'a>, CaseReport)> {
     let renderer =
-        Renderer::new(scene, student.width, student.height, bounces)?.remembered_as(scene_key);
+        Renderer::new(scene, student.width, student.height, bounces)?.remembered_as(shared);
     let case = Case::new(renderer, student, cases)?;
     let report = CaseReport {
         scene_name: scene_name.to_string(),

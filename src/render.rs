@@ -16,7 +16,7 @@ use crate::model::Model;
 use crate::sample::Sample;
 use crate::scene::Scene;
 use crate::trace::observe::Silent;
-use crate::trace::{trace_beauty, trace_into, trace_observed};
+use crate::trace::{trace_beauty, trace_chain, trace_into, trace_observed};
 
 /// How a render went: what the summary line and the warnings report. Not part of the image.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -283,6 +283,37 @@ pub fn trace_pixels<const LAYERS: bool, T>(
             keep(&sample)
         })
         .collect()
+}
+
+/// `trace_pixels` for the beauty at several bounce counts at once, each at most the frame's:
+/// one trace per pixel at the frame's count (`trace::trace_chain`). The beauty at
+/// `bounces[i]` of pixel `j` is element `i * pixels.len() + j`. Stops early (an empty list)
+/// when the user presses Ctrl-C.
+pub fn trace_pixels_at_bounces(
+    model: &impl Model,
+    scene: &Scene,
+    accel: &Accelerator,
+    frame: &Frame,
+    pixels: &[(u32, u32)],
+    bounces: &[u32],
+) -> Vec<DVec3> {
+    assert!(
+        model.hierarchy_exact() || accel.is_exhaustive(),
+        "a model the hierarchy is not exact for was traced with the hierarchy"
+    );
+    let mut sample = Sample::empty(scene.lights.len(), frame.trace().bounces);
+    let mut beauty = vec![DVec3::ZERO; bounces.len() * pixels.len()];
+    for (j, &(x, y)) in pixels.iter().enumerate() {
+        if interrupt::requested() {
+            return Vec::new();
+        }
+        let ray = frame.camera().pixel_centre_ray(x, y);
+        let chain = trace_chain(model, scene, accel, ray, frame.trace(), &mut sample);
+        for (i, &limit) in bounces.iter().enumerate() {
+            beauty[i * pixels.len() + j] = chain.beauty(model, limit);
+        }
+    }
+    beauty
 }
 
 #[cfg(test)]

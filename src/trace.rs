@@ -80,13 +80,87 @@ pub fn trace_observed<const LAYERS: bool>(
     sample: &mut Sample,
     observer: &mut impl Observer,
 ) {
+    let chain = follow_chain::<LAYERS>(model, scene, accel, primary, options, sample, observer);
+    sample.beauty = chain.fold(model, options.bounces, observer);
+}
+
+/// The mirror chain of one camera ray traced to `options.bounces` reflections, for its
+/// beauty at that count or any smaller one (`Chain::beauty`): with fewer bounces a program
+/// follows the same chain and stops early, so one trace gives each count's image bit for bit.
+/// How `whitted check` renders a scene's cases that differ only in `--bounces` at once.
+#[inline(always)]
+pub fn trace_chain(
+    model: &impl Model,
+    scene: &Scene,
+    accel: &Accelerator,
+    primary: Ray,
+    options: TraceOptions,
+    sample: &mut Sample,
+) -> Chain {
+    follow_chain::<false>(model, scene, accel, primary, options, sample, &mut Silent)
+}
+
+/// A camera ray's mirror chain: each vertex's (unweighted) shaded colour and its
+/// reflectivity where the chain continues there, and what the last ray saw if it left the
+/// scene.
+pub struct Chain {
+    /// On the stack for the usual few bounces.
+    vertices: SmallVec<[(DVec3, Option<f64>); 4]>,
+    far_end: DVec3,
+}
+
+impl Chain {
+    /// The beauty with the chain cut at `bounces` reflections (at most the traced count).
+    #[inline(always)]
+    pub fn beauty(&self, model: &impl Model, bounces: u32) -> DVec3 {
+        self.fold(model, bounces, &mut Silent)
+    }
+
+    /// The beauty as the course's recursion evaluates it, `direct * (1 - r) + reflected * r`
+    /// from the far end, with the chain cut at `bounces` reflections: the vertex there
+    /// reflects nothing, as it does when the trace itself stops there.
+    #[inline(always)]
+    fn fold(&self, model: &impl Model, bounces: u32, observer: &mut impl Observer) -> DVec3 {
+        let kept = self.vertices.len().min(bounces as usize + 1);
+        self.vertices[..kept].iter().enumerate().rev().fold(
+            self.far_end,
+            |reflected, (depth, &(colour, r))| {
+                let r = if depth == bounces as usize { None } else { r };
+                let result = match r {
+                    Some(r) => model.blend(colour, reflected, r),
+                    None => colour,
+                };
+                observer.fold(FoldStep {
+                    depth: depth as u32,
+                    colour,
+                    reflectivity: r,
+                    reflected,
+                    result,
+                });
+                result
+            },
+        )
+    }
+}
+
+/// The chain of `primary` under `model`'s rules up to `options.bounces` reflections, its
+/// weighted terms added to `sample` (with `LAYERS`) and told to `observer` on the way.
+#[inline(always)]
+fn follow_chain<const LAYERS: bool>(
+    model: &impl Model,
+    scene: &Scene,
+    accel: &Accelerator,
+    primary: Ray,
+    options: TraceOptions,
+    sample: &mut Sample,
+    observer: &mut impl Observer,
+) -> Chain {
     if LAYERS {
         sample.reset();
     } else {
         sample.rays = 0;
     }
-    // (shaded colour, reflectivity if the chain continues there), vertex by vertex; on the
-    // stack for the usual few bounces.
+    // (shaded colour, reflectivity if the chain continues there), vertex by vertex.
     let mut chain: SmallVec<[(DVec3, Option<f64>); 4]> = SmallVec::new();
     let mut far_end = BACKGROUND;
     let mut ray = primary;
@@ -163,25 +237,10 @@ pub fn trace_observed<const LAYERS: bool>(
         throughput *= reflectivity;
         ray = next;
     }
-    sample.beauty =
-        chain
-            .iter()
-            .enumerate()
-            .rev()
-            .fold(far_end, |reflected, (depth, &(colour, r))| {
-                let result = match r {
-                    Some(r) => model.blend(colour, reflected, r),
-                    None => colour,
-                };
-                observer.fold(FoldStep {
-                    depth: depth as u32,
-                    colour,
-                    reflectivity: r,
-                    reflected,
-                    result,
-                });
-                result
-            });
+    Chain {
+        vertices: chain,
+        far_end,
+    }
 }
 
 /// Where vertex k's radiance is filed: the direct layer for the primary hit, else the

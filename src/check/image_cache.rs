@@ -28,14 +28,26 @@ fn cache() -> &'static Mutex<Cache> {
 /// The image under `key`, rendered by `render` when it is not there yet. Two threads that
 /// ask for one key at once may both render it: the result is the same.
 pub fn get_or_render(key: String, render: impl FnOnce() -> Result<Rgb8>) -> Result<Rgb8> {
+    get_or_render_family(key, || Ok((render()?, Vec::new())))
+}
+
+/// The image under `key`; when it is not there yet, `render` makes it together with others
+/// that cost little more to make at once (the same scene's images at other bounce counts),
+/// and all are kept.
+pub fn get_or_render_family(
+    key: String,
+    render: impl FnOnce() -> Result<(Rgb8, Vec<(String, Rgb8)>)>,
+) -> Result<Rgb8> {
     if let Some(found) = lock().images.get(&key) {
         return Ok(Rgb8::clone(found));
     }
-    let image = render()?;
+    let (image, others) = render()?;
     let mut cache = lock();
-    if cache.bytes + image.bytes.len() <= LIMIT_BYTES && !cache.images.contains_key(&key) {
-        cache.bytes += image.bytes.len();
-        cache.images.insert(key, Arc::new(image.clone()));
+    for (name, kept) in [(key, image.clone())].into_iter().chain(others) {
+        if cache.bytes + kept.bytes.len() <= LIMIT_BYTES && !cache.images.contains_key(&name) {
+            cache.bytes += kept.bytes.len();
+            cache.images.insert(name, Arc::new(kept));
+        }
     }
     Ok(image)
 }

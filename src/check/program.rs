@@ -13,6 +13,7 @@ use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 use crate::check::orphans;
+use crate::check::renderer::SharedScene;
 use crate::check::student_png::{self, Rgb8};
 use crate::check::suite::{cases, SuiteCase};
 use crate::check::{find, prepare, CaseReport, Findings};
@@ -194,9 +195,22 @@ pub fn run_suite_with(
     let count = scenes.len();
     let mut prepared = Vec::new();
     let mut reports = Vec::new();
-    for ((i, scene), image) in scenes.iter().zip(images) {
+    let keys: Vec<String> = scenes
+        .iter()
+        .map(|(i, _)| crate::fingerprint::fingerprint(&[suite[*i].xml.as_bytes()]))
+        .collect();
+    let sizes: Vec<(u32, u32)> = images.iter().map(|m| (m.width, m.height)).collect();
+    for (k, ((i, scene), image)) in scenes.iter().zip(images).enumerate() {
         let case = &suite[*i];
-        let key = crate::fingerprint::fingerprint(&[case.xml.as_bytes()]);
+        // The cases of this scene at this image's size: rendered whole together.
+        let bounce_family = (0..count)
+            .filter(|&j| keys[j] == keys[k] && sizes[j] == sizes[k])
+            .map(|j| suite[scenes[j].0].bounces)
+            .collect();
+        let shared = SharedScene {
+            key: keys[k].clone(),
+            bounce_family,
+        };
         let (c, report) = prepare(
             scene,
             &case.file,
@@ -204,7 +218,7 @@ pub fn run_suite_with(
             tolerance,
             image,
             count,
-            Some(key),
+            Some(shared),
         )?;
         interrupt::check()?;
         prepared.push(c);

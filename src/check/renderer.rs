@@ -15,7 +15,7 @@ use crate::memory;
 use crate::mistakes::{Mistakes, Variant};
 use crate::model::Model;
 use crate::output::png::tick_bytes;
-use crate::render::trace_pixels;
+use crate::render::{trace_pixels, trace_pixels_at_bounces};
 use crate::sample::Sample;
 use crate::scene::Scene;
 
@@ -28,11 +28,23 @@ const ROWS_PER_TASK: u32 = 4;
 /// for the allocator.
 const BYTES_PER_PIXEL: u64 = 48;
 
+/// A scene many checks share (a class's suite), for the cache of whole images.
+#[derive(Debug, Clone)]
+pub struct SharedScene {
+    /// The scene's XML fingerprint.
+    pub key: String,
+    /// The bounce counts of the suite's cases of this scene at the student's size.
+    pub bounce_family: Vec<u32>,
+}
+
 /// Renders one scene at one size and bounce count under any candidate.
 pub struct Renderer<'a> {
     pub scene: &'a Scene,
     /// Names the scene for the image cache (`image_cache.rs`); None renders every time.
     scene_key: Option<String>,
+    /// The bounce counts whose whole images are rendered together when one is asked for
+    /// (this case's, and the suite's other cases of the scene at this size), ascending.
+    bounce_family: Vec<u32>,
     spec: FrameSpec,
     bvh: Accelerator,
     brute: Accelerator,
@@ -52,16 +64,31 @@ impl<'a> Renderer<'a> {
         Ok(Renderer {
             scene,
             scene_key: None,
+            bounce_family: vec![spec.bounces],
             spec,
             bvh: Accelerator::build(&scene.objects),
             brute: Accelerator::brute_force(&scene.objects),
         })
     }
 
-    /// This renderer's whole images kept for any other renderer of the scene `key` names
-    /// (its XML's fingerprint): a class's students share the suite's renders.
-    pub fn remembered_as(mut self, key: Option<String>) -> Self {
-        self.scene_key = key;
+    /// This renderer's whole images kept for any other renderer of the same shared scene: a
+    /// class's students share the suite's renders. A whole image at one of the scene's bounce
+    /// counts is rendered with the others, from one trace per pixel, where memory allows.
+    pub fn remembered_as(mut self, shared: Option<SharedScene>) -> Self {
+        let Some(shared) = shared else {
+            return self;
+        };
+        let mut family = shared.bounce_family;
+        family.push(self.spec.bounces);
+        family.sort_unstable();
+        family.dedup();
+        let pixels = u64::from(self.spec.width) * u64::from(self.spec.height);
+        let extra = pixels.saturating_mul(3 * (family.len() as u64 - 1));
+        let budget = pixels.saturating_mul(BYTES_PER_PIXEL).saturating_add(extra);
+        if memory::check(budget, memory::available_bytes(), "").is_ok() {
+            self.bounce_family = family;
+        }
+        self.scene_key = Some(shared.key);
         self
     }
 
@@ -152,41 +179,80 @@ impl<'a> Renderer<'a> {
         crate::check::image_cache::get_or_render(key, render).map(Some)
     }
 
-    /// The whole image under `model` in `frame`, on every core.
-    fn image_with(&self, model: &impl Model, frame: &Frame) -> Result<Rgb8> {
+    /// The whole images under `model` in `frame` at each of `bounces` (each at most the
+    /// frame's), from one trace per pixel, on every core.
+    fn images_with(&self, model: &impl Model, frame: &Frame, bounces: &[u32]) -> Result<Vec<Rgb8>> {
         let (width, height) = (self.spec.width, self.spec.height);
+        let accel = self.accelerator(frame);
         let starts: Vec<u32> = (0..height).step_by(ROWS_PER_TASK as usize).collect();
-        let strips: Vec<Vec<u8>> = starts
+        // Per strip, each bounce count's bytes.
+        let strips: Vec<Vec<Vec<u8>>> = starts
             .par_iter()
             .map(|&y0| {
                 let rows = y0..(y0 + ROWS_PER_TASK).min(height);
                 let pixels: Vec<(u32, u32)> =
                     rows.flat_map(|y| (0..width).map(move |x| (x, y))).collect();
-                self.bytes_at(model, frame, &pixels)
+                let beauty =
+                    trace_pixels_at_bounces(model, self.scene, accel, frame, &pixels, bounces);
+                interrupt::check()?;
+                Ok(beauty.chunks(pixels.len().max(1)).map(tick_bytes).collect())
             })
             .collect::<Result<_>>()?;
-        Ok(Rgb8 {
-            width,
-            height,
-            bytes: strips.concat(),
-        })
+        Ok((0..bounces.len())
+            .map(|i| Rgb8 {
+                width,
+                height,
+                bytes: strips.iter().flat_map(|s| s[i].iter().copied()).collect(),
+            })
+            .collect())
+    }
+
+    /// The whole images of `variant` (None: the course's model) at each of `bounces` (as
+    /// asked of the program, ascending), from one trace per pixel.
+    fn images_at(&self, variant: Option<&Variant>, bounces: &[u32]) -> Result<Vec<Rgb8>> {
+        let mistakes = variant.map_or(Mistakes::NONE, |v| v.mistakes);
+        // What a program with `mistakes` traces when asked for `bounces`.
+        let asked = |bounces| {
+            mistakes.frame_spec(&FrameSpec {
+                bounces,
+                ..self.spec.clone()
+            })
+        };
+        let deepest = bounces.last().copied().unwrap_or(self.spec.bounces);
+        let frame = Frame::new(self.scene, &asked(deepest))?;
+        let traced: Vec<u32> = bounces.iter().map(|&b| asked(b).bounces).collect();
+        match variant {
+            None => self.images_with(&crate::model::Tick, &frame, &traced),
+            Some(v) => self.images_with(v, &frame, &traced),
+        }
     }
 
     /// The whole image of `variant` (None: the course's model), from the cache when this
-    /// renderer's scene has a key.
+    /// renderer's scene has a key, rendered with the rest of its bounce family.
     fn remembered(&self, variant: Option<&Variant>) -> Result<Rgb8> {
-        let render = || match variant {
-            None => self.image_with(&crate::model::Tick, &self.frame(Mistakes::NONE)?),
-            Some(v) => self.image_with(v, &self.frame(v.mistakes)?),
+        let own = self
+            .bounce_family
+            .iter()
+            .position(|&b| b == self.spec.bounces);
+        let (Some(scene), Some(own)) = (&self.scene_key, own) else {
+            let mut images = self.images_at(variant, &[self.spec.bounces])?;
+            return Ok(images.swap_remove(0));
         };
-        match &self.scene_key {
-            None => render(),
-            Some(scene) => {
-                // Debug prints a number's exact value: equal keys are equal programs.
-                let key = format!("{scene} {:?} {variant:?}", self.spec);
-                crate::check::image_cache::get_or_render(key, render)
-            }
-        }
+        // Debug prints a number's exact value: equal keys are equal programs.
+        let key = |bounces| {
+            let spec = FrameSpec {
+                bounces,
+                ..self.spec.clone()
+            };
+            format!("{scene} {spec:?} {variant:?}")
+        };
+        crate::check::image_cache::get_or_render_family(key(self.spec.bounces), || {
+            let mut images = self.images_at(variant, &self.bounce_family)?;
+            let image = images.remove(own);
+            let mut others = self.bounce_family.clone();
+            others.remove(own);
+            Ok((image, others.into_iter().map(key).zip(images).collect()))
+        })
     }
 
     /// The reference: the course's model.

@@ -290,3 +290,48 @@ fn no_implausible_term_factor_is_a_finding() {
         }
     }
 }
+
+#[test]
+fn a_scene_s_bounce_counts_rendered_together_are_each_one_s_own_render() {
+    // Mirrors and the course's scene: chains that use every bounce, planes and spheres.
+    for case in cases().iter().filter(|c| c.bounces == 3) {
+        let scene = crate::scene::parse_str(&case.file, &case.xml).expect("scene");
+        let mut variants: Vec<Variant> = [Mistakes::NONE]
+            .into_iter()
+            .chain(Bug::ALL.iter().map(|&b| Mistakes::of(&[b])))
+            .chain([Mistakes::of(&[Bug::BouncesMinusOne, Bug::NoShadows])])
+            .map(Variant::from)
+            .collect();
+        variants.push(Variant {
+            mistakes: Mistakes::NONE,
+            number: Some(Number {
+                parameter: Parameter::Reflectivity,
+                value: 0.5,
+            }),
+        });
+        for (n, variant) in variants.iter().enumerate() {
+            let family = vec![0, 1, 2, 3];
+            for &bounces in &family {
+                let alone = Renderer::new(&scene, 96, 72, bounces).expect("renderer");
+                let together = Renderer::new(&scene, 96, 72, bounces)
+                    .expect("renderer")
+                    .remembered_as(Some(SharedScene {
+                        key: format!("bounce family test {} {n}", case.file),
+                        bounce_family: family.clone(),
+                    }));
+                assert!(
+                    alone.variant_image(variant).expect("image")
+                        == together.variant_image(variant).expect("image"),
+                    "{} {variant:?} at {bounces} bounces",
+                    case.file
+                );
+                if variant.mistakes == Mistakes::NONE && variant.number.is_none() {
+                    assert!(
+                        alone.reference().expect("reference")
+                            == together.reference().expect("reference")
+                    );
+                }
+            }
+        }
+    }
+}
