@@ -80,7 +80,10 @@ pub fn trace_observed<const LAYERS: bool>(
     sample: &mut Sample,
     observer: &mut impl Observer,
 ) {
-    let chain = follow_chain::<LAYERS>(model, scene, accel, primary, options, sample, observer);
+    let mut chain = Chain::new();
+    follow_chain::<LAYERS>(
+        model, scene, accel, primary, options, sample, observer, &mut chain,
+    );
     sample.beauty = chain.fold(model, options.bounces, observer);
 }
 
@@ -97,7 +100,18 @@ pub fn trace_chain(
     options: TraceOptions,
     sample: &mut Sample,
 ) -> Chain {
-    follow_chain::<false>(model, scene, accel, primary, options, sample, &mut Silent)
+    let mut chain = Chain::new();
+    follow_chain::<false>(
+        model,
+        scene,
+        accel,
+        primary,
+        options,
+        sample,
+        &mut Silent,
+        &mut chain,
+    );
+    chain
 }
 
 /// A camera ray's mirror chain: each vertex's (unweighted) shaded colour and its
@@ -110,6 +124,13 @@ pub struct Chain {
 }
 
 impl Chain {
+    fn new() -> Self {
+        Chain {
+            vertices: SmallVec::new(),
+            far_end: BACKGROUND,
+        }
+    }
+
     /// The beauty with the chain cut at `bounces` reflections (at most the traced count).
     #[inline(always)]
     pub fn beauty(&self, model: &impl Model, bounces: u32) -> DVec3 {
@@ -143,9 +164,11 @@ impl Chain {
     }
 }
 
-/// The chain of `primary` under `model`'s rules up to `options.bounces` reflections, its
-/// weighted terms added to `sample` (with `LAYERS`) and told to `observer` on the way.
+/// The chain of `primary` under `model`'s rules up to `options.bounces` reflections, into an
+/// empty `chain` (the caller's, so the hot loop never moves it), its weighted terms added to
+/// `sample` (with `LAYERS`) and told to `observer` on the way.
 #[inline(always)]
+#[allow(clippy::too_many_arguments)]
 fn follow_chain<const LAYERS: bool>(
     model: &impl Model,
     scene: &Scene,
@@ -154,15 +177,13 @@ fn follow_chain<const LAYERS: bool>(
     options: TraceOptions,
     sample: &mut Sample,
     observer: &mut impl Observer,
-) -> Chain {
+    chain: &mut Chain,
+) {
     if LAYERS {
         sample.reset();
     } else {
         sample.rays = 0;
     }
-    // (shaded colour, reflectivity if the chain continues there), vertex by vertex.
-    let mut chain: SmallVec<[(DVec3, Option<f64>); 4]> = SmallVec::new();
-    let mut far_end = BACKGROUND;
     let mut ray = primary;
     let mut throughput = 1.0;
     for k in 0..=options.bounces {
@@ -174,7 +195,7 @@ fn follow_chain<const LAYERS: bool>(
                 sample.background += background;
                 *bucket(sample, k) += background;
             }
-            far_end = BACKGROUND;
+            chain.far_end = BACKGROUND;
             break;
         };
         let object = &scene.objects[hit.object];
@@ -230,16 +251,14 @@ fn follow_chain<const LAYERS: bool>(
                 object: hit.object,
             });
         }
-        chain.push((colour, continues.then_some(reflectivity)));
+        chain
+            .vertices
+            .push((colour, continues.then_some(reflectivity)));
         let Some(next) = spawned else {
             break;
         };
         throughput *= reflectivity;
         ray = next;
-    }
-    Chain {
-        vertices: chain,
-        far_end,
     }
 }
 
