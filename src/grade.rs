@@ -278,6 +278,11 @@ fn needs_grading(
     }
 }
 
+/// Workers that share one warm compiler (`warm_javac.rs`): a compilation is a small part of a
+/// student's time, and each compiler's JVM costs seconds of CPU to start and warm up (on the
+/// bench class with `-j 2`, two compilers took 5.7 s of CPU for 24 students).
+const WORKERS_PER_COMPILER: usize = 4;
+
 /// Grades `todo`, `jobs` students at a time, each written as soon as it is done.
 fn grade_all(
     setup: &Setup,
@@ -294,37 +299,33 @@ fn grade_all(
     );
     let next = AtomicUsize::new(0);
     let failure: Mutex<Option<Error>> = Mutex::new(None);
+    let workers = jobs.min(todo.len());
+    let root = setup.work.join("javac");
+    let compilers: Vec<Mutex<WarmJavac>> = (0..workers.div_ceil(WORKERS_PER_COMPILER))
+        .map(|c| {
+            let javac = WarmJavac::new(&setup.sandbox, &setup.java, &root, c, setup.limits);
+            Mutex::new(javac)
+        })
+        .collect();
     std::thread::scope(|scope| {
-        for slot in 0..jobs.min(todo.len()) {
+        for slot in 0..workers {
             let (next, failure, progress) = (&next, &failure, &progress);
-            scope.spawn(move || {
-                let compilers = setup.work.join("javac");
-                let mut javac =
-                    WarmJavac::new(&setup.sandbox, &setup.java, &compilers, slot, setup.limits);
-                loop {
-                    let stop = failure.lock().map(|f| f.is_some()).unwrap_or(true);
-                    let i = next.fetch_add(1, Ordering::SeqCst);
-                    if stop || i >= todo.len() || crate::interrupt::requested() {
-                        return;
-                    }
-                    let (submission, key) = &todo[i];
-                    let graded = grade_one(
-                        setup,
-                        options,
-                        students_dir,
-                        submission,
-                        key,
-                        slot,
-                        &mut javac,
-                    );
-                    match graded {
-                        Ok(()) => progress.advance(1),
-                        Err(e) => {
-                            if let Ok(mut f) = failure.lock() {
-                                f.get_or_insert(e);
-                            }
-                            return;
+            let javac = &compilers[slot / WORKERS_PER_COMPILER];
+            scope.spawn(move || loop {
+                let stop = failure.lock().map(|f| f.is_some()).unwrap_or(true);
+                let i = next.fetch_add(1, Ordering::SeqCst);
+                if stop || i >= todo.len() || crate::interrupt::requested() {
+                    return;
+                }
+                let (submission, key) = &todo[i];
+                let graded = grade_one(setup, options, students_dir, submission, key, slot, javac);
+                match graded {
+                    Ok(()) => progress.advance(1),
+                    Err(e) => {
+                        if let Ok(mut f) = failure.lock() {
+                            f.get_or_insert(e);
                         }
+                        return;
                     }
                 }
             });
@@ -346,7 +347,7 @@ fn grade_one(
     submission: &Submission,
     key: &str,
     slot: usize,
-    javac: &mut WarmJavac,
+    javac: &Mutex<WarmJavac>,
 ) -> Result<()> {
     let outcome = match student::grade(setup, submission, slot, javac) {
         Ok(outcome) => outcome,

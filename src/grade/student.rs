@@ -44,12 +44,13 @@ pub enum Outcome {
     Ran(Box<SuiteRun>),
 }
 
-/// Grades `submission` in slot `slot` of the class's workers, compiled by the slot's `javac`.
+/// Grades `submission` in slot `slot` of the class's workers, compiled by the warm `javac` the
+/// slot shares.
 pub fn grade(
     setup: &Setup,
     submission: &Submission,
     slot: usize,
-    javac: &mut WarmJavac,
+    javac: &Mutex<WarmJavac>,
 ) -> Result<Outcome> {
     let files = match &submission.files {
         Ok(files) => files,
@@ -64,7 +65,12 @@ pub fn grade(
     let _cleanup = WorkFolder(work.clone());
     let sources = sources(setup, files);
     let classes = work.join("classes");
-    let compiled = match javac.compile(&sources, &classes)? {
+    // The lock is held for the warm compilation only, not a fallback's.
+    let warm = javac
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .compile(&sources, &classes)?;
+    let compiled = match warm {
         Some(compiled) => compiled,
         None => {
             let paths = lay_out(&sources, &work)?;

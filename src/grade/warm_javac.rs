@@ -1,6 +1,6 @@
-//! One warm javac per grading slot (`WarmJavac.java`, in the sandbox): a student then costs a
-//! compilation, not a JVM's start and warm-up. Measured on the 24-student bench class: ~1.1 s
-//! of CPU per student with a javac of its own, ~0.08 s warm.
+//! A warm javac shared by a few grading slots (`WarmJavac.java`, in the sandbox): a student
+//! then costs a compilation, not a JVM's start and warm-up. Measured on the 24-student bench
+//! class: ~1.1 s of CPU per student with a javac of its own, ~0.08 s warm.
 //!
 //! The compiler sees one student at a time: their sources are laid out in the slot's `src`
 //! (bound read-only), the classes come back in its `classes` (the only folder it may write),
