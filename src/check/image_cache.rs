@@ -52,6 +52,11 @@ pub fn get_or_render_family(
     Ok(image)
 }
 
+/// Whether `bytes` more of images would be kept now.
+pub fn has_room(bytes: usize) -> bool {
+    lock().bytes.saturating_add(bytes) <= LIMIT_BYTES
+}
+
 /// The cache, even if a thread panicked while holding it (it holds finished images only).
 fn lock() -> std::sync::MutexGuard<'static, Cache> {
     cache().lock().unwrap_or_else(|e| e.into_inner())

@@ -247,6 +247,14 @@ impl<'a> Renderer<'a> {
             format!("{scene} {spec:?} {variant:?}")
         };
         crate::check::image_cache::get_or_render_family(key(self.spec.bounces), || {
+            // The others are worth their deeper trace only if the cache can keep them.
+            let family_bytes = (3 * self.bounce_family.len())
+                .saturating_mul(self.spec.width as usize)
+                .saturating_mul(self.spec.height as usize);
+            if !crate::check::image_cache::has_room(family_bytes) {
+                let mut images = self.images_at(variant, &[self.spec.bounces])?;
+                return Ok((images.swap_remove(0), Vec::new()));
+            }
             let mut images = self.images_at(variant, &self.bounce_family)?;
             let image = images.remove(own);
             let mut others = self.bounce_family.clone();
