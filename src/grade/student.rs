@@ -125,7 +125,15 @@ fn sources<'a>(setup: &'a Setup, files: &'a Files) -> Vec<(&'a str, &'a [u8])> {
         ("Plane.java", files.plane.as_slice()),
         ("Renderer.java", files.renderer.as_slice()),
     ];
-    ours.chain(theirs).collect()
+    ours.chain(theirs)
+        .map(|(name, bytes)| (name, without_bom(bytes)))
+        .collect()
+}
+
+/// `source` without a leading UTF-8 byte order mark, which Windows editors write and IDEs
+/// accept but javac rejects as an illegal character (JDK-4508058).
+fn without_bom(source: &[u8]) -> &[u8] {
+    source.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(source)
 }
 
 /// `work/src/gfx/tick2/` with `sources` and an empty `work/classes`; returns the sources'

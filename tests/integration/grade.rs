@@ -173,6 +173,10 @@ fn moodle_zip(path: &Path, students: &[(String, String, Vec<&str>, &str)]) {
                 .collect::<Vec<_>>()
                 .join("/");
             zip.start_file(path, options).expect("entry");
+            if i == 1 {
+                // Saved by a Windows editor: a byte order mark, which javac alone rejects.
+                zip.write_all(b"\xEF\xBB\xBF").expect("write");
+            }
             zip.write_all(text.as_bytes()).expect("write");
         }
     }
