@@ -195,7 +195,10 @@ impl<'a> Renderer<'a> {
                 let beauty =
                     trace_pixels_at_bounces(model, self.scene, accel, frame, &pixels, bounces);
                 interrupt::check()?;
-                Ok(beauty.chunks(pixels.len().max(1)).map(tick_bytes).collect())
+                let n = pixels.len();
+                Ok((0..bounces.len())
+                    .map(|i| tick_bytes(&beauty[i * n..(i + 1) * n]))
+                    .collect())
             })
             .collect::<Result<_>>()?;
         Ok((0..bounces.len())
