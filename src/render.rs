@@ -259,12 +259,7 @@ pub fn trace_pixels<const LAYERS: bool, T>(
     pixels: &[(u32, u32)],
     keep: impl Fn(&Sample) -> T,
 ) -> Vec<T> {
-    // A model the hierarchy is not exact for would get wrong hits, silently: a bug in the
-    // caller, never an input's fault.
-    assert!(
-        model.hierarchy_exact() || accel.is_exhaustive(),
-        "a model the hierarchy is not exact for was traced with the hierarchy"
-    );
+    assert_suits(model, accel);
     let mut sample = Sample::empty(scene.lights.len(), frame.trace().bounces);
     pixels
         .iter()
@@ -297,10 +292,7 @@ pub fn trace_pixels_at_bounces(
     pixels: &[(u32, u32)],
     bounces: &[u32],
 ) -> Vec<DVec3> {
-    assert!(
-        model.hierarchy_exact() || accel.is_exhaustive(),
-        "a model the hierarchy is not exact for was traced with the hierarchy"
-    );
+    assert_suits(model, accel);
     let mut sample = Sample::empty(scene.lights.len(), frame.trace().bounces);
     let mut beauty = vec![DVec3::ZERO; bounces.len() * pixels.len()];
     for (j, &(x, y)) in pixels.iter().enumerate() {
@@ -314,6 +306,15 @@ pub fn trace_pixels_at_bounces(
         }
     }
     beauty
+}
+
+/// A model the hierarchy is not exact for would get wrong hits, silently: a bug in the
+/// caller, never an input's fault.
+fn assert_suits(model: &impl Model, accel: &Accelerator) {
+    assert!(
+        model.hierarchy_exact() || accel.is_exhaustive(),
+        "a model the hierarchy is not exact for was traced with the hierarchy"
+    );
 }
 
 #[cfg(test)]

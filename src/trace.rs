@@ -115,19 +115,17 @@ pub fn trace_chain(
 }
 
 /// A camera ray's mirror chain: each vertex's (unweighted) shaded colour and its
-/// reflectivity where the chain continues there, and what the last ray saw if it left the
-/// scene.
+/// reflectivity where the chain continues there. A chain that ends by leaving the scene sees
+/// the background there; one that ends at a vertex reflects nothing.
 pub struct Chain {
     /// On the stack for the usual few bounces.
     vertices: SmallVec<[(DVec3, Option<f64>); 4]>,
-    far_end: DVec3,
 }
 
 impl Chain {
     fn new() -> Self {
         Chain {
             vertices: SmallVec::new(),
-            far_end: BACKGROUND,
         }
     }
 
@@ -144,7 +142,7 @@ impl Chain {
     fn fold(&self, model: &impl Model, bounces: u32, observer: &mut impl Observer) -> DVec3 {
         let kept = self.vertices.len().min(bounces as usize + 1);
         self.vertices[..kept].iter().enumerate().rev().fold(
-            self.far_end,
+            BACKGROUND,
             |reflected, (depth, &(colour, r))| {
                 let r = if depth == bounces as usize { None } else { r };
                 let result = match r {
@@ -195,7 +193,6 @@ fn follow_chain<const LAYERS: bool>(
                 sample.background += background;
                 *bucket(sample, k) += background;
             }
-            chain.far_end = BACKGROUND;
             break;
         };
         let object = &scene.objects[hit.object];
