@@ -499,47 +499,77 @@ fn rerun_failed_grades_only_timeouts_and_ctrl_c_keeps_finished_students() {
     assert!(said.contains("graded now 1, already graded 1"), "{said}");
 }
 
+/// javac of `sources` into `d/out`.
+fn javac(d: &Path, out: &str, sources: Vec<PathBuf>) {
+    let javac = std::process::Command::new("javac")
+        .args(["-proc:none", "-d", out])
+        .args(&sources)
+        .current_dir(d)
+        .output()
+        .expect("javac");
+    assert!(javac.status.success(), "{}", stderr(&javac));
+}
+
+/// The `.java` files of `dir`.
+fn java_files(dir: PathBuf) -> Vec<PathBuf> {
+    std::fs::read_dir(dir)
+        .expect("dir")
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|x| x == "java"))
+        .collect()
+}
+
+/// The skeleton and the fixture's two files (`Plane.java` maybe replaced), compiled into `d/out`.
+fn compile_submission(d: &Path, out: &str, plane: Option<&str>) {
+    let mut sources = java_files(root().join("skeleton/gfx/tick2"));
+    let fixture = root().join("tests/java/submission/gfx/tick2");
+    sources.push(fixture.join("Renderer.java"));
+    match plane {
+        Some(text) => {
+            let path = d.join(format!("{out}-Plane/gfx/tick2/Plane.java"));
+            std::fs::create_dir_all(path.parent().expect("parent")).expect("mkdir");
+            std::fs::write(&path, text).expect("write");
+            sources.push(path);
+        }
+        None => sources.push(fixture.join("Plane.java")),
+    }
+    javac(d, out, sources);
+}
+
+/// The pixels `java -cp classes gfx.tick2.Tick2` writes for `scene` at `bounces`.
+fn java_render(d: &Path, classes: &str, bug: &str, scene: &Path, bounces: &str) -> Vec<u8> {
+    let out = format!("{classes}-out.png");
+    let run = std::process::Command::new("java")
+        .arg(format!("-Dbug={bug}"))
+        .args(["-cp", classes, "gfx.tick2.Tick2", "--input"])
+        .arg(scene)
+        .args(["--output", &out, "--bounces", bounces])
+        .current_dir(d)
+        .stdout(std::process::Stdio::null())
+        .output()
+        .expect("java");
+    assert!(run.status.success(), "{}", stderr(&run));
+    read_png(&d.join(out)).data
+}
+
+/// The pixels `whitted render` writes for `scene` at `bounces`: the course's image.
+fn whitted_render(d: &Path, scene: &Path, bounces: &str) -> Vec<u8> {
+    let run = whitted(d, &["-q", "-i", s(scene), "-b", bounces, "-o", "whitted.png"]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    read_png(&d.join("whitted.png")).data
+}
+
 #[test]
 fn the_fixture_as_two_files_on_the_skeleton_renders_the_single_file_fixture_s_bytes() {
     let dir = tempfile::tempdir().expect("tempdir");
     let d = dir.path();
-    let compile = |out: &str, sources: Vec<PathBuf>| {
-        let javac = std::process::Command::new("javac")
-            .args(["-proc:none", "-d", out])
-            .args(&sources)
-            .current_dir(d)
-            .output()
-            .expect("javac");
-        assert!(javac.status.success(), "{}", stderr(&javac));
-    };
-    let java_files = |dir: PathBuf| -> Vec<PathBuf> {
-        std::fs::read_dir(dir)
-            .expect("dir")
-            .flatten()
-            .map(|e| e.path())
-            .filter(|p| p.extension().is_some_and(|x| x == "java"))
-            .collect()
-    };
-    let mut two_files = java_files(root().join("skeleton/gfx/tick2"));
-    two_files.extend(java_files(root().join("tests/java/submission/gfx/tick2")));
-    compile("submission", two_files);
-    compile(
+    compile_submission(d, "submission", None);
+    javac(
+        d,
         "single",
         vec![root().join("tests/java/gfx/tick2/Tick2.java")],
     );
-    let render = |classes: &str, bug: &str, scene: &Path, bounces: &str, out: &str| {
-        let run = std::process::Command::new("java")
-            .arg(format!("-Dbug={bug}"))
-            .args(["-cp", classes, "gfx.tick2.Tick2", "--input"])
-            .arg(scene)
-            .args(["--output", out, "--bounces", bounces])
-            .current_dir(d)
-            .stdout(std::process::Stdio::null())
-            .output()
-            .expect("java");
-        assert!(run.status.success(), "{}", stderr(&run));
-        read_png(&d.join(out)).data
-    };
     let mirrors = root().join("scenes/check/mirrors.xml");
     let tick2 = root().join("scenes/tick2.xml");
     for (bug, scene, bounces) in [
@@ -552,12 +582,79 @@ fn the_fixture_as_two_files_on_the_skeleton_renders_the_single_file_fixture_s_by
         ("reflect-unclamped,no-shadow-bias", &tick2, "2"),
         ("planes-missing,bounces-minus-one", &tick2, "2"),
     ] {
-        let ours = render("submission", bug, scene, bounces, "a.png");
-        let theirs = render("single", bug, scene, bounces, "b.png");
+        let ours = java_render(d, "submission", bug, scene, bounces);
+        let theirs = java_render(d, "single", bug, scene, bounces);
         assert!(
             ours == theirs,
             "-Dbug={bug} on {}: the pixels differ",
             scene.display()
         );
+    }
+}
+
+/// Real students' Plane.java trusts the course's loader: it keeps the normal as given. On
+/// the skeleton such a submission renders the course's images (whitted's, which match the
+/// course's reference), and each documented behaviour of the course's loader (docs/grade.md,
+/// "The clean-room skeleton") is rendered as whitted renders the scene that behaviour means.
+#[test]
+fn a_submission_that_trusts_the_course_s_loader_renders_the_course_s_images() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    // As the course's template has it, with the one line the handout asks for: no
+    // normalising, no checks beyond the sign of s.
+    let trusting = "package gfx.tick2;\n\npublic class Plane extends SceneObject {\n    \
+        private final double PLANE_KD = 0.9;\n    private final double PLANE_KS = 0.0;\n    \
+        private final double PLANE_N = 0.0;\n    private final double PLANE_REFLECTIVITY = 0.1;\n\n    \
+        private Vector3 point;\n    private Vector3 normal;\n\n    \
+        public Plane(Vector3 point, Vector3 normal, Vector3 colour) {\n        \
+        this.point = point;\n        this.normal = normal;\n        this.colour = colour;\n        \
+        this.phong_kD = PLANE_KD;\n        this.phong_kS = PLANE_KS;\n        \
+        this.phong_n = PLANE_N;\n        this.reflectivity = PLANE_REFLECTIVITY;\n    }\n\n    \
+        public RaycastHit intersectionWith(Ray ray) {\n        Vector3 O = ray.getOrigin();\n        \
+        Vector3 D = ray.getDirection();\n        Vector3 Q = this.point;\n        \
+        Vector3 N = this.normal;\n        double s = Q.subtract(O).dot(N) / D.dot(N);\n        \
+        if (s < 0) return new RaycastHit();\n        \
+        return new RaycastHit(this, s, O.add(D.scale(s)), N);\n    }\n\n    \
+        public Vector3 getNormalAt(Vector3 position) {\n        return normal;\n    }\n}\n";
+    compile_submission(d, "trusting", Some(trusting));
+    compile_submission(d, "fixture", None);
+    for (scene, bounces) in [
+        (root().join("scenes/tick2.xml"), "2"),
+        (root().join("scenes/tick2.xml"), "0"),
+        (root().join("scenes/check/mirrors.xml"), "3"),
+        (root().join("scenes/specular_test.xml"), "2"),
+    ] {
+        let course = whitted_render(d, &scene, bounces);
+        for classes in ["trusting", "fixture"] {
+            let theirs = java_render(d, classes, "", &scene, bounces);
+            assert!(
+                theirs == course,
+                "{classes} on {} -b {bounces}: not the course's image",
+                scene.display()
+            );
+        }
+    }
+    // The course loader's behaviours, each beside the strict scene it amounts to.
+    let quirks = write_scene(
+        d,
+        "quirks.xml",
+        "<scene>\n  <ambient-light colour=\"#101010\"/>\n  <group>\n    \
+         <point-light x=\"1\" y=\"up\" z=\"1\" colour=\"#FFFFFF.\" intensity=\"\"/>\n  \
+         </group>\n  <sphere x=\" 0.2 \" y=\"0\" z=\"4\" radius=\"1\" colour=\"#3060e0\"/>\n  \
+         <plane x=\"0\" y=\"-1\" z=\"0\" nx=\"0\" ny=\"4.22\" nz=\"-2.18\" colour=\"#22AA22\"/>\n  \
+         <widget size=\"3\"/>\n  <ambient-light colour=\"#555555\"/>\n</scene>\n",
+    );
+    let strict = write_scene(
+        d,
+        "strict.xml",
+        "<scene>\n  <point-light x=\"1\" y=\"0\" z=\"1\" colour=\"#FFFFFF\" intensity=\"100\"/>\n  \
+         <sphere x=\"0.2\" y=\"0\" z=\"4\" radius=\"1\" colour=\"#3060E0\"/>\n  \
+         <plane x=\"0\" y=\"-1\" z=\"0\" nx=\"0\" ny=\"4.22\" nz=\"-2.18\" colour=\"#22AA22\"/>\n  \
+         <ambient-light colour=\"#555555\"/>\n</scene>\n",
+    );
+    let course = whitted_render(d, &strict, "2");
+    for classes in ["trusting", "fixture"] {
+        let theirs = java_render(d, classes, "", &quirks, "2");
+        assert!(theirs == course, "{classes}: the loader's rules differ");
     }
 }
