@@ -11,10 +11,12 @@
 mod archive;
 mod class;
 mod compile;
+mod feedback_zip;
 mod html;
 mod intake;
 mod memory_cgroup;
 mod moodle;
+mod policy;
 mod report;
 mod result;
 mod sandbox;
@@ -29,10 +31,10 @@ use std::sync::Mutex;
 
 use serde_json::Value;
 
-pub use result::Grading;
+pub use policy::{Grading, Policy};
 pub use sandbox::Limits;
 
-use crate::check::suite::cases;
+use crate::check::suite::{cases, SuiteCase};
 use crate::error::{Error, Result};
 use crate::fingerprint::fingerprint;
 use crate::output::atomic::AtomicFile;
@@ -65,6 +67,14 @@ pub struct Options {
     pub no_sandbox: bool,
     pub grading: Grading,
     pub tolerance: u8,
+    /// Whether whitted's diagnostic scenes count towards the grade.
+    pub count_diagnostic: bool,
+    /// A rubric file weighing the cases (docs/grade.md, "What counts").
+    pub rubric: Option<PathBuf>,
+    /// Only these students (ids as the class lists them), graded again whatever OUTDIR holds.
+    pub only: Vec<String>,
+    /// Whether hidden scenes are shown to students in full (their XML, their reference).
+    pub show_hidden: bool,
     /// Only the `k`-th of `n` shares of the class (a Slurm array task); the class files are
     /// then left to the run that aggregates.
     pub part: Option<(usize, usize)>,
@@ -87,7 +97,8 @@ pub struct Summary {
 pub fn run(options: &Options) -> Result<Summary> {
     refuse_outdir_inside(&options.submissions, &options.outdir)?;
     let submissions = intake::read(&options.submissions)?;
-    let (skeleton, suite) = course(options)?;
+    let (skeleton, suite, policy) = course(options)?;
+    let only = only(options, &submissions)?;
     let java = jdk_tool("java")?;
     let javac = jdk_tool("javac")?;
     let sandbox = match options.no_sandbox {
@@ -116,11 +127,12 @@ pub fn run(options: &Options) -> Result<Summary> {
         .enumerate()
         .filter(|(i, _)| options.part.is_none_or(|(k, n)| i % n == k - 1))
         .map(|(_, s)| s)
+        .filter(|s| only.is_empty() || only.contains(&s.id))
         .collect();
     let todo: Vec<(&Submission, String)> = mine
         .iter()
-        .map(|s| (*s, key(&setup.skeleton, &setup.suite, options, s)))
-        .filter(|(s, key)| needs_grading(&students_dir, s, key, options.rerun))
+        .map(|s| (*s, key(&setup.skeleton, &setup.suite, &policy, options, s)))
+        .filter(|(s, key)| !only.is_empty() || needs_grading(&students_dir, s, key, options.rerun))
         .collect();
     let skipped = mine.len() - todo.len();
     // Without a sandbox, orphans of a program are found as this process's children, which
@@ -130,7 +142,7 @@ pub fn run(options: &Options) -> Result<Summary> {
     } else {
         options.jobs.max(1)
     };
-    grade_all(&setup, options, &students_dir, &todo, jobs)?;
+    grade_all(&setup, &policy, options, &students_dir, &todo, jobs)?;
     let rows = read_rows(&students_dir, &submissions);
     let mut summary = Summary {
         students: submissions.len(),
@@ -140,38 +152,80 @@ pub fn run(options: &Options) -> Result<Summary> {
         index: None,
     };
     if options.part.is_none() {
-        summary.index = Some(write_class(&options.outdir, &rows)?);
+        let settings = [
+            format!("Skeleton: {}.", setup.skeleton.source),
+            format!("Grading: {}.", policy.describe()),
+            match setup.sandbox.is_none() {
+                true => "Run with --no-sandbox: the programs ran unconfined.".to_string(),
+                false => "Every program ran in the sandbox (docs/grade.md).".to_string(),
+            },
+        ];
+        summary.index = Some(write_class(&options.outdir, &rows, &settings)?);
     }
     Ok(summary)
+}
+
+/// The students `--only` names, as the class lists them; an id the class does not have is
+/// refused before anyone is graded.
+fn only(options: &Options, submissions: &[Submission]) -> Result<Vec<String>> {
+    let mut ids = Vec::new();
+    for id in &options.only {
+        let safe = intake::safe_id(id);
+        if !submissions.iter().any(|s| s.id == safe) {
+            return Err(Error::Usage(format!(
+                "--only {id}: no student of that id in {}",
+                options.submissions.display()
+            )));
+        }
+        ids.push(safe);
+    }
+    Ok(ids)
 }
 
 /// Every student in class order, and whether OUTDIR holds their finished result: what a farm
 /// needs to share the class out and to resume it. Needs neither a JDK nor a sandbox.
 pub fn list(options: &Options) -> Result<Vec<(String, bool)>> {
     let submissions = intake::read(&options.submissions)?;
-    let (skeleton, suite) = course(options)?;
+    let (skeleton, suite, policy) = course(options)?;
     let students_dir = options.outdir.join("students");
     Ok(submissions
         .iter()
         .map(|s| {
-            let key = key(&skeleton, &suite, options, s);
+            let key = key(&skeleton, &suite, &policy, options, s);
             let done = !needs_grading(&students_dir, s, &key, options.rerun);
             (s.id.clone(), done)
         })
         .collect())
 }
 
-/// What every student is graded against: the skeleton and the suite (with `--scenes`).
-fn course(options: &Options) -> Result<(Skeleton, Vec<crate::check::suite::SuiteCase>)> {
+/// What every student is graded against: the skeleton, the suite (with `--scenes`) and the
+/// grading policy.
+fn course(options: &Options) -> Result<(Skeleton, Vec<SuiteCase>, Policy)> {
     let skeleton = match &options.skeleton {
         Some(dir) => Skeleton::from_dir(dir)?,
         None => Skeleton::clean_room(),
     };
     let mut suite = cases();
     if let Some(dir) = &options.scenes {
-        suite.extend(scenes::read(dir)?);
+        for case in scenes::read(dir)? {
+            if suite.iter().any(|c| c.name() == case.name()) {
+                return Err(Error::Usage(format!(
+                    "--scenes {}: {} has the name of a case of the suite; rename it",
+                    dir.display(),
+                    case.file
+                )));
+            }
+            suite.push(case);
+        }
     }
-    Ok((skeleton, suite))
+    let policy = Policy::new(
+        &suite,
+        options.grading,
+        options.tolerance,
+        options.count_diagnostic,
+        options.rubric.as_deref(),
+    )?;
+    Ok((skeleton, suite, policy))
 }
 
 /// OUTDIR inside the submissions folder would be read as a student next time.
@@ -220,7 +274,8 @@ fn jdk_tool(name: &str) -> Result<PathBuf> {
 /// it: they change only the results that hit one, which `--rerun failed` grades again.
 fn key(
     skeleton: &Skeleton,
-    suite: &[crate::check::suite::SuiteCase],
+    suite: &[SuiteCase],
+    policy: &Policy,
     options: &Options,
     submission: &Submission,
 ) -> String {
@@ -240,11 +295,11 @@ fn key(
         parts.push(case.xml.as_bytes().to_vec());
         parts.push(case.bounces.to_le_bytes().to_vec());
     }
-    let settings = format!(
-        "{:?} {} {}",
-        options.grading, options.tolerance, options.no_sandbox
-    );
-    parts.push(settings.into_bytes());
+    parts.push(policy.key_bytes());
+    parts.push(vec![
+        u8::from(options.no_sandbox),
+        u8::from(options.show_hidden),
+    ]);
     // Each part's length first, so that moving bytes from one part to the next changes it.
     let framed: Vec<Vec<u8>> = parts
         .iter()
@@ -286,6 +341,7 @@ const WORKERS_PER_COMPILER: usize = 4;
 /// Grades `todo`, `jobs` students at a time, each written as soon as it is done.
 fn grade_all(
     setup: &Setup,
+    policy: &Policy,
     options: &Options,
     students_dir: &Path,
     todo: &[(&Submission, String)],
@@ -318,7 +374,16 @@ fn grade_all(
                     return;
                 }
                 let (submission, key) = &todo[i];
-                let graded = grade_one(setup, options, students_dir, submission, key, slot, javac);
+                let graded = grade_one(
+                    setup,
+                    policy,
+                    options,
+                    students_dir,
+                    submission,
+                    key,
+                    slot,
+                    javac,
+                );
                 match graded {
                     Ok(()) => progress.advance(1),
                     Err(e) => {
@@ -340,8 +405,10 @@ fn grade_all(
 }
 
 /// Grades one student and writes their folder: report.png, report.html, then result.json.
+#[allow(clippy::too_many_arguments)]
 fn grade_one(
     setup: &Setup,
+    policy: &Policy,
     options: &Options,
     students_dir: &Path,
     submission: &Submission,
@@ -365,9 +432,10 @@ fn grade_one(
         submission,
         &outcome,
         key,
-        options.grading,
+        policy,
         sandboxed,
         skeleton,
+        options.show_hidden,
     );
     let feedback = result["extra_data"]["feedback"]
         .as_str()
@@ -376,10 +444,14 @@ fn grade_one(
     let dir = students_dir.join(&submission.id);
     std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, "cannot create", e))?;
     let mut png = Vec::new();
-    crate::output::png::write_png(&mut png, &report::sheet(&outcome, &feedback))
+    let shown = report::Shown {
+        hidden: options.show_hidden,
+        policy,
+    };
+    crate::output::png::write_png(&mut png, &report::sheet(&outcome, &feedback, &shown))
         .map_err(|e| Error::Environment(format!("cannot encode a report: {e}")))?;
     write_atomic(&dir.join("report.png"), &png)?;
-    let page = report::page(submission, &outcome, &feedback, sandboxed);
+    let page = report::page(submission, &outcome, &feedback, sandboxed, &shown);
     write_atomic(&dir.join("report.html"), page.as_bytes())?;
     let json = serde_json::to_string_pretty(&result).unwrap_or_default();
     write_atomic(&dir.join("result.json"), json.as_bytes())
@@ -395,9 +467,11 @@ fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     file.commit()
 }
 
-/// Every student's row, from their result.json; one without is an `error` row.
+/// Every student's row, from their result.json; one without is an `error` row. Students
+/// OUTDIR holds from earlier runs on other inputs (a late submission graded alone, `--only`)
+/// keep their rows: grading into an existing output merges, never drops anyone.
 fn read_rows(students_dir: &Path, submissions: &[Submission]) -> Vec<result::Row> {
-    submissions
+    let mut rows: Vec<result::Row> = submissions
         .iter()
         .map(|s| {
             read_result(students_dir, &s.id)
@@ -405,6 +479,7 @@ fn read_rows(students_dir: &Path, submissions: &[Submission]) -> Vec<result::Row
                 .unwrap_or_else(|| result::Row {
                     id: s.id.clone(),
                     name: s.name.clone(),
+                    folder: s.folder.clone(),
                     status: "error".into(),
                     passed: 0,
                     cases: 0,
@@ -416,7 +491,19 @@ fn read_rows(students_dir: &Path, submissions: &[Submission]) -> Vec<result::Row
                     key: String::new(),
                 })
         })
-        .collect()
+        .collect();
+    if let Ok(entries) = std::fs::read_dir(students_dir) {
+        let mut others: Vec<result::Row> = entries
+            .flatten()
+            .filter(|e| e.file_type().is_ok_and(|t| t.is_dir()))
+            .filter_map(|e| read_result(students_dir, &e.file_name().to_string_lossy()))
+            .filter_map(|r| result::row(&r))
+            .filter(|r| !submissions.iter().any(|s| s.id == r.id))
+            .collect();
+        rows.append(&mut others);
+    }
+    rows.sort_by(|a, b| a.id.cmp(&b.id));
+    rows
 }
 
 fn count_statuses(rows: &[result::Row]) -> Vec<(String, usize)> {
@@ -428,7 +515,7 @@ fn count_statuses(rows: &[result::Row]) -> Vec<(String, usize)> {
 }
 
 /// The class files; returns the path of index.html.
-fn write_class(outdir: &Path, rows: &[result::Row]) -> Result<PathBuf> {
+fn write_class(outdir: &Path, rows: &[result::Row], settings: &[String]) -> Result<PathBuf> {
     let now = modified_now();
     write_atomic(&outdir.join("class.csv"), class::class_csv(rows).as_bytes())?;
     write_atomic(
@@ -439,10 +526,14 @@ fn write_class(outdir: &Path, rows: &[result::Row]) -> Result<PathBuf> {
         &outdir.join("moodle.csv"),
         class::moodle_csv(rows, &now).as_bytes(),
     )?;
+    write_atomic(
+        &outdir.join("feedback.zip"),
+        &feedback_zip::build(&outdir.join("students"), rows)?,
+    )?;
     let index = outdir.join("index.html");
     write_atomic(
         &index,
-        class::index_html(rows, "Tick 2: the class").as_bytes(),
+        class::index_html(rows, "Tick 2: the class", settings).as_bytes(),
     )?;
     Ok(index)
 }

@@ -4,7 +4,7 @@
 
 use crate::canvas::{fit, Canvas, LINE_HEIGHT};
 use crate::check::difference::pixel_difference;
-use crate::check::program::{Status, SuiteRun};
+use crate::check::program::{CaseOutcome, Status, SuiteRun};
 use crate::check::student_png::Rgb8;
 use crate::check::summary::{fits, largest};
 use crate::check::{CaseReport, Findings};
@@ -112,9 +112,10 @@ impl ReportRow {
 }
 
 /// The rows of a `--program` run's failing cases, in suite order.
-pub fn failing_rows(run: &SuiteRun) -> Vec<ReportRow> {
+pub fn failing_rows(run: &SuiteRun, shown: impl Fn(&CaseOutcome) -> bool) -> Vec<ReportRow> {
     run.cases
         .iter()
+        .filter(|c| shown(c))
         .filter_map(|c| match &c.status {
             Status::Ok(case) if !case.difference.verdict.passes() => {
                 Some(ReportRow::of(&c.name, case, &run.findings))

@@ -10,6 +10,30 @@ use std::path::Path;
 
 use crate::error::{Error, Result};
 
+/// What a case is for, which decides what counts towards a grade and what a student may see.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Role {
+    /// One of the course's own scenes (`tick2.xml`, `specular_test.xml`): the image the
+    /// course's tester wants.
+    Course,
+    /// One of whitted's scenes that separate the mistakes (`shadows.xml`, `mirrors.xml`): it
+    /// informs the diagnosis and the report, and scores nothing unless asked.
+    Diagnostic,
+    /// A scene the people running the course keep from students (`grade --scenes`): reported
+    /// to them by name and verdict only.
+    Hidden,
+}
+
+impl Role {
+    pub fn name(self) -> &'static str {
+        match self {
+            Role::Course => "course",
+            Role::Diagnostic => "diagnostic",
+            Role::Hidden => "hidden",
+        }
+    }
+}
+
 /// One case: a scene at a bounce count.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct SuiteCase {
@@ -17,6 +41,7 @@ pub struct SuiteCase {
     pub file: Cow<'static, str>,
     pub xml: Cow<'static, str>,
     pub bounces: u32,
+    pub role: Role,
 }
 
 impl SuiteCase {
@@ -72,19 +97,20 @@ const MIRRORS: &str = include_str!("../../scenes/check/mirrors.xml");
 
 /// The suite, in the order it runs and is reported.
 pub fn cases() -> Vec<SuiteCase> {
-    let case = |file, xml, bounces| SuiteCase {
+    let case = |file, xml, bounces, role| SuiteCase {
         file: Cow::Borrowed(file),
         xml: Cow::Borrowed(xml),
         bounces,
+        role,
     };
     vec![
-        case("tick2.xml", TICK2, 0),
-        case("tick2.xml", TICK2, 1),
-        case("tick2.xml", TICK2, 2),
-        case("tick2.xml", TICK2, 3),
-        case("specular_test.xml", SPECULAR_TEST, 2),
-        case("shadows.xml", SHADOWS, 1),
-        case("mirrors.xml", MIRRORS, 3),
+        case("tick2.xml", TICK2, 0, Role::Course),
+        case("tick2.xml", TICK2, 1, Role::Course),
+        case("tick2.xml", TICK2, 2, Role::Course),
+        case("tick2.xml", TICK2, 3, Role::Course),
+        case("specular_test.xml", SPECULAR_TEST, 2, Role::Course),
+        case("shadows.xml", SHADOWS, 1, Role::Diagnostic),
+        case("mirrors.xml", MIRRORS, 3, Role::Diagnostic),
     ]
 }
 

@@ -6,6 +6,7 @@ use clap::Args;
 
 use super::parse::*;
 use crate::grade::{Grading, Rerun};
+use clap::ValueEnum;
 
 #[derive(Debug, Clone, Args)]
 pub struct GradeArgs {
@@ -54,14 +55,34 @@ pub struct GradeArgs {
     #[arg(long)]
     pub no_sandbox: bool,
 
-    /// The grade, out of 100: `pass-fail` (100 when every case passes) or `fraction` (the
-    /// share of cases passed)
+    /// The grade, out of 100: `pass-fail` (100 when every counted case passes) or `fraction`
+    /// (the weighted share of counted cases passed)
     #[arg(long, value_name = "HOW", value_enum, default_value = "pass-fail")]
-    pub grade: Grading,
+    pub grade: GradeHow,
 
     /// Largest difference of a channel, in LSB, that still passes
     #[arg(long, value_name = "LSB", default_value_t = 2)]
     pub tolerance: u8,
+
+    /// Count whitted's diagnostic scenes (shadows.xml, mirrors.xml) towards the grade too; by
+    /// default they inform the diagnosis and the report and score nothing
+    #[arg(long, conflicts_with = "rubric")]
+    pub count_diagnostic: bool,
+
+    /// A rubric weighing the cases: lines `CASE WEIGHT`, CASE a case (`tick2.xml -b 2`) or a
+    /// scene (`tick2.xml`, every bounce count); cases it does not name score nothing
+    #[arg(long, value_name = "FILE")]
+    pub rubric: Option<PathBuf>,
+
+    /// Grade only these students again (ids as the class lists them), keeping everyone else's
+    /// results and rows
+    #[arg(long, value_name = "ID", num_args = 1..)]
+    pub only: Vec<String>,
+
+    /// Show the --scenes cases to students in full (their images, the reference, the
+    /// commands); by default a hidden case is reported by name and verdict only
+    #[arg(long)]
+    pub show_hidden: bool,
 
     /// Grade only the K-th of N shares of the class (a farm's array task), leaving the class
     /// files to a run without --part
@@ -71,6 +92,24 @@ pub struct GradeArgs {
     /// No progress bar
     #[arg(short, long)]
     pub quiet: bool,
+}
+
+/// `--grade`: clap's names for [`Grading`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum GradeHow {
+    /// 100 when every counted case passes, else 0
+    PassFail,
+    /// The weighted share of counted cases passed
+    Fraction,
+}
+
+impl From<GradeHow> for Grading {
+    fn from(how: GradeHow) -> Grading {
+        match how {
+            GradeHow::PassFail => Grading::PassFail,
+            GradeHow::Fraction => Grading::Fraction,
+        }
+    }
 }
 
 fn parse_jobs(s: &str) -> Result<usize, String> {

@@ -21,8 +21,12 @@ pub fn run(args: &GradeArgs) -> Result<()> {
         },
         rerun: args.rerun,
         no_sandbox: args.no_sandbox,
-        grading: args.grade,
+        grading: args.grade.into(),
         tolerance: args.tolerance,
+        count_diagnostic: args.count_diagnostic,
+        rubric: args.rubric.clone(),
+        only: args.only.clone(),
+        show_hidden: args.show_hidden,
         part: args.part,
         quiet: args.quiet,
     };

@@ -9,6 +9,31 @@ use std::path::Path;
 
 /// The files a submission gives, by name.
 pub const WANTED: [&str; 2] = ["Plane.java", "Renderer.java"];
+/// Which wanted file `name` is, and whether it is that name exactly: a near miss is a
+/// browser's second download (`Renderer (1).java`), another case (`renderer.java`) or an
+/// editor's extension (`Renderer.java.txt`), which a student means as the file.
+pub fn wanted(name: &str) -> Option<(&'static str, bool)> {
+    if let Some(exact) = WANTED.iter().find(|w| **w == name) {
+        return Some((exact, true));
+    }
+    let lower = name.to_ascii_lowercase();
+    let lower = lower.strip_suffix(".txt").unwrap_or(&lower);
+    let stem = lower.strip_suffix(".java")?;
+    // `Renderer (1)`, `Renderer(2)`, `Renderer - Copy`.
+    let stem = match stem.trim_end().strip_suffix(')') {
+        Some(open) => match open.rsplit_once('(') {
+            Some((base, n)) if !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()) => base,
+            _ => stem,
+        },
+        None => stem,
+    };
+    let stem = stem.strip_suffix(" - copy").unwrap_or(stem).trim_end();
+    WANTED
+        .iter()
+        .find(|w| w.to_ascii_lowercase().strip_suffix(".java") == Some(stem))
+        .map(|w| (*w, false))
+}
+
 /// A source file larger than this is not a student's Plane or Renderer.
 pub const MAX_SOURCE: u64 = 1 << 20;
 /// A zip inside a submission is read only up to this size.
@@ -30,6 +55,9 @@ pub struct Found {
 /// the way (said in the student's report).
 #[derive(Debug, Clone, Default)]
 pub struct Holdings {
+    /// The submission's folder as the class has it (Moodle's `Full Name_<id>_assignsubmission_file`):
+    /// where feedback goes back to.
+    pub folder: String,
     pub found: Vec<Found>,
     pub notes: Vec<String>,
 }
@@ -85,7 +113,7 @@ pub fn search_zip<R: Read + Seek>(
 ) {
     for (path, i) in entries {
         let name = file_name(path);
-        let wanted = WANTED.contains(&name);
+        let wanted = wanted(name).is_some();
         if !wanted && !is_zip_name(path) {
             continue;
         }
@@ -175,7 +203,7 @@ pub fn search_dir(dir: &Path, holdings: &mut Holdings) {
             let name = entry.file_name().to_string_lossy().into_owned();
             if kind.is_dir() && depth < MAX_DEPTH {
                 stack.push((path, depth + 1));
-            } else if kind.is_file() && (WANTED.contains(&name.as_str()) || is_zip_name(&name)) {
+            } else if kind.is_file() && (wanted(&name).is_some() || is_zip_name(&name)) {
                 let label = shown(dir, &path);
                 let cap = if is_zip_name(&name) {
                     MAX_INNER_ZIP
@@ -188,7 +216,7 @@ pub fn search_dir(dir: &Path, holdings: &mut Holdings) {
                     (true, Err(e)) => holdings.notes.push(e),
                     (false, bytes) => holdings.add(label, bytes),
                 }
-            } else if !kind.is_dir() && WANTED.contains(&name.as_str()) {
+            } else if !kind.is_dir() && wanted(&name).is_some() {
                 holdings.notes.push(format!(
                     "{}: not a regular file, ignored",
                     shown(dir, &path)
@@ -221,4 +249,33 @@ fn shown(dir: &Path, path: &Path) -> String {
         .unwrap_or(path)
         .to_string_lossy()
         .into_owned()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn near_miss_names_are_the_wanted_files() {
+        assert_eq!(wanted("Renderer.java"), Some(("Renderer.java", true)));
+        for near in [
+            "Renderer (1).java",
+            "Renderer(2).java",
+            "renderer.java",
+            "RENDERER.JAVA",
+            "Renderer.java.txt",
+            "Renderer - Copy.java",
+        ] {
+            assert_eq!(wanted(near), Some(("Renderer.java", false)), "{near}");
+        }
+        assert_eq!(wanted("plane (3).java"), Some(("Plane.java", false)));
+        for other in [
+            "Renderer.class",
+            "MyRenderer.java",
+            "Renderer (x).java",
+            "Plane.txt",
+        ] {
+            assert_eq!(wanted(other), None, "{other}");
+        }
+    }
 }

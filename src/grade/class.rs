@@ -192,7 +192,7 @@ fn bars(items: &[(String, usize, usize, &str)]) -> String {
     svg + "</svg>"
 }
 
-pub fn index_html(rows: &[Row], title: &str) -> String {
+pub fn index_html(rows: &[Row], title: &str, settings: &[String]) -> String {
     let graded = rows.iter().filter(|r| r.status == "graded").count();
     let passing = rows
         .iter()
@@ -204,11 +204,16 @@ pub fn index_html(rows: &[Row], title: &str) -> String {
     }
     let statuses: Vec<String> = by_status.iter().map(|(s, n)| format!("{n} {s}")).collect();
     let mut body = format!(
-        "<h1>{}</h1>\n<p id=\"totals\">{} students: {}; {passing} pass every case.</p>\n",
+        "<h1>{}</h1>\n<p id=\"totals\">{} students: {}; {passing} pass every graded case.</p>\n",
         escape(title),
         rows.len(),
         escape(&statuses.join(", "))
     );
+    body += "<ul id=\"settings\">\n";
+    for line in settings {
+        body += &format!("<li>{}</li>\n", escape(line));
+    }
+    body += "</ul>\n";
     let mistakes: Vec<(String, usize, usize, &str)> = counts(rows)
         .into_iter()
         .map(|(b, n)| {

@@ -18,10 +18,17 @@ pub struct Submission {
     pub id: String,
     /// The name Moodle gives (a full name, `Participant`, a group), or the folder's name.
     pub name: String,
+    /// The folder it came in (Moodle's `Full Name_<id>_assignsubmission_file`), which Moodle's
+    /// feedback upload reads the participant from.
+    pub folder: String,
     /// The two files, or why they cannot be had.
     pub files: std::result::Result<Files, Refusal>,
-    /// What was ignored on the way (links, a second copy, a file too large), for the report.
+    /// What was ignored on the way (links, a second copy, a file too large, a folder that is
+    /// not a file submission), for the report.
     pub notes: Vec<String>,
+    /// What was taken though it is not what the handout asks (a near-miss file name), for the
+    /// report: the course's own tester may not take it.
+    pub warnings: Vec<String>,
 }
 
 /// A submission's two files.
@@ -47,7 +54,10 @@ pub fn read(submissions: &Path) -> Result<Vec<Submission>> {
         from_zip(submissions)?
     } else if metadata.is_dir() && is_project(submissions) {
         let name = folder_name(submissions);
-        let mut holdings = Holdings::default();
+        let mut holdings = Holdings {
+            folder: name.clone(),
+            ..Holdings::default()
+        };
         archive::search_dir(submissions, &mut holdings);
         vec![(name.clone(), name, holdings)]
     } else if metadata.is_dir() {
@@ -91,6 +101,42 @@ fn student_of(folder: &str) -> (String, String) {
     }
 }
 
+/// A Moodle folder that holds no files (`_onlinetext_`, `_comments_`): its student and a note.
+fn not_files(folder: &str) -> Option<(String, String, String)> {
+    let parsed = moodle::parse(folder).filter(|f| !f.is_files())?;
+    let note = format!(
+        "Moodle's folder {folder} holds the {} plugin's submission, not files: ignored",
+        parsed.plugin
+    );
+    Some((parsed.id, parsed.name, note))
+}
+
+/// The students of the folders: the file folders, with each ignored folder's note given to
+/// its student (a student with no file folder at all is still listed, with nothing to grade).
+fn with_ignored(
+    mut students: Vec<(String, String, Holdings)>,
+    ignored: Vec<(String, String, String)>,
+) -> Vec<(String, String, Holdings)> {
+    for (id, name, note) in ignored {
+        match students.iter_mut().find(|(i, ..)| *i == id) {
+            Some((_, _, holdings)) => holdings.notes.push(note),
+            None => {
+                let holdings = Holdings {
+                    notes: vec![note],
+                    ..Holdings::default()
+                };
+                // No file folder: feedback goes back to Moodle's usual name for one.
+                let holdings = Holdings {
+                    folder: format!("{name}_{id}_assignsubmission_file_"),
+                    ..holdings
+                };
+                students.push((id, name, holdings));
+            }
+        }
+    }
+    students
+}
+
 /// Moodle's zip: a folder per student at the top (files at the top make one student).
 fn from_zip(path: &Path) -> Result<Vec<(String, String, Holdings)>> {
     let file = File::open(path).map_err(|e| Error::io(path, "cannot read", e))?;
@@ -111,19 +157,31 @@ fn from_zip(path: &Path) -> Result<Vec<(String, String, Holdings)>> {
     }
     let mut students = Vec::new();
     if !loose.is_empty() && folders.is_empty() {
-        let (id, name) = student_of(folder_name(path).trim_end_matches(".zip"));
-        let mut holdings = Holdings::default();
+        let stem = folder_name(path);
+        let (id, name) = student_of(stem.trim_end_matches(".zip"));
+        let mut holdings = Holdings {
+            folder: stem.trim_end_matches(".zip").to_string(),
+            ..Holdings::default()
+        };
         archive::search_zip(&mut zip, &loose, &mut holdings, false);
         students.push((id, name, holdings));
         return Ok(students);
     }
+    let mut ignored = Vec::new();
     for (folder, entries) in folders {
+        if let Some(not) = not_files(&folder) {
+            ignored.push(not);
+            continue;
+        }
         let (id, name) = student_of(&folder);
-        let mut holdings = Holdings::default();
+        let mut holdings = Holdings {
+            folder: folder.clone(),
+            ..Holdings::default()
+        };
         archive::search_zip(&mut zip, &entries, &mut holdings, false);
         students.push((id, name, holdings));
     }
-    Ok(students)
+    Ok(with_ignored(students, ignored))
 }
 
 /// A folder with a folder per student (links and files beside them are not students).
@@ -131,17 +189,25 @@ fn from_folders(dir: &Path) -> Result<Vec<(String, String, Holdings)>> {
     let entries =
         std::fs::read_dir(dir).map_err(|e| Error::io(dir, "cannot read the submissions", e))?;
     let mut students = Vec::new();
+    let mut ignored = Vec::new();
     for entry in entries.flatten() {
         if !entry.file_type().is_ok_and(|t| t.is_dir()) {
             continue;
         }
         let folder = entry.file_name().to_string_lossy().into_owned();
+        if let Some(not) = not_files(&folder) {
+            ignored.push(not);
+            continue;
+        }
         let (id, name) = student_of(&folder);
-        let mut holdings = Holdings::default();
+        let mut holdings = Holdings {
+            folder: folder.clone(),
+            ..Holdings::default()
+        };
         archive::search_dir(&entry.path(), &mut holdings);
         students.push((id, name, holdings));
     }
-    Ok(students)
+    Ok(with_ignored(students, ignored))
 }
 
 /// The id as a file name: letters, digits, `-`, `_`, `.` kept, anything else `_`, never `.` or
@@ -172,6 +238,7 @@ fn settle(students: Vec<(String, String, Holdings)>) -> Vec<Submission> {
         .map(|(id, name, holdings)| {
             let safe = safe_id(&id);
             let mut notes = holdings.notes.clone();
+            let mut warnings = Vec::new();
             let files = if count[&safe] > 1 {
                 Err(Refusal {
                     status: "error",
@@ -181,13 +248,15 @@ fn settle(students: Vec<(String, String, Holdings)>) -> Vec<Submission> {
                     ),
                 })
             } else {
-                choose(&holdings, &mut notes)
+                choose(&holdings, &mut notes, &mut warnings)
             };
             Submission {
                 id: safe,
                 name,
+                folder: holdings.folder.clone(),
                 files,
                 notes,
+                warnings,
             }
         })
         .collect();
@@ -195,19 +264,27 @@ fn settle(students: Vec<(String, String, Holdings)>) -> Vec<Submission> {
     settled
 }
 
-/// The copy of each wanted file to grade: the one under `gfx/tick2/`, else the one nearest the
-/// top; the others are noted.
-fn choose(holdings: &Holdings, notes: &mut Vec<String>) -> std::result::Result<Files, Refusal> {
+/// The copy of each wanted file to grade: one of that exact name before a near miss
+/// (`Renderer (1).java`, taken with a warning), the one under `gfx/tick2/` first, else the one
+/// nearest the top; the others are noted.
+fn choose(
+    holdings: &Holdings,
+    notes: &mut Vec<String>,
+    warnings: &mut Vec<String>,
+) -> std::result::Result<Files, Refusal> {
     let mut chosen = Vec::new();
+    let name_of = |f: &archive::Found| archive::wanted(f.path.rsplit(['/', '\\']).next()?);
     for wanted in WANTED {
         let mut copies: Vec<&archive::Found> = holdings
             .found
             .iter()
-            .filter(|f| f.path.rsplit(['/', '\\']).next() == Some(wanted))
+            .filter(|f| name_of(f).is_some_and(|(w, _)| w == wanted))
             .collect();
         copies.sort_by_key(|f| {
             let in_package = f.path.replace('\\', "/").contains("gfx/tick2/");
+            let exact = name_of(f).is_some_and(|(_, exact)| exact);
             (
+                !exact,
                 !in_package,
                 f.path.matches(['/', '\\']).count(),
                 f.path.clone(),
@@ -219,6 +296,13 @@ fn choose(holdings: &Holdings, notes: &mut Vec<String>) -> std::result::Result<F
                 message: format!("no {wanted} in the submission"),
             });
         };
+        if name_of(first).is_some_and(|(_, exact)| !exact) {
+            warnings.push(format!(
+                "{} was taken as {wanted}: name it {wanted} (the course's tester looks for that \
+                 name and may not find this one)",
+                first.path
+            ));
+        }
         for other in &copies[1..] {
             notes.push(format!(
                 "{} also found at {}; {} graded",

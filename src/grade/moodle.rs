@@ -8,6 +8,16 @@
 pub struct Folder {
     pub name: String,
     pub id: String,
+    /// Moodle's submission plugin: `file` for uploaded files; `onlinetext`, `comments` and
+    /// the like hold no files to grade.
+    pub plugin: String,
+}
+
+impl Folder {
+    /// Whether the folder holds the student's uploaded files.
+    pub fn is_files(&self) -> bool {
+        self.plugin == "file"
+    }
 }
 
 /// The student of a Moodle folder name, or None for a name of another shape.
@@ -24,6 +34,7 @@ pub fn parse(folder: &str) -> Option<Folder> {
     Some(Folder {
         name: name.to_string(),
         id: id.to_string(),
+        plugin: plugin.to_string(),
     })
 }
 
@@ -35,6 +46,7 @@ mod tests {
         Some(Folder {
             name: name.into(),
             id: id.into(),
+            plugin: "file".into(),
         })
     }
 
@@ -53,10 +65,12 @@ mod tests {
             parse("Participant_987654_assignsubmission_file_"),
             folder("Participant", "987654")
         );
+        let online = parse("Team_Rocket_55_assignsubmission_onlinetext").expect("a folder");
         assert_eq!(
-            parse("Team_Rocket_55_assignsubmission_onlinetext"),
-            folder("Team_Rocket", "55")
+            (online.name.as_str(), online.id.as_str()),
+            ("Team_Rocket", "55")
         );
+        assert!(!online.is_files());
         // A name with underscores and digits of its own keeps them.
         assert_eq!(
             parse("Jo_2_Smith_77_assignsubmission_file"),

@@ -6,20 +6,50 @@
 use super::compile::SHOWN_LINES;
 use super::html::{escape, image, shared_image, STYLE};
 use super::intake::Submission;
+use super::policy::Policy;
 use super::student::Outcome;
 use crate::canvas::Canvas;
+use crate::check::program::CaseOutcome;
 use crate::check::program::{Status, SuiteRun};
 use crate::check::report::{contact_sheet, failing_rows, heat_map, ReportRow};
+use crate::check::suite::Role;
 use crate::check::summary;
 use crate::output::png::{PngImage, PngPixels};
 
+/// What a report shows beyond the student's own findings: the policy it was graded under, and
+/// whether hidden cases are shown in full.
+pub struct Shown<'a> {
+    pub hidden: bool,
+    pub policy: &'a Policy,
+}
+
+impl Shown<'_> {
+    /// Whether `case` is shown by name and verdict only (a hidden scene, not `--show-hidden`).
+    fn withheld(&self, case: &CaseOutcome) -> bool {
+        case.case.role == Role::Hidden && !self.hidden
+    }
+}
+
 /// The report page of `submission`, whose result says `feedback`.
-pub fn page(submission: &Submission, outcome: &Outcome, feedback: &str, sandboxed: bool) -> String {
+pub fn page(
+    submission: &Submission,
+    outcome: &Outcome,
+    feedback: &str,
+    sandboxed: bool,
+    shown: &Shown,
+) -> String {
     let mut body = format!(
         "<h1>Tick 2: {}</h1>\n<p class=\"feedback\">{}</p>\n",
         escape(&submission.name),
         escape(feedback)
     );
+    if !submission.warnings.is_empty() {
+        body += "<h2>Warnings</h2>\n<ul class=\"warnings\">\n";
+        for warning in &submission.warnings {
+            body += &format!("<li>{}</li>\n", escape(warning));
+        }
+        body += "</ul>\n";
+    }
     if !sandboxed {
         body += "<p><strong>Graded with --no-sandbox:</strong> the program ran unconfined.</p>\n";
     }
@@ -34,8 +64,12 @@ pub fn page(submission: &Submission, outcome: &Outcome, feedback: &str, sandboxe
             );
         }
         Outcome::CompileTimeout => body += "<p>javac did not finish within the time limit.</p>\n",
-        Outcome::Ran(run) => body += &ran(run),
+        Outcome::Ran(run) => body += &ran(run, shown),
     }
+    body += &format!(
+        "<p class=\"policy\">Graded {}.</p>\n",
+        escape(&shown.policy.describe())
+    );
     if !submission.notes.is_empty() {
         body += "<h2>Notes on the submission</h2>\n<ul>\n";
         for note in &submission.notes {
@@ -52,7 +86,7 @@ pub fn page(submission: &Submission, outcome: &Outcome, feedback: &str, sandboxe
 }
 
 /// The cases, the diagnosis with its fixes, and the progress.
-fn ran(run: &SuiteRun) -> String {
+fn ran(run: &SuiteRun, shown: &Shown) -> String {
     let findings = &run.findings;
     let mut out = String::new();
     out += &format!("<p>{}</p>\n", escape(&findings.progress.sentence()));
@@ -77,10 +111,15 @@ fn ran(run: &SuiteRun) -> String {
     for line in summary::opening(findings).iter().skip(1) {
         out += &format!("<p>{}</p>\n", escape(line));
     }
-    out += "<h2>The cases</h2>\n<table><tr><th>case</th><th>result</th></tr>\n";
-    for case in &run.cases {
+    out += "<h2>The cases</h2>\n<table><tr><th>case</th><th>result</th><th>counts</th></tr>\n";
+    for (i, case) in run.cases.iter().enumerate() {
         let class = if case.passed() { "pass" } else { "fail" };
+        let counts = match shown.policy.counts(i) {
+            true => "graded",
+            false => "informs only",
+        };
         let what = match &case.status {
+            _ if shown.withheld(case) => super::result::verdict(case),
             Status::Ok(r) if case.passed() => r.difference.verdict.name().to_string(),
             Status::Ok(r) => format!(
                 "{}: {}",
@@ -90,13 +129,13 @@ fn ran(run: &SuiteRun) -> String {
             other => other.name().to_string(),
         };
         out += &format!(
-            "<tr><td>{}</td><td class=\"{class}\">{}</td></tr>\n",
+            "<tr><td>{}</td><td class=\"{class}\">{}</td><td>{counts}</td></tr>\n",
             escape(&case.name),
             escape(&what)
         );
     }
     out += "</table>\n";
-    for case in &run.cases {
+    for case in run.cases.iter().filter(|c| !shown.withheld(c)) {
         match &case.status {
             Status::Ok(r) if !case.passed() => {
                 let (w, h) = (r.student.width, r.student.height);
@@ -136,7 +175,7 @@ fn ran(run: &SuiteRun) -> String {
 
 /// The contact sheet of the failing cases; of the first case when every one passes; of the
 /// feedback alone when nothing ran.
-pub fn sheet(outcome: &Outcome, feedback: &str) -> PngImage {
+pub fn sheet(outcome: &Outcome, feedback: &str, shown: &Shown) -> PngImage {
     let Outcome::Ran(run) = outcome else {
         let mut caption = vec![feedback.to_string()];
         if let Outcome::CompileError(messages) = outcome {
@@ -144,12 +183,15 @@ pub fn sheet(outcome: &Outcome, feedback: &str) -> PngImage {
         }
         return caption_only(caption);
     };
-    let mut rows = failing_rows(run);
+    // The hidden cases withheld: the rows of the others alone.
+    let mut rows = failing_rows(run, |c| !shown.withheld(c));
     if rows.is_empty() {
-        rows.extend(run.cases.iter().find_map(|c| match &c.status {
-            Status::Ok(case) => Some(ReportRow::of(&c.name, case, &run.findings)),
-            _ => None,
-        }));
+        rows.extend(run.cases.iter().filter(|c| !shown.withheld(c)).find_map(
+            |c| match &c.status {
+                Status::Ok(case) => Some(ReportRow::of(&c.name, case, &run.findings)),
+                _ => None,
+            },
+        ));
     }
     match rows.is_empty() {
         true => caption_only(vec![feedback.to_string()]),

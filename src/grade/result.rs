@@ -7,41 +7,24 @@
 use serde_json::{json, Value};
 
 use super::intake::Submission;
+use super::policy::Policy;
 use super::student::Outcome;
 use crate::check::json::suite_json;
 use crate::check::program::{CaseOutcome, Status, SuiteRun};
+use crate::check::suite::Role;
 use crate::check::summary;
 use crate::mistakes::{Bug, Mistakes};
-
-/// How the grade is given (`--grade`), out of 100.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum Grading {
-    /// 100 when every case passes, else 0.
-    PassFail,
-    /// The share of cases passed.
-    Fraction,
-}
-
-impl Grading {
-    pub fn grade(self, passed: usize, cases: usize) -> f64 {
-        match self {
-            Grading::PassFail if cases > 0 && passed == cases => 100.0,
-            Grading::PassFail => 0.0,
-            Grading::Fraction if cases > 0 => {
-                (10000.0 * passed as f64 / cases as f64).round() / 100.0
-            }
-            Grading::Fraction => 0.0,
-        }
-    }
-}
 
 /// What the class files need of one student, read back from `extra_data`.
 #[derive(Debug, Clone)]
 pub struct Row {
     pub id: String,
     pub name: String,
+    /// The folder the submission came in (Moodle's), where its feedback goes back to.
+    pub folder: String,
     /// `graded`, `compile-error`, `no-files` or `error`.
     pub status: String,
+    /// Counted cases passed, of how many counted.
     pub passed: usize,
     pub cases: usize,
     /// Per case: its name and whether it passed.
@@ -60,25 +43,32 @@ pub fn build(
     submission: &Submission,
     outcome: &Outcome,
     key: &str,
-    grading: Grading,
+    policy: &Policy,
     sandboxed: bool,
     skeleton: &str,
+    show_hidden: bool,
 ) -> Value {
     let mut extra = json!({
         "whitted": env!("CARGO_PKG_VERSION"),
         "skeleton": skeleton,
+        "policy": policy.describe(),
+        "tolerance": policy.tolerance,
         "key": key,
         "id": submission.id,
         "name": submission.name,
+        "folder": submission.folder,
         "sandbox": sandboxed,
         "notes": submission.notes,
+        "warnings": submission.warnings,
     });
-    let (status, tests, passed, cases, feedback, failed) = match outcome {
+    let counted = (0..policy.weights.len())
+        .filter(|&i| policy.counts(i))
+        .count();
+    let (status, tests, passes, feedback, failed) = match outcome {
         Outcome::Refused { status, message } => (
             *status,
             Vec::new(),
-            0,
-            0,
+            Vec::new(),
             message.clone(),
             *status == "error",
         ),
@@ -88,8 +78,7 @@ pub fn build(
             (
                 "compile-error",
                 Vec::new(),
-                0,
-                0,
+                Vec::new(),
                 format!("does not compile: {first}"),
                 false,
             )
@@ -97,34 +86,44 @@ pub fn build(
         Outcome::CompileTimeout => (
             "error",
             Vec::new(),
-            0,
-            0,
+            Vec::new(),
             "javac did not finish within the time limit".to_string(),
             true,
         ),
         Outcome::Ran(run) => {
-            let tests: Vec<Value> = run.cases.iter().map(test).collect();
-            let passed = run.cases.iter().filter(|c| c.passed()).count();
+            let tests: Vec<Value> = run
+                .cases
+                .iter()
+                .enumerate()
+                .map(|(i, c)| {
+                    test(
+                        c,
+                        policy.weights.get(i).copied().unwrap_or(0.0),
+                        show_hidden,
+                    )
+                })
+                .collect();
+            let passes: Vec<bool> = run.cases.iter().map(|c| c.passed()).collect();
             let timed_out = run
                 .cases
                 .iter()
                 .any(|c| matches!(c.status, Status::Timeout(_)));
-            let check = suite_json(run, None);
+            let mut check = suite_json(run, None);
+            if !show_hidden {
+                withhold_hidden(&mut check, run);
+            }
             extra["diagnosis"] = json!(diagnosis_ids(run));
             extra["progress"] = check["progress"].clone();
             extra["check"] = check;
-            let feedback = feedback(run, passed);
-            (
-                "graded",
-                tests,
-                passed,
-                run.cases.len(),
-                feedback,
-                timed_out,
-            )
+            let feedback = feedback(run, policy);
+            ("graded", tests, passes, feedback, timed_out)
         }
     };
-    let grade = grading.grade(passed, cases);
+    let grade = policy.grade(&passes);
+    let passed = (0..passes.len())
+        .filter(|&i| passes[i] && policy.counts(i))
+        .count();
+    let cases = if passes.is_empty() { 0 } else { counted };
     extra["status"] = json!(status);
     extra["passed"] = json!(passed);
     extra["cases"] = json!(cases);
@@ -146,10 +145,13 @@ pub fn build(
     })
 }
 
-/// One case as a Gradescope test.
-fn test(case: &CaseOutcome) -> Value {
+/// One case as a Gradescope test, worth `weight` (0: it informs, scores nothing). A hidden
+/// case says its verdict only, unless `show_hidden`.
+fn test(case: &CaseOutcome, weight: f64, show_hidden: bool) -> Value {
     let passed = case.passed();
+    let hidden = case.case.role == Role::Hidden && !show_hidden;
     let (output, tags) = match &case.status {
+        _ if hidden => (verdict(case), Vec::new()),
         Status::Ok(report) => {
             let d = &report.difference;
             let mut line = d.verdict.name().to_string();
@@ -168,14 +170,44 @@ fn test(case: &CaseOutcome) -> Value {
         }
         other => (status_line(other, &case.stderr_tail), Vec::new()),
     };
+    let output = match weight > 0.0 {
+        true => output,
+        false => format!("{output}\n(whitted's diagnostic scene: it informs, it is not graded)"),
+    };
     json!({
         "name": case.name,
-        "score": if passed { 1 } else { 0 },
-        "max_score": 1,
+        "score": if passed { weight } else { 0.0 },
+        "max_score": weight,
         "status": if passed { "passed" } else { "failed" },
         "output": output,
         "tags": tags,
     })
+}
+
+/// The check's JSON with each hidden case cut to its name, status and verdict: no scene, no
+/// reference, no commands that would reveal it.
+fn withhold_hidden(check: &mut Value, run: &SuiteRun) {
+    let Some(cases) = check.get_mut("cases").and_then(Value::as_array_mut) else {
+        return;
+    };
+    for (json, case) in cases.iter_mut().zip(&run.cases) {
+        if case.case.role == Role::Hidden {
+            *json = json!({
+                "case": case.name,
+                "status": case.status.name(),
+                "verdict": verdict(case),
+                "hidden": true,
+            });
+        }
+    }
+}
+
+/// A case's verdict alone: `identical`, `differs`, `timeout`, ...
+pub fn verdict(case: &CaseOutcome) -> String {
+    match &case.status {
+        Status::Ok(report) => report.difference.verdict.name().to_string(),
+        other => other.name().to_string(),
+    }
 }
 
 /// A case that wrote no image to check: how it ended, and the end of its standard error.
@@ -200,10 +232,14 @@ fn diagnosis_ids(run: &SuiteRun) -> Vec<&'static str> {
         .map_or_else(Vec::new, |d| d.mistakes.ids())
 }
 
-/// The one line sent back to Moodle: how many cases pass, and the mistake with its fix.
-fn feedback(run: &SuiteRun, passed: usize) -> String {
-    let cases = run.cases.len();
-    if passed == cases {
+/// The one line sent back to Moodle: how many counted cases pass, and the mistake with its fix
+/// (found over every case, the diagnostic ones too).
+fn feedback(run: &SuiteRun, policy: &Policy) -> String {
+    let counted: Vec<usize> = (0..run.cases.len()).filter(|&i| policy.counts(i)).collect();
+    let cases = counted.len();
+    let passed = counted.iter().filter(|&&i| run.cases[i].passed()).count();
+    let all = run.cases.iter().all(|c| c.passed());
+    if passed == cases && all {
         let hidden: Mistakes = run
             .cases
             .iter()
@@ -215,14 +251,20 @@ fn feedback(run: &SuiteRun, passed: usize) -> String {
                 m.bugs().into_iter().fold(all, Mistakes::with)
             });
         return match hidden.is_empty() {
-            true => format!("passes all {cases} cases"),
+            true => format!("passes all {cases} graded cases"),
             false => format!(
-                "passes all {cases} cases, but renders exactly what {} renders: fix it all the same",
+                "passes all {cases} graded cases, but renders exactly what {} renders: fix it \
+                 all the same",
                 hidden.name()
             ),
         };
     }
-    let mut line = format!("passes {passed} of {cases} cases");
+    let mut line = match passed == cases {
+        true => format!(
+            "passes all {cases} graded cases, but not every one of whitted's diagnostic scenes"
+        ),
+        false => format!("passes {passed} of {cases} graded cases"),
+    };
     let findings = &run.findings;
     match findings.diagnosis.first() {
         Some(top) if !findings.weak() => {
@@ -262,6 +304,7 @@ pub fn row(result: &Value) -> Option<Row> {
     Some(Row {
         id: text("id")?,
         name: text("name").unwrap_or_default(),
+        folder: text("folder").unwrap_or_default(),
         status: text("status")?,
         passed: count("passed"),
         cases: count("cases"),

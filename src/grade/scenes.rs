@@ -4,7 +4,7 @@
 use std::borrow::Cow;
 use std::path::Path;
 
-use crate::check::suite::SuiteCase;
+use crate::check::suite::{Role, SuiteCase};
 use crate::error::{Error, Result};
 
 /// Scenes read from one folder at most.
@@ -61,6 +61,7 @@ pub fn read(dir: &Path) -> Result<Vec<SuiteCase>> {
             bounces: bounces_of(&file),
             file: Cow::Owned(file),
             xml: Cow::Owned(xml),
+            role: Role::Hidden,
         });
     }
     Ok(cases)

@@ -226,8 +226,12 @@ fn a_class_is_graded_named_written_up_and_rerun_for_nothing() {
             .find(|r| &r["id"] == id)
             .expect("the student's row");
         assert_eq!(row["status"], "graded", "{folder}");
-        let all_pass = bugs.is_empty();
-        assert_eq!(row["passed"] == "7", all_pass, "{folder}: {row:?}");
+        // The course's five cases count; whitted's two diagnostic scenes inform only.
+        assert_eq!(row["cases"], "5", "{folder}: {row:?}");
+        if bugs.is_empty() {
+            assert_eq!(row["passed"], "5", "{folder}: {row:?}");
+        }
+        let all_pass = row["passed"] == "5";
         assert_eq!(row["grade"], if all_pass { "100" } else { "0" });
         if folder.starts_with("Participant") {
             assert_eq!(row["name"], "Participant");
@@ -258,12 +262,14 @@ fn a_class_is_graded_named_written_up_and_rerun_for_nothing() {
             .iter()
             .find(|r| r["Identifier"] == format!("Participant {id}"))
             .expect("a worksheet row");
-        assert_eq!(row["Grade"], if bugs.is_empty() { "100" } else { "0" });
+        if bugs.is_empty() {
+            assert_eq!(row["Grade"], "100");
+        }
         assert_eq!(row["Maximum Grade"], "100");
         assert!(!row["Last modified (grade)"].is_empty());
         let feedback = &row["Feedback comments"];
         match named.is_empty() {
-            true => assert_eq!(feedback, "passes all 7 cases"),
+            true => assert_eq!(feedback, "passes all 5 graded cases"),
             false => assert!(
                 feedback.contains(named.split('+').next().unwrap_or("")),
                 "{feedback}"
@@ -324,10 +330,12 @@ fn a_class_is_graded_named_written_up_and_rerun_for_nothing() {
         .collect();
     assert_eq!(page["bars"], distinct.len());
     assert_eq!(page["scenes"], 7);
+    let full_marks = rows.iter().filter(|r| r["grade"] == "100").count();
+    assert!(full_marks >= 2);
     assert!(page["totals"]
         .as_str()
         .expect("totals")
-        .contains("2 pass every case"));
+        .contains(&format!("{full_marks} pass every graded case")));
     for link in page["links"].as_array().expect("links") {
         let target = out.join(link.as_str().expect("href"));
         assert!(target.is_file(), "{}", target.display());
@@ -371,8 +379,11 @@ fn one_project_with_hidden_scenes_and_a_fractional_grade() {
     assert_eq!(tests.len(), 8);
     assert_eq!(tests[7]["name"], "hidden_b1.xml -b 1");
     assert_eq!(tests[7]["status"], "passed", "{}", tests[7]);
-    let passed = tests.iter().filter(|t| t["status"] == "passed").count();
-    let expected = (10000.0 * passed as f64 / 8.0).round() / 100.0;
+    // The course's five cases and the hidden one count, one each; the diagnostic two weigh 0.
+    let counted: Vec<&Value> = tests.iter().filter(|t| t["max_score"] != 0.0).collect();
+    assert_eq!(counted.len(), 6);
+    let passed = counted.iter().filter(|t| t["status"] == "passed").count();
+    let expected = (10000.0 * passed as f64 / 6.0).round() / 100.0;
     assert_eq!(result["score"].as_f64(), Some(expected));
     assert_eq!(result["extra_data"]["diagnosis"][0], "planes-missing");
     // A scene the course's loader could not read is refused before anyone is graded.
@@ -555,7 +566,10 @@ fn java_render(d: &Path, classes: &str, bug: &str, scene: &Path, bounces: &str) 
 
 /// The pixels `whitted render` writes for `scene` at `bounces`: the course's image.
 fn whitted_render(d: &Path, scene: &Path, bounces: &str) -> Vec<u8> {
-    let run = whitted(d, &["-q", "-i", s(scene), "-b", bounces, "-o", "whitted.png"]);
+    let run = whitted(
+        d,
+        &["-q", "-i", s(scene), "-b", bounces, "-o", "whitted.png"],
+    );
     assert!(run.status.success(), "{}", stderr(&run));
     read_png(&d.join("whitted.png")).data
 }
@@ -657,4 +671,185 @@ fn a_submission_that_trusts_the_course_s_loader_renders_the_course_s_images() {
         let theirs = java_render(d, classes, "", &quirks, "2");
         assert!(theirs == course, "{classes}: the loader's rules differ");
     }
+}
+
+/// Moodle both ways, the grading policy, hidden scenes and regrading one student: a class with
+/// an online-text folder beside a file folder, a student with only online text, near-miss file
+/// names, hidden scenes weighed by a rubric; then `--only` one student, and a late student graded
+/// alone into the same output.
+#[test]
+fn moodle_round_trip_rubric_hidden_scenes_and_one_student_regraded() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let (plane, renderer) = submission(&[]);
+    let (bob_plane, bob_renderer) = submission(&["no-shadows"]);
+    let file = std::fs::File::create(d.join("class.zip")).expect("zip");
+    let mut zip = zip::ZipWriter::new(file);
+    let options = zip::write::SimpleFileOptions::default();
+    for (path, text) in [
+        ("Ada Lovelace_101_assignsubmission_file_/Plane.java", &plane),
+        (
+            "Ada Lovelace_101_assignsubmission_file_/Renderer (1).java",
+            &renderer,
+        ),
+        (
+            "Ada Lovelace_101_assignsubmission_onlinetext_/onlinetext.html",
+            &"<p>see my files</p>".to_string(),
+        ),
+        (
+            "Bob Smith_102_assignsubmission_file_/src/gfx/tick2/plane.java",
+            &bob_plane,
+        ),
+        (
+            "Bob Smith_102_assignsubmission_file_/src/gfx/tick2/Renderer.java.txt",
+            &bob_renderer,
+        ),
+        (
+            "Cy_103_assignsubmission_onlinetext_/onlinetext.html",
+            &"<p>forgot the files</p>".to_string(),
+        ),
+    ] {
+        zip.start_file(path, options).expect("entry");
+        zip.write_all(text.as_bytes()).expect("write");
+    }
+    zip.finish().expect("zip");
+    let hidden = d.join("hidden");
+    std::fs::create_dir_all(&hidden).expect("mkdir");
+    // A colour no other scene has, to find the scene if it leaks.
+    std::fs::write(
+        hidden.join("hidden_b1.xml"),
+        "<scene>\n  <point-light x=\"1\" y=\"2\" z=\"1\" colour=\"#FFFFFF\" intensity=\"80\"/>\n  \
+         <sphere x=\"0\" y=\"0\" z=\"4\" radius=\"1\" colour=\"#123457\"/>\n</scene>\n",
+    )
+    .expect("write");
+    std::fs::write(
+        d.join("rubric.txt"),
+        "# the course's weights\ntick2.xml -b 2   3\nhidden_b1.xml  1\n",
+    )
+    .expect("write");
+    let args = [
+        "class.zip",
+        "-o",
+        "out",
+        "--scenes",
+        "hidden",
+        "--rubric",
+        "rubric.txt",
+        "--grade",
+        "fraction",
+    ];
+    let run = grade(d, &args);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let out = d.join("out");
+    let rows = records(&out.join("class.csv"));
+    let ids: Vec<&str> = rows.iter().map(|r| r["id"].as_str()).collect();
+    assert_eq!(ids, ["101", "102", "103"]);
+
+    // The online-text folders are ignored with a note; near-miss names taken with a warning.
+    let ada = result_json(&out, "101");
+    assert_eq!(ada["extra_data"]["status"], "graded");
+    assert_eq!(ada["score"], 100.0, "{}", ada["output"]);
+    let notes = ada["extra_data"]["notes"].to_string();
+    assert!(notes.contains("onlinetext"), "{notes}");
+    let warnings = ada["extra_data"]["warnings"].to_string();
+    assert!(
+        warnings.contains("Renderer (1).java was taken as Renderer.java"),
+        "{warnings}"
+    );
+    let bob = result_json(&out, "102");
+    assert_eq!(bob["extra_data"]["status"], "graded");
+    assert_eq!(
+        bob["extra_data"]["warnings"].as_array().map(Vec::len),
+        Some(2)
+    );
+    let cy = result_json(&out, "103");
+    assert_eq!(cy["extra_data"]["status"], "no-files");
+    assert!(cy["extra_data"]["notes"].to_string().contains("onlinetext"));
+
+    // The rubric: tick2 -b 2 weighs 3, the hidden scene 1, the rest nothing.
+    let tests = bob["tests"].as_array().expect("tests");
+    let weight = |name: &str| {
+        tests
+            .iter()
+            .find(|t| t["name"] == name)
+            .map(|t| t["max_score"].as_f64().expect("max_score"))
+    };
+    assert_eq!(weight("tick2.xml -b 2"), Some(3.0));
+    assert_eq!(weight("hidden_b1.xml -b 1"), Some(1.0));
+    assert_eq!(weight("tick2.xml -b 0"), Some(0.0));
+    let earned: f64 = tests
+        .iter()
+        .map(|t| t["score"].as_f64().unwrap_or(0.0))
+        .sum();
+    assert_eq!(
+        bob["score"].as_f64(),
+        Some((10000.0 * earned / 4.0).round() / 100.0)
+    );
+    let policy = bob["extra_data"]["policy"].as_str().expect("policy");
+    assert!(
+        policy.contains("rubric.txt") && policy.contains("fraction"),
+        "{policy}"
+    );
+
+    // The hidden scene never reaches a student: not its XML, not its images.
+    let hidden_case = &bob["extra_data"]["check"]["cases"][7];
+    assert_eq!(hidden_case["hidden"], true, "{hidden_case}");
+    assert!(hidden_case.get("reproduce").is_none());
+    for id in ["101", "102"] {
+        let student = out.join("students").join(id);
+        let report = std::fs::read_to_string(student.join("report.html")).expect("report");
+        let result = std::fs::read_to_string(student.join("result.json")).expect("result");
+        for text in [&report, &result] {
+            assert!(!text.contains("123457"), "{id}: the hidden scene leaks");
+        }
+        assert!(
+            !report.contains("<h2>hidden_b1.xml"),
+            "{id}: hidden images shown"
+        );
+    }
+
+    // The class page names the skeleton and the policy; feedback.zip is Moodle's layout.
+    let index = std::fs::read_to_string(out.join("index.html")).expect("index");
+    assert!(index.contains("Skeleton: whitted"), "{index}");
+    assert!(index.contains("rubric.txt"));
+    let feedback =
+        zip::ZipArchive::new(std::fs::File::open(out.join("feedback.zip")).expect("zip"))
+            .expect("a zip");
+    let names: Vec<&str> = feedback.file_names().collect();
+    for name in [
+        "Ada Lovelace_101_assignsubmission_file_/report.html",
+        "Bob Smith_102_assignsubmission_file_/report.html",
+        "Cy_103_assignsubmission_file_/report.html",
+    ] {
+        assert!(names.contains(&name), "{name} in {names:?}");
+    }
+
+    // --only regrades one student and keeps the others' rows.
+    let before = modified(&out.join("students/101/result.json"));
+    let mut again = args.to_vec();
+    again.extend(["--only", "102"]);
+    let only = grade(d, &again);
+    assert!(only.status.success(), "{}", stderr(&only));
+    let said = String::from_utf8_lossy(&only.stdout).to_string();
+    assert!(said.contains("graded now 1"), "{said}");
+    assert_eq!(modified(&out.join("students/101/result.json")), before);
+    assert_eq!(records(&out.join("class.csv")).len(), 3);
+    let unknown = grade(d, &["class.zip", "-o", "out", "--only", "999"]);
+    assert_eq!(unknown.status.code(), Some(2));
+
+    // A late student graded alone into the same output joins the class.
+    let late = d.join("late/Dee_104_assignsubmission_file_");
+    std::fs::create_dir_all(&late).expect("mkdir");
+    std::fs::write(late.join("Plane.java"), &plane).expect("write");
+    std::fs::write(late.join("Renderer.java"), &renderer).expect("write");
+    let mut alone = args.to_vec();
+    alone[0] = "late";
+    let run = grade(d, &alone);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let ids: Vec<String> = records(&out.join("class.csv"))
+        .iter()
+        .map(|r| r["id"].clone())
+        .collect();
+    assert_eq!(ids, ["101", "102", "103", "104"]);
+    assert_eq!(records(&out.join("moodle.csv")).len(), 4);
 }
