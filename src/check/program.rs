@@ -139,11 +139,20 @@ pub trait Launch: Sync {
     /// Whether everything the program starts dies with the command (a sandbox's own process
     /// namespace): then no orphan needs adopting, and none is looked for.
     fn contains_descendants(&self) -> bool;
-    /// Called once the run in `dir` is over and its processes are gone: whether the kernel
-    /// killed it at a memory limit of the launcher's (a sandbox's cgroup).
-    fn ended(&self, _dir: &Path) -> bool {
-        false
+    /// Called once the run in `dir` is over and its processes are gone: the limit of the
+    /// launcher's it hit, if any (a sandbox's cgroup, its capped writable area).
+    fn ended(&self, _dir: &Path) -> Option<LimitHit> {
+        None
     }
+}
+
+/// A limit of a launcher's that a run hit, which only the launcher can see.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum LimitHit {
+    /// The kernel killed it at its memory limit.
+    Memory,
+    /// It filled its writable area (bytes or files): what the limit is.
+    WritableArea(String),
 }
 
 /// The program as given: its words, run directly.
@@ -475,20 +484,21 @@ fn finish(
     timeout: Duration,
 ) -> (Ran, String) {
     let tail = stop(&mut r);
-    let memory_limit = launch.ended(r.dir.path());
-    let ran = match status {
-        None => Ran::Failed(Status::Timeout(timeout.as_secs())),
-        Some(s) if !s.success() && memory_limit => Ran::Failed(Status::OutOfMemory(format!(
+    let hit = launch.ended(r.dir.path());
+    let memory_limit = hit == Some(LimitHit::Memory);
+    let ran = match (status, hit) {
+        (None, _) => Ran::Failed(Status::Timeout(timeout.as_secs())),
+        (Some(_), Some(LimitHit::WritableArea(limit))) => Ran::Failed(Status::OutputTooLarge(
+            format!("filled its writable area ({limit})"),
+        )),
+        (Some(s), _) if !s.success() && memory_limit => Ran::Failed(Status::OutOfMemory(format!(
             "{}: killed at its memory limit",
             describe(s)
         ))),
-        Some(s) if !s.success() => Ran::Failed(failure(s, &tail)),
-        Some(_) => match read_output(&output_path(r.dir.path())) {
-            Ok(image) if (image.width, image.height) == (WIDTH, HEIGHT) => Ran::Image(image),
-            Ok(image) => Ran::Failed(Status::WrongSize {
-                width: image.width,
-                height: image.height,
-            }),
+        (Some(s), _) if !s.success() => Ran::Failed(failure(s, &tail)),
+        (Some(_), _) => match read_output(&output_path(r.dir.path())) {
+            Ok(Ok(image)) => Ran::Image(image),
+            Ok(Err((width, height))) => Ran::Failed(Status::WrongSize { width, height }),
             Err(message) => Ran::Failed(Status::NoOutput(message)),
         },
     };
@@ -525,14 +535,15 @@ fn describe(status: ExitStatus) -> String {
     }
 }
 
-/// The program's PNG, checked as any image is; the message says why there is none.
-fn read_output(path: &Path) -> Result<Rgb8, String> {
+/// The program's PNG, checked as any image is, or its size when it is not the course's (read
+/// from its header, nothing decoded); the message says why there is none.
+fn read_output(path: &Path) -> Result<std::result::Result<Rgb8, (u32, u32)>, String> {
     match std::fs::symlink_metadata(path) {
         Err(_) => return Err("the program wrote no output file".into()),
         Ok(m) if !m.is_file() => return Err("the output is not a regular file".into()),
         Ok(_) => {}
     }
-    student_png::read(path).map_err(|e| match e {
+    student_png::read_expecting(path, WIDTH, HEIGHT).map_err(|e| match e {
         Error::Raster { msg, .. } => format!("the output {msg}"),
         other => other.to_string(),
     })

@@ -30,10 +30,51 @@ const JPEG_SIGNATURE: [u8; 3] = [0xff, 0xd8, 0xff];
 /// can be trusted), anything that is not a PNG, a PNG that is not 8-bit RGB or RGBA, and a size
 /// no render can have.
 pub fn read(path: &Path) -> Result<Rgb8> {
-    let fail = |msg: String| Error::Raster {
+    let bytes = png_bytes(path)?;
+    decode(&bytes).map_err(|msg| fail(path, msg))
+}
+
+/// Reads `path` as the tick PNG of `width` x `height`: an image of another size is its size,
+/// found in its header without decoding a pixel (a program's 30000x30000 PNG costs nothing).
+pub fn read_expecting(
+    path: &Path,
+    width: u32,
+    height: u32,
+) -> Result<std::result::Result<Rgb8, (u32, u32)>> {
+    let bytes = png_bytes(path)?;
+    let size = header_size(&bytes).map_err(|msg| fail(path, msg))?;
+    if size != (width, height) {
+        return Ok(Err(size));
+    }
+    decode(&bytes).map(Ok).map_err(|msg| fail(path, msg))
+}
+
+fn fail(path: &Path, msg: String) -> Error {
+    Error::Raster {
         path: path.to_path_buf(),
         msg,
+    }
+}
+
+/// The size a PNG's header gives, nothing decoded: the IHDR chunk, which the format puts
+/// first, right after the signature. Read here rather than through the decoder, which reads on
+/// to the first image data before it reports the header (a header alone is then "truncated").
+fn header_size(bytes: &[u8]) -> Result<(u32, u32), String> {
+    let field = |at: usize| {
+        bytes
+            .get(at..at + 4)
+            .and_then(|b| <[u8; 4]>::try_from(b).ok())
+            .map(u32::from_be_bytes)
     };
+    match (bytes.get(12..16), field(16), field(20)) {
+        (Some(b"IHDR"), Some(width), Some(height)) => Ok((width, height)),
+        _ => Err("is not a readable PNG: it does not start with its IHDR header".into()),
+    }
+}
+
+/// The bytes of `path` when it is a PNG; a JPEG and anything else are refused.
+fn png_bytes(path: &Path) -> Result<Vec<u8>> {
+    let fail = |msg: String| fail(path, msg);
     // A pipe would block the open until a writer comes, a device never ends: neither is a
     // program's PNG.
     let metadata = std::fs::metadata(path).map_err(|e| Error::io(path, "cannot read", e))?;
@@ -57,7 +98,7 @@ pub fn read(path: &Path) -> Result<Rgb8> {
     if !bytes.starts_with(&PNG_SIGNATURE) {
         return Err(fail("is not a PNG (no PNG signature)".into()));
     }
-    decode(&bytes).map_err(fail)
+    Ok(bytes)
 }
 
 /// Decodes PNG bytes after checking the header; the message says what is wrong.

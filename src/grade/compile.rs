@@ -8,7 +8,7 @@ use std::path::Path;
 use std::process::Stdio;
 use std::time::{Duration, Instant};
 
-use super::sandbox::{Limits, Sandbox};
+use super::sandbox::{Area, Limits, Sandbox};
 use crate::check::program::kill_group;
 use crate::error::{Error, Result};
 
@@ -51,7 +51,8 @@ pub fn compile(
     program.extend(javac_options(&work.join("classes")));
     program.extend(sources.iter().cloned());
     let (src, classes) = (work.join("src"), work.join("classes"));
-    let (mut command, cgroup) = sandbox.command(&program, &[&src], &classes, slot, limits)?;
+    let (mut command, cgroup) =
+        sandbox.command(&program, &[&src], &classes, Area::Folder, slot, limits)?;
     command
         .stdin(Stdio::null())
         .stdout(Stdio::null())

@@ -40,8 +40,46 @@ pub const PROCESSES: u32 = 256;
 pub const FILE_SIZE: u64 = 64 << 20;
 /// Open files at once.
 const OPEN_FILES: u32 = 1024;
-/// The private /tmp's size.
+/// The private /tmp's size (a tmpfs of bubblewrap's: its files are bounded by the memory
+/// cgroup, where there is one, not by a count; the case's own folder has both caps).
 const TMP_SIZE: u64 = 64 << 20;
+/// A case's writable area: its bytes and its files (the course's program writes one PNG of
+/// under 1 MiB; a submission that writes 1 GB or 100,000 files is stopped at these).
+pub const AREA_BYTES: u64 = 128 << 20;
+pub const AREA_FILES: u64 = 1024;
+/// The file the area's wrapper leaves in the case's folder when the area was full.
+pub const AREA_FULL: &str = ".whitted-area-full";
+
+/// Runs inside the sandbox, as its first process, where a program's writable area is capped
+/// (`Area::Capped`): it mounts the case's folder as a tmpfs of `AREA_BYTES` and `AREA_FILES`
+/// over the host's, copies the
+/// scene in, runs the program with no capability left, kills whatever it left running, and
+/// copies a regular `output.png` back to the host's folder, which the program never sees (its
+/// path is covered, and this shell keeps capabilities the program lacks, so the program cannot
+/// reach the shell's working directory through /proc). Arguments: the folder, then the
+/// program. Only this shell can write into the host's folder, so its marker cannot be forged.
+const AREA_WRAPPER: &str = r#"set -u
+dir=$1; shift
+cd "$dir" || exit 125
+mount -t tmpfs -o "size=$WHITTED_AREA_BYTES,nr_inodes=$WHITTED_AREA_FILES,mode=0777" case "$dir" || exit 125
+for f in ./*.xml; do [ -f "$f" ] || continue; cp -- "$f" "$dir/" || exit 125; done
+unset WHITTED_AREA_BYTES WHITTED_AREA_FILES
+(cd "$dir" && exec setpriv --inh-caps=-all --ambient-caps=-all --bounding-set=-all -- "$@")
+status=$?
+kill -KILL -1 2>/dev/null
+set -- $(stat -f -c '%a %d' "$dir")
+if [ "$1" -eq 0 ] || [ "$2" -eq 0 ]; then : > ./.whitted-area-full; fi
+if [ -f "$dir/output.png" ] && [ ! -L "$dir/output.png" ]; then cp -- "$dir/output.png" ./output.png; fi
+exit $status
+"#;
+
+/// What a run may write: its folder as it is (javac's classes), or a capped area (a program's
+/// case).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Area {
+    Folder,
+    Capped,
+}
 
 /// The limits one run gets.
 #[derive(Debug, Clone, Copy)]
@@ -95,8 +133,14 @@ impl Sandbox {
             memory_mib: 64,
             seconds: 10,
         };
-        let (mut probe, _cgroup) =
-            sandbox.command(&[String::from("true")], &[], dir.path(), 0, limits)?;
+        let (mut probe, _cgroup) = sandbox.command(
+            &[String::from("true")],
+            &[],
+            dir.path(),
+            Area::Capped,
+            0,
+            limits,
+        )?;
         let out = probe
             .output()
             .map_err(|e| Error::Environment(format!("cannot run bubblewrap: {e}")))?;
@@ -123,6 +167,7 @@ impl Sandbox {
         program: &[String],
         readable: &[&Path],
         writable: &Path,
+        area: Area,
         slot: usize,
         limits: Limits,
     ) -> Result<(Command, Option<RunCgroup>)> {
@@ -180,11 +225,26 @@ impl Sandbox {
         command.arg(bwrap);
         command.args([
             "--unshare-all",
+            "--unshare-user",
             "--die-with-parent",
             "--new-session",
             "--hostname",
             "sandbox",
         ]);
+        if area == Area::Capped {
+            // The wrapper mounts the capped area, then drops every capability before the
+            // program runs.
+            command.args([
+                "--uid",
+                "0",
+                "--gid",
+                "0",
+                "--cap-add",
+                "CAP_SYS_ADMIN",
+                "--cap-add",
+                "CAP_SETPCAP",
+            ]);
+        }
         for dir in ["/bin", "/lib", "/lib64", "/sbin"] {
             system_dir(&mut command, dir);
         }
@@ -204,7 +264,6 @@ impl Sandbox {
         command.arg("--bind").arg(writable).arg(writable);
         command.arg("--chdir").arg(writable);
         command.arg("--");
-        command.args(program);
         command.env_clear();
         command.envs([
             ("PATH", "/usr/bin:/bin"),
@@ -212,6 +271,15 @@ impl Sandbox {
             ("LANG", "C.UTF-8"),
             ("TMPDIR", "/tmp"),
         ]);
+        if area == Area::Capped {
+            command.args(["/bin/sh", "-c", AREA_WRAPPER, "sh"]);
+            command.arg(writable);
+            command.envs([
+                ("WHITTED_AREA_BYTES", AREA_BYTES.to_string()),
+                ("WHITTED_AREA_FILES", AREA_FILES.to_string()),
+            ]);
+        }
+        command.args(program);
         Ok((command, cgroup))
     }
 }

@@ -9,10 +9,10 @@ use std::sync::Mutex;
 use super::compile::{compile, Compiled};
 use super::intake::{Files, Submission};
 use super::memory_cgroup::RunCgroup;
-use super::sandbox::{Limits, Sandbox};
+use super::sandbox::{Area, Limits, Sandbox, AREA_BYTES, AREA_FILES, AREA_FULL};
 use super::skeleton::Skeleton;
 use super::warm_javac::WarmJavac;
-use crate::check::program::{run_suite_with, Launch, SuiteRun};
+use crate::check::program::{run_suite_with, Launch, LimitHit, SuiteRun};
 use crate::check::suite::SuiteCase;
 use crate::error::{Error, Result};
 
@@ -183,10 +183,14 @@ impl Launch for SandboxedJava<'_> {
             "gfx.tick2.Tick2".into(),
         ];
         let classes = self.classes.as_path();
-        let (command, cgroup) =
-            self.setup
-                .sandbox
-                .command(&program, &[classes], dir, self.slot, limits)?;
+        let (command, cgroup) = self.setup.sandbox.command(
+            &program,
+            &[classes],
+            dir,
+            Area::Capped,
+            self.slot,
+            limits,
+        )?;
         if let Some(cgroup) = cgroup {
             self.cgroups
                 .lock()
@@ -200,12 +204,18 @@ impl Launch for SandboxedJava<'_> {
         !self.setup.sandbox.is_none()
     }
 
-    fn ended(&self, dir: &Path) -> bool {
+    fn ended(&self, dir: &Path) -> Option<LimitHit> {
         let cgroup = self
             .cgroups
             .lock()
             .unwrap_or_else(|e| e.into_inner())
             .remove(dir);
-        cgroup.is_some_and(|c| c.oom_killed())
+        if cgroup.is_some_and(|c| c.oom_killed()) {
+            return Some(LimitHit::Memory);
+        }
+        let full = dir.join(AREA_FULL).exists() && !self.setup.sandbox.is_none();
+        full.then(|| {
+            LimitHit::WritableArea(format!("{} MiB or {} files", AREA_BYTES >> 20, AREA_FILES))
+        })
     }
 }

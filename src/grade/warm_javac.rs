@@ -18,7 +18,7 @@ use std::time::{Duration, Instant};
 
 use super::compile::{first_lines, javac_options, Compiled, COMPILE_SECONDS, MESSAGES};
 use super::memory_cgroup::RunCgroup;
-use super::sandbox::{Limits, Sandbox};
+use super::sandbox::{Area, Limits, Sandbox};
 use crate::check::program::kill_group;
 use crate::error::{Error, Result};
 
@@ -201,9 +201,14 @@ impl<'a> WarmJavac<'a> {
             seconds: self.limits.seconds.max(COMPILE_SECONDS),
             ..self.limits
         };
-        let (mut command, cgroup) =
-            self.sandbox
-                .command(&program, &[&src, &source], &classes, self.slot, limits)?;
+        let (mut command, cgroup) = self.sandbox.command(
+            &program,
+            &[&src, &source],
+            &classes,
+            Area::Folder,
+            self.slot,
+            limits,
+        )?;
         command
             .stdin(Stdio::piped())
             .stdout(Stdio::piped())

@@ -112,6 +112,36 @@ fn hostile_programs_get_their_status_and_nothing_escapes() {
                 .into(),
             "output-too-large",
         ),
+        (
+            // 1 GB in files of 32 MiB: stopped at the case's writable area, whose tmpfs is in
+            // the sandbox, not on the host's disk.
+            "fills-the-disk",
+            "byte[] mb = new byte[1 << 20]; outer: for (int f = 0; f < 32; f++) { try \
+             (java.io.OutputStream o = new java.io.FileOutputStream(\"fill\" + f)) { for (int i = 0; \
+             i < 32; i++) o.write(mb); } catch (java.io.IOException e) { break outer; } }"
+                .into(),
+            "output-too-large",
+        ),
+        (
+            "writes-100000-files",
+            "for (int i = 0; i < 100000; i++) { try { new java.io.File(\"f\" + i).createNewFile(); \
+             } catch (java.io.IOException e) { break; } }"
+                .into(),
+            "output-too-large",
+        ),
+        (
+            // A PNG whose header says 30000x30000 (3.6 GB decoded): told from its header.
+            "png-bomb",
+            "try (java.io.DataOutputStream o = new java.io.DataOutputStream(new \
+             java.io.FileOutputStream(\"output.png\"))) { o.write(new byte[] {(byte) 0x89, 'P', 'N', \
+             'G', 13, 10, 26, 10}); byte[] ihdr = java.nio.ByteBuffer.allocate(17).put(\"IHDR\"\
+             .getBytes()).putInt(30000).putInt(30000).put(new byte[] {8, 2, 0, 0, 0}).array(); \
+             java.util.zip.CRC32 crc = new java.util.zip.CRC32(); crc.update(ihdr); o.writeInt(13); \
+             o.write(ihdr); o.writeInt((int) crc.getValue()); } catch (java.io.IOException e) { throw \
+             new RuntimeException(e); } System.exit(0);"
+                .into(),
+            "wrong-size",
+        ),
     ];
     for (name, code, _) in &cases {
         student(&class, name, hostile(code));
