@@ -21,6 +21,7 @@ mod report;
 mod result;
 mod sandbox;
 mod scenes;
+mod similar;
 mod skeleton;
 mod student;
 mod warm_javac;
@@ -480,6 +481,7 @@ fn read_rows(students_dir: &Path, submissions: &[Submission]) -> Vec<result::Row
                     id: s.id.clone(),
                     name: s.name.clone(),
                     folder: s.folder.clone(),
+                    fingerprint: String::new(),
                     status: "error".into(),
                     passed: 0,
                     cases: 0,

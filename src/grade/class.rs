@@ -231,6 +231,29 @@ pub fn index_html(rows: &[Row], title: &str, settings: &[String]) -> String {
         .collect();
     body += "<h2>Pass rate per scene</h2>\n";
     body += &format!("<div id=\"scenes\">{}</div>\n", bars(&rates));
+    let groups = identical(rows);
+    body += "<h2>Identical submissions</h2>\n";
+    if groups.is_empty() {
+        body += "<p id=\"identical\">No two students handed in the same files (comments and \
+                 whitespace aside).</p>\n";
+    } else {
+        body += "<p>Students whose Plane.java and Renderer.java are the same once comments and \
+                 whitespace are gone: worth a look, not a verdict.</p>\n<ul id=\"identical\">\n";
+        for group in &groups {
+            let links: Vec<String> = group
+                .iter()
+                .map(|r| {
+                    format!(
+                        "<a href=\"students/{0}/report.html\">{0}</a> ({1})",
+                        escape(&r.id),
+                        escape(&r.name)
+                    )
+                })
+                .collect();
+            body += &format!("<li>{}</li>\n", links.join(", "));
+        }
+        body += "</ul>\n";
+    }
     body += "<h2>Students</h2>\n<table id=\"students\"><tr><th>id</th><th>name</th>\
              <th>status</th><th>cases passed</th><th>diagnosis</th><th>grade</th></tr>\n";
     for r in rows {
@@ -253,6 +276,17 @@ pub fn index_html(rows: &[Row], title: &str, settings: &[String]) -> String {
          <style>{STYLE}</style></head><body>\n{body}</body></html>\n",
         escape(title)
     )
+}
+
+/// The groups of two or more students who share a fingerprint, in class order.
+fn identical(rows: &[Row]) -> Vec<Vec<&Row>> {
+    let mut by_print: BTreeMap<&str, Vec<&Row>> = BTreeMap::new();
+    for r in rows.iter().filter(|r| !r.fingerprint.is_empty()) {
+        by_print.entry(r.fingerprint.as_str()).or_default().push(r);
+    }
+    let mut groups: Vec<Vec<&Row>> = by_print.into_values().filter(|g| g.len() > 1).collect();
+    groups.sort_by(|a, b| a[0].id.cmp(&b[0].id));
+    groups
 }
 
 #[cfg(test)]

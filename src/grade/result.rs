@@ -22,6 +22,9 @@ pub struct Row {
     pub name: String,
     /// The folder the submission came in (Moodle's), where its feedback goes back to.
     pub folder: String,
+    /// Its two files' fingerprint, comments and whitespace aside (`similar.rs`); empty when
+    /// there were no files.
+    pub fingerprint: String,
     /// `graded`, `compile-error`, `no-files` or `error`.
     pub status: String,
     /// Counted cases passed, of how many counted.
@@ -61,6 +64,9 @@ pub fn build(
         "notes": submission.notes,
         "warnings": submission.warnings,
     });
+    if let Ok(files) = &submission.files {
+        extra["fingerprint"] = json!(super::similar::fingerprint(files));
+    }
     let counted = (0..policy.weights.len())
         .filter(|&i| policy.counts(i))
         .count();
@@ -305,6 +311,7 @@ pub fn row(result: &Value) -> Option<Row> {
         id: text("id")?,
         name: text("name").unwrap_or_default(),
         folder: text("folder").unwrap_or_default(),
+        fingerprint: text("fingerprint").unwrap_or_default(),
         status: text("status")?,
         passed: count("passed"),
         cases: count("cases"),

@@ -4,7 +4,7 @@
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use std::sync::Mutex;
+use std::sync::{Mutex, MutexGuard, TryLockError};
 
 use super::compile::{compile, Compiled};
 use super::intake::{Files, Submission};
@@ -65,11 +65,13 @@ pub fn grade(
     let _cleanup = WorkFolder(work.clone());
     let sources = sources(setup, files);
     let classes = work.join("classes");
-    // The lock is held for the warm compilation only, not a fallback's.
-    let warm = javac
-        .lock()
-        .unwrap_or_else(|e| e.into_inner())
-        .compile(&sources, &classes)?;
+    // The lock is held for the warm compilation only, not a fallback's; a compiler another
+    // student holds for longer than `PATIENCE` (a source that makes javac slow) is left to
+    // them, and this student is compiled by a javac of their own.
+    let warm = match lock_within(javac, PATIENCE) {
+        Some(mut warm) => warm.compile(&sources, &classes)?,
+        None => None,
+    };
     let compiled = match warm {
         Some(compiled) => compiled,
         None => {
@@ -103,6 +105,27 @@ pub fn grade(
         setup.limits.seconds,
     )?;
     Ok(Outcome::Ran(Box::new(run)))
+}
+
+/// How long a student waits for the warm compiler its slot shares before compiling with a
+/// javac of its own: a warm compilation takes a tenth of a second, so a wait this long means
+/// the compiler is busy with a slow source, and one slow compile must not hold the others.
+const PATIENCE: std::time::Duration = std::time::Duration::from_secs(2);
+
+/// `mutex` locked, if it can be within `patience` (a poisoned lock still guards a usable
+/// compiler: the one who panicked held it between students).
+fn lock_within<T>(mutex: &Mutex<T>, patience: std::time::Duration) -> Option<MutexGuard<'_, T>> {
+    let started = std::time::Instant::now();
+    loop {
+        match mutex.try_lock() {
+            Ok(guard) => return Some(guard),
+            Err(TryLockError::Poisoned(e)) => return Some(e.into_inner()),
+            Err(TryLockError::WouldBlock) if started.elapsed() < patience => {
+                std::thread::sleep(std::time::Duration::from_millis(10));
+            }
+            Err(TryLockError::WouldBlock) => return None,
+        }
+    }
 }
 
 /// The work folder, removed when the student is done (or the grading stops).

@@ -319,6 +319,8 @@ fn a_class_is_graded_named_written_up_and_rerun_for_nothing() {
                  bars: document.querySelectorAll('#mistakes rect').length, \
                  scenes: document.querySelectorAll('#scenes rect').length, \
                  links: [...document.querySelectorAll('#students a')].map(a => a.getAttribute('href')), \
+                 identical: [...document.querySelectorAll('#identical li')].map(l => l.textContent), \
+                 settings: document.getElementById('settings').textContent, \
                  totals: document.getElementById('totals').textContent}",
         serde_json::json!([]),
     );
@@ -330,6 +332,19 @@ fn a_class_is_graded_named_written_up_and_rerun_for_nothing() {
         .collect();
     assert_eq!(page["bars"], distinct.len());
     assert_eq!(page["scenes"], 7);
+    // The two correct students hand in the same files (one saved with a byte order mark).
+    let identical = page["identical"].as_array().expect("identical");
+    assert_eq!(identical.len(), 1, "{identical:?}");
+    let group = identical[0].as_str().expect("text");
+    assert!(
+        group.contains("31000") && group.contains("31001"),
+        "{group}"
+    );
+    let settings = page["settings"].as_str().expect("settings");
+    assert!(
+        settings.contains("Skeleton: whitted") && settings.contains("pass-fail over 5"),
+        "{settings}"
+    );
     let full_marks = rows.iter().filter(|r| r["grade"] == "100").count();
     assert!(full_marks >= 2);
     assert!(page["totals"]
