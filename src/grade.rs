@@ -21,6 +21,7 @@ mod report;
 mod result;
 mod sandbox;
 mod scenes;
+mod seccomp;
 mod similar;
 mod skeleton;
 mod student;

@@ -51,7 +51,7 @@ pub fn compile(
     program.extend(javac_options(&work.join("classes")));
     program.extend(sources.iter().cloned());
     let (src, classes) = (work.join("src"), work.join("classes"));
-    let (mut command, cgroup) =
+    let (mut command, run) =
         sandbox.command(&program, &[&src], &classes, Area::Folder, slot, limits)?;
     command
         .stdin(Stdio::null())
@@ -94,7 +94,7 @@ pub fn compile(
     Ok(match status {
         None => Compiled::Timeout,
         Some(s) if s.success() => Compiled::Ok,
-        Some(_) if cgroup.as_ref().is_some_and(|c| c.oom_killed()) => Compiled::Errors(format!(
+        Some(_) if run.oom_killed() => Compiled::Errors(format!(
             "javac was killed at its memory limit (--memory {} MiB)",
             limits.memory_mib
         )),

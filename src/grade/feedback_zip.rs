@@ -17,7 +17,12 @@ pub fn build(students_dir: &Path, rows: &[Row]) -> Result<Vec<u8>> {
         .unix_permissions(0o644);
     let fail =
         |e: &dyn std::fmt::Display| Error::Environment(format!("cannot write feedback.zip: {e}"));
+    let mut written = std::collections::BTreeSet::new();
     for row in rows {
+        // Two submissions of one id share one result and one report: sent once.
+        if !written.insert(folder(row)) {
+            continue;
+        }
         let report = students_dir.join(&row.id).join("report.html");
         let Ok(page) = std::fs::read(&report) else {
             continue;

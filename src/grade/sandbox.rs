@@ -73,6 +73,37 @@ if [ -f "$dir/output.png" ] && [ ! -L "$dir/output.png" ]; then cp -- "$dir/outp
 exit $status
 "#;
 
+/// What a sandboxed run holds until it has ended: its memory limit's cgroup, and the
+/// descriptor its seccomp filter was handed over in.
+pub struct RunGuard {
+    cgroup: Option<RunCgroup>,
+    _filter: Option<std::os::fd::OwnedFd>,
+}
+
+impl RunGuard {
+    /// Whether the kernel killed the run at its cgroup's memory limit.
+    pub fn oom_killed(&self) -> bool {
+        self.cgroup.as_ref().is_some_and(RunCgroup::oom_killed)
+    }
+}
+
+/// The seccomp filter (`seccomp.rs`) in a descriptor bubblewrap can read: a memfd, left open
+/// across exec (only that way does bwrap get it), closed here when the run's guard drops.
+fn filter_fd() -> Result<Option<std::os::fd::OwnedFd>> {
+    let Some(program) = super::seccomp::program() else {
+        return Ok(None);
+    };
+    let fail = |e: std::io::Error| {
+        Error::Environment(format!("cannot hand bubblewrap its seccomp filter: {e}"))
+    };
+    let fd = rustix::fs::memfd_create("whitted-seccomp", rustix::fs::MemfdFlags::empty())
+        .map_err(|e| fail(e.into()))?;
+    let mut file = std::fs::File::from(fd);
+    std::io::Write::write_all(&mut file, &program).map_err(fail)?;
+    std::io::Seek::seek(&mut file, std::io::SeekFrom::Start(0)).map_err(fail)?;
+    Ok(Some(file.into()))
+}
+
 /// What a run may write: its folder as it is (javac's classes), or a capped area (a program's
 /// case).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -170,7 +201,7 @@ impl Sandbox {
         area: Area,
         slot: usize,
         limits: Limits,
-    ) -> Result<(Command, Option<RunCgroup>)> {
+    ) -> Result<(Command, RunGuard)> {
         let Sandbox::Bubblewrap {
             bwrap,
             jdk,
@@ -180,7 +211,11 @@ impl Sandbox {
         else {
             let mut command = Command::new(&program[0]);
             command.args(&program[1..]).current_dir(writable);
-            return Ok((command, None));
+            let guard = RunGuard {
+                cgroup: None,
+                _filter: None,
+            };
+            return Ok((command, guard));
         };
         let uid = slot_uid(slot);
         if *root {
@@ -231,6 +266,11 @@ impl Sandbox {
             "--hostname",
             "sandbox",
         ]);
+        let filter = filter_fd()?;
+        if let Some(fd) = &filter {
+            use std::os::fd::AsRawFd;
+            command.args(["--seccomp", &fd.as_raw_fd().to_string()]);
+        }
         if area == Area::Capped {
             // The wrapper mounts the capped area, then drops every capability before the
             // program runs.
@@ -280,7 +320,11 @@ impl Sandbox {
             ]);
         }
         command.args(program);
-        Ok((command, cgroup))
+        let guard = RunGuard {
+            cgroup,
+            _filter: filter,
+        };
+        Ok((command, guard))
     }
 }
 
@@ -354,4 +398,53 @@ pub fn find_in_path(name: &str) -> Option<PathBuf> {
     std::env::split_paths(&path)
         .map(|dir| dir.join(name))
         .find(|p| p.is_file())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The exit status of `script` run by sh in the sandbox, with a capped area (the grade
+    /// tests need bubblewrap and a JDK; tools/test installs them).
+    fn in_sandbox(script: &str) -> std::process::ExitStatus {
+        let java = find_in_path("java").expect("a JDK on PATH");
+        let sandbox = Sandbox::bubblewrap(&java).expect("bubblewrap");
+        let dir = tempfile::tempdir().expect("tempdir");
+        let limits = Limits {
+            memory_mib: 256,
+            seconds: 20,
+        };
+        let program = ["/bin/sh", "-c", script].map(String::from);
+        let (mut command, _run) = sandbox
+            .command(&program, &[], dir.path(), Area::Capped, 0, limits)
+            .expect("command");
+        command.status().expect("runs")
+    }
+
+    #[test]
+    fn the_sandbox_refuses_user_namespaces_ptrace_and_the_capabilities_of_its_wrapper() {
+        assert!(in_sandbox("true").success());
+        // Threads and processes still start (clone without CLOEXEC_NEWUSER, clone3's ENOSYS).
+        assert!(in_sandbox("sh -c true & wait $!").success());
+        // The check below can fail only by its ptrace: it passes without the filter.
+        let traceme = "import ctypes, sys; sys.exit(ctypes.CDLL(None).ptrace(0, 0, 0, 0))";
+        let plain = std::process::Command::new("python3")
+            .args(["-c", traceme])
+            .status()
+            .expect("python3");
+        assert!(plain.success());
+        for denied in [
+            // A user namespace of its own, by unshare(2) and by clone(2).
+            "unshare --user true",
+            "unshare --map-root-user --fork true",
+            // The wrapper's capabilities are gone: no mount, no writing the host's folder.
+            "mount -t tmpfs x /tmp",
+            // The case's folder is the capped tmpfs.
+            "test \"$(stat -f -c %T .)\" != tmpfs",
+            // ptrace(2), even PTRACE_TRACEME (which needs no permission otherwise).
+            "python3 -c 'import ctypes, sys; sys.exit(ctypes.CDLL(None).ptrace(0, 0, 0, 0))'",
+        ] {
+            assert!(!in_sandbox(denied).success(), "allowed: {denied}");
+        }
+    }
 }

@@ -8,8 +8,7 @@ use std::sync::{Mutex, MutexGuard, TryLockError};
 
 use super::compile::{compile, Compiled};
 use super::intake::{Files, Submission};
-use super::memory_cgroup::RunCgroup;
-use super::sandbox::{Area, Limits, Sandbox, AREA_BYTES, AREA_FILES, AREA_FULL};
+use super::sandbox::{Area, Limits, RunGuard, Sandbox, AREA_BYTES, AREA_FILES, AREA_FULL};
 use super::skeleton::Skeleton;
 use super::warm_javac::WarmJavac;
 use crate::check::program::{run_suite_with, Launch, LimitHit, SuiteRun};
@@ -95,7 +94,7 @@ pub fn grade(
         setup,
         classes,
         slot,
-        cgroups: Mutex::default(),
+        runs: Mutex::default(),
     };
     let run = run_suite_with(
         &launch,
@@ -183,8 +182,8 @@ struct SandboxedJava<'a> {
     setup: &'a Setup,
     classes: PathBuf,
     slot: usize,
-    /// Each running case's cgroup, by its folder (removed when dropped).
-    cgroups: Mutex<HashMap<PathBuf, RunCgroup>>,
+    /// Each running case's guard (its cgroup, its filter), by its folder (removed when dropped).
+    runs: Mutex<HashMap<PathBuf, RunGuard>>,
 }
 
 impl Launch for SandboxedJava<'_> {
@@ -206,7 +205,7 @@ impl Launch for SandboxedJava<'_> {
             "gfx.tick2.Tick2".into(),
         ];
         let classes = self.classes.as_path();
-        let (command, cgroup) = self.setup.sandbox.command(
+        let (command, run) = self.setup.sandbox.command(
             &program,
             &[classes],
             dir,
@@ -214,12 +213,10 @@ impl Launch for SandboxedJava<'_> {
             self.slot,
             limits,
         )?;
-        if let Some(cgroup) = cgroup {
-            self.cgroups
-                .lock()
-                .unwrap_or_else(|e| e.into_inner())
-                .insert(dir.to_path_buf(), cgroup);
-        }
+        self.runs
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .insert(dir.to_path_buf(), run);
         Ok(command)
     }
 
@@ -228,12 +225,12 @@ impl Launch for SandboxedJava<'_> {
     }
 
     fn ended(&self, dir: &Path) -> Option<LimitHit> {
-        let cgroup = self
-            .cgroups
+        let run = self
+            .runs
             .lock()
             .unwrap_or_else(|e| e.into_inner())
             .remove(dir);
-        if cgroup.is_some_and(|c| c.oom_killed()) {
+        if run.is_some_and(|r| r.oom_killed()) {
             return Some(LimitHit::Memory);
         }
         let full = dir.join(AREA_FULL).exists() && !self.setup.sandbox.is_none();

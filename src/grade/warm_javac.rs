@@ -17,8 +17,7 @@ use std::sync::mpsc::{self, Receiver, RecvTimeoutError};
 use std::time::{Duration, Instant};
 
 use super::compile::{first_lines, javac_options, Compiled, COMPILE_SECONDS, MESSAGES};
-use super::memory_cgroup::RunCgroup;
-use super::sandbox::{Area, Limits, Sandbox};
+use super::sandbox::{Area, Limits, RunGuard, Sandbox};
 use crate::check::program::kill_group;
 use crate::error::{Error, Result};
 
@@ -56,7 +55,7 @@ struct Server {
     replies: Receiver<Reply>,
     compiled: usize,
     /// Its memory limit's cgroup, removed after it (fields drop after `stop` killed it).
-    _cgroup: Option<RunCgroup>,
+    _run: RunGuard,
 }
 
 /// One answer read from the compiler.
@@ -205,7 +204,7 @@ impl<'a> WarmJavac<'a> {
             seconds: self.limits.seconds.max(COMPILE_SECONDS),
             ..self.limits
         };
-        let (mut command, cgroup) = self.sandbox.command(
+        let (mut command, run) = self.sandbox.command(
             &program,
             &[&src, &source],
             &classes,
@@ -242,7 +241,7 @@ impl<'a> WarmJavac<'a> {
             stdin,
             replies,
             compiled: 0,
-            _cgroup: cgroup,
+            _run: run,
         })
     }
 

@@ -360,3 +360,80 @@ fn hostile_archives_and_folders_are_refused_or_read_without_writing_a_name_they_
     );
     assert!(!d.join("out3").exists());
 }
+
+/// A source that makes javac take minutes (nested conditionals around a generic call: each
+/// level doubles its work; 16 levels, a few hundred bytes) holds neither the warm compiler
+/// nor the other students: they finish as fast as they do in a class without it, and it is
+/// stopped at the compile deadline and named.
+#[test]
+fn a_slow_compile_holds_no_other_student() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let mut nested = "1".to_string();
+    for _ in 0..16 {
+        nested = format!("id(b ? {nested} : null)");
+    }
+    let (plane, renderer) = submission(&[]);
+    let slow = renderer.replacen(
+        "public class Renderer {",
+        &format!(
+            "public class Renderer {{\n    static <T> T id(T t) {{ return t; }}\n    \
+             static boolean b;\n    Object slow = {nested};\n"
+        ),
+        1,
+    );
+    assert_ne!(slow, renderer);
+    for who in ["b-good", "c-good"] {
+        student(&d.join("alone"), who, (plane.clone(), renderer.clone()));
+        student(&d.join("class"), who, (plane.clone(), renderer.clone()));
+    }
+    student(&d.join("class"), "a-slow", (plane.clone(), slow));
+    // Seconds from the start until both good students' results are written.
+    let good_done = |class: &str, jobs: &str, out: &str| {
+        let started = std::time::Instant::now();
+        let mut run = std::process::Command::new(env!("CARGO_BIN_EXE_whitted"))
+            .args([
+                "grade",
+                "-q",
+                class,
+                "-o",
+                out,
+                "--timeout",
+                "20",
+                "-j",
+                jobs,
+            ])
+            .current_dir(d)
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .expect("grade runs");
+        let done = |who: &str| d.join(out).join("students").join(who).join("result.json");
+        while !(done("b-good").exists() && done("c-good").exists()) {
+            assert!(
+                started.elapsed().as_secs() < 300,
+                "the good students never finished"
+            );
+            std::thread::sleep(Duration::from_millis(50));
+        }
+        let seconds = started.elapsed().as_secs_f64();
+        let status = run.wait().expect("wait");
+        assert!(status.success());
+        seconds
+    };
+    // Alone, on one worker; beside the slow source, on the one worker it leaves.
+    let alone = good_done("alone", "1", "out-alone");
+    let beside = good_done("class", "2", "out-class");
+    assert!(
+        beside < alone * 1.5 + 5.0,
+        "the good students took {beside:.1} s beside a slow compile, {alone:.1} s without it"
+    );
+    let rows = records(&d.join("out-class/class.csv"));
+    let row = |id: &str| rows.iter().find(|r| r["id"] == id).cloned().expect(id);
+    assert_eq!(row("b-good")["status"], "graded");
+    assert_eq!(row("c-good")["status"], "graded");
+    assert_eq!(row("a-slow")["status"], "error");
+    let result =
+        std::fs::read_to_string(d.join("out-class/students/a-slow/result.json")).expect("result");
+    assert!(result.contains("javac did not finish"), "{result}");
+}
