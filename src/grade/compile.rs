@@ -114,10 +114,37 @@ pub fn javac_options(classes: &Path) -> Vec<String> {
 /// javac's first `SHOWN_LINES` lines, paths relative to the sources' folder `src`.
 pub fn first_lines(messages: &[u8], src: &Path) -> String {
     let text = String::from_utf8_lossy(messages);
+    // javac's own crash on a source too deeply nested for its stack asks the reader to file a
+    // bug against the compiler: the student's fix is in their code, so say that instead.
+    if text.contains("java.lang.StackOverflowError") {
+        return "javac ran out of stack on this source: an expression or a block nested too \
+                deeply (a long chain of + or of nested calls); write it in steps"
+            .to_string();
+    }
     let prefix = format!("{}/", src.display());
     text.lines()
         .take(SHOWN_LINES)
         .map(|l| l.replace(&prefix, ""))
         .collect::<Vec<_>>()
         .join("\n")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn javac_s_own_stack_overflow_is_the_student_s_nesting_not_a_compiler_bug() {
+        let crash = b"An exception has occurred in the compiler (17.0.15). Please file a bug \
+            against the Java compiler via the Java bug reporting page\njava.lang.\
+            StackOverflowError\n\tat jdk.compiler/com.sun.tools.javac.comp.Attr.visitBinary";
+        let said = first_lines(crash, Path::new("/w/src"));
+        assert!(said.contains("nested too deeply"), "{said}");
+        assert!(!said.contains("file a bug"), "{said}");
+        let error = b"/w/src/gfx/tick2/Renderer.java:3: error: ';' expected";
+        assert_eq!(
+            first_lines(error, Path::new("/w/src")),
+            "gfx/tick2/Renderer.java:3: error: ';' expected"
+        );
+    }
 }

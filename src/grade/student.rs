@@ -103,7 +103,27 @@ pub fn grade(
         setup.tolerance,
         setup.limits.seconds,
     )?;
+    let mut run = run;
+    offer_only_their_files(&mut run);
     Ok(Outcome::Ran(Box::new(run)))
+}
+
+/// The candidates after the first keep only mistakes in the files a student hands in: one in
+/// the skeleton's classes (`Sphere.intersectionWith`) cannot be theirs, since grade compiles
+/// the skeleton's own. The first stays whatever it is: the per-case labels are its.
+fn offer_only_their_files(run: &mut SuiteRun) {
+    let theirs = |bug: crate::mistakes::Bug| {
+        let class = bug.place().split('.').next().unwrap_or("");
+        super::archive::WANTED
+            .iter()
+            .any(|file| file.strip_suffix(".java") == Some(class))
+    };
+    let mut first = true;
+    run.findings.diagnosis.retain(|d| {
+        let keep = first || d.mistakes.bugs().into_iter().all(theirs);
+        first = false;
+        keep
+    });
 }
 
 /// How long a student waits for the warm compiler its slot shares before compiling with a
