@@ -64,7 +64,7 @@ pub fn page(
             );
         }
         Outcome::CompileTimeout => body += "<p>javac did not finish within the time limit.</p>\n",
-        Outcome::Ran(run) => body += &ran(run, shown),
+        Outcome::Ran(run) => body += &ran(run, shown, feedback),
     }
     body += &format!(
         "<p class=\"policy\">Graded {}.</p>\n",
@@ -86,10 +86,14 @@ pub fn page(
 }
 
 /// The cases, the diagnosis with its fixes, and the progress.
-fn ran(run: &SuiteRun, shown: &Shown) -> String {
+/// The progress is said once: the feedback above holds it when no mistake explains the images.
+fn ran(run: &SuiteRun, shown: &Shown, feedback: &str) -> String {
     let findings = &run.findings;
     let mut out = String::new();
-    out += &format!("<p>{}</p>\n", escape(&findings.progress.sentence()));
+    let progress = findings.progress.sentence();
+    if !feedback.contains(&progress) {
+        out += &format!("<p>{}</p>\n", escape(&progress));
+    }
     if !findings.diagnosis.is_empty() {
         out += &format!(
             "<h2>{}</h2>\n<ol>\n",
