@@ -529,10 +529,10 @@ fn write_class(outdir: &Path, rows: &[result::Row], settings: &[String]) -> Resu
         &outdir.join("moodle.csv"),
         class::moodle_csv(rows, &now).as_bytes(),
     )?;
-    write_atomic(
-        &outdir.join("feedback.zip"),
-        &feedback_zip::build(&outdir.join("students"), rows)?,
-    )?;
+    let (zip, students) = (outdir.join("feedback.zip"), outdir.join("students"));
+    if !feedback_zip::is_current(&zip, &students, rows) {
+        write_atomic(&zip, &feedback_zip::build(&students, rows)?)?;
+    }
     let index = outdir.join("index.html");
     write_atomic(
         &index,

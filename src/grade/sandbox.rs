@@ -52,12 +52,14 @@ pub const AREA_FULL: &str = ".whitted-area-full";
 
 /// Runs inside the sandbox, as its first process, where a program's writable area is capped
 /// (`Area::Capped`): it mounts the case's folder as a tmpfs of `AREA_BYTES` and `AREA_FILES`
-/// over the host's, copies the
-/// scene in, runs the program with no capability left, kills whatever it left running, and
-/// copies a regular `output.png` back to the host's folder, which the program never sees (its
-/// path is covered, and this shell keeps capabilities the program lacks, so the program cannot
-/// reach the shell's working directory through /proc). Arguments: the folder, then the
-/// program. Only this shell can write into the host's folder, so its marker cannot be forged.
+/// over the host's, copies the scene in, runs the program with no capability left, kills
+/// whatever it left running, and copies a regular `output.png` back to the host's folder,
+/// which the program never sees (its path is covered, and this shell keeps capabilities the
+/// program lacks, so the program cannot reach the shell's working directory through /proc).
+/// Arguments: the folder, then the program. Only this shell can write into the host's folder,
+/// so its marker cannot be forged. A tmpfs rather than a quota: bubblewrap's own `--size` caps
+/// bytes but not files, and a tmpfs needs no privilege of whitted's, only the sandbox's user
+/// namespace; everything on it is gone with the sandbox.
 const AREA_WRAPPER: &str = r#"set -u
 dir=$1; shift
 cd "$dir" || exit 125
@@ -302,6 +304,11 @@ impl Sandbox {
             command.arg("--ro-bind").arg(dir).arg(dir);
         }
         command.arg("--bind").arg(writable).arg(writable);
+        // The sandbox's own root and /dev are tmpfs that bubblewrap made: read-only once
+        // made, so that a program (the owner of everything there when it runs as the
+        // namespace's uid 0) writes only where its limits are, the case's folder and /tmp.
+        // Devices are still written through (/dev/null).
+        command.args(["--remount-ro", "/dev", "--remount-ro", "/"]);
         command.arg("--chdir").arg(writable);
         command.arg("--");
         command.env_clear();
@@ -424,6 +431,7 @@ mod tests {
     #[test]
     fn the_sandbox_refuses_user_namespaces_ptrace_and_the_capabilities_of_its_wrapper() {
         assert!(in_sandbox("true").success());
+        assert!(in_sandbox("echo x > /dev/null && echo x > /tmp/x && echo x > ./x").success());
         // Threads and processes still start (clone without CLOEXEC_NEWUSER, clone3's ENOSYS).
         assert!(in_sandbox("sh -c true & wait $!").success());
         // The check below can fail only by its ptrace: it passes without the filter.
@@ -441,6 +449,10 @@ mod tests {
             "mount -t tmpfs x /tmp",
             // The case's folder is the capped tmpfs.
             "test \"$(stat -f -c %T .)\" != tmpfs",
+            // Nothing but the case's folder and /tmp takes a file: not the sandbox's root,
+            // not /dev.
+            "echo x > /escape",
+            "echo x > /dev/escape",
             // ptrace(2), even PTRACE_TRACEME (which needs no permission otherwise).
             "python3 -c 'import ctypes, sys; sys.exit(ctypes.CDLL(None).ptrace(0, 0, 0, 0))'",
         ] {

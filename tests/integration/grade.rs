@@ -238,7 +238,10 @@ fn a_class_is_graded_named_written_up_and_rerun_for_nothing() {
         }
         let page = std::fs::read_to_string(out.join("students").join(id).join("report.html"))
             .expect("report.html");
-        assert!(page.matches("progress: ").count() <= 1, "{folder}: progress twice");
+        assert!(
+            page.matches("progress: ").count() <= 1,
+            "{folder}: progress twice"
+        );
     }
 
     // mistakes.csv counts them.
