@@ -40,6 +40,11 @@ pub fn compile(
     slot: usize,
     limits: Limits,
 ) -> Result<Compiled> {
+    // Its own deadline, whatever --timeout says, and the CPU backstop that goes with it.
+    let limits = Limits {
+        seconds: limits.seconds.max(COMPILE_SECONDS),
+        ..limits
+    };
     let mut program = vec![
         javac.display().to_string(),
         format!("-J-Xmx{}m", (limits.memory_mib / 2).max(32)),
@@ -73,7 +78,7 @@ pub fn compile(
         kept
     });
     let started = Instant::now();
-    let timeout = Duration::from_secs(limits.seconds.max(COMPILE_SECONDS));
+    let timeout = Duration::from_secs(limits.seconds);
     let status = loop {
         if crate::interrupt::requested() || started.elapsed() > timeout {
             kill_group(&child);
@@ -98,9 +103,18 @@ pub fn compile(
             "javac was killed at its memory limit (--memory {} MiB)",
             limits.memory_mib
         )),
+        // Stopped at its CPU time limit (SIGXCPU): as out of time as a timeout.
+        Some(s) if std::os::unix::process::ExitStatusExt::signal(&s) == Some(SIGXCPU) => {
+            Compiled::Timeout
+        }
+        Some(s) if messages.is_empty() => {
+            Compiled::Errors(format!("javac failed without a message ({s})"))
+        }
         Some(_) => Compiled::Errors(first_lines(&messages, &src)),
     })
 }
+
+const SIGXCPU: i32 = 24;
 
 /// What javac is told besides its sources: no annotation processors (they would run code
 /// from the classpath), the course's encoding, the first 20 errors, where the classes go.
