@@ -66,7 +66,7 @@ impl Policy {
                     .collect();
                 let source = match count_diagnostic {
                     true => "every case, 1 each".to_string(),
-                    false => "the course's scenes and hidden scenes, 1 each; whitted's \
+                    false => "the course's scenes and any hidden scenes, 1 each; whitted's \
                               diagnostic scenes inform only"
                         .to_string(),
                 };

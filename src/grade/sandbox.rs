@@ -65,12 +65,13 @@ dir=$1; shift
 cd "$dir" || exit 125
 mount -t tmpfs -o "size=$WHITTED_AREA_BYTES,nr_inodes=$WHITTED_AREA_FILES,mode=0777" case "$dir" || exit 125
 for f in ./*.xml; do [ -f "$f" ] || continue; cp -- "$f" "$dir/" || exit 125; done
-unset WHITTED_AREA_BYTES WHITTED_AREA_FILES
+full=$WHITTED_AREA_FULL
+unset WHITTED_AREA_BYTES WHITTED_AREA_FILES WHITTED_AREA_FULL
 (cd "$dir" && exec setpriv --inh-caps=-all --ambient-caps=-all --bounding-set=-all -- "$@")
 status=$?
 kill -KILL -1 2>/dev/null
 set -- $(stat -f -c '%a %d' "$dir")
-if [ "$1" -eq 0 ] || [ "$2" -eq 0 ]; then : > ./.whitted-area-full; fi
+if [ "$1" -eq 0 ] || [ "$2" -eq 0 ]; then : > "./$full"; fi
 if [ -f "$dir/output.png" ] && [ ! -L "$dir/output.png" ]; then cp -- "$dir/output.png" ./output.png; fi
 exit $status
 "#;
@@ -324,6 +325,7 @@ impl Sandbox {
             command.envs([
                 ("WHITTED_AREA_BYTES", AREA_BYTES.to_string()),
                 ("WHITTED_AREA_FILES", AREA_FILES.to_string()),
+                ("WHITTED_AREA_FULL", AREA_FULL.to_string()),
             ]);
         }
         command.args(program);
@@ -432,7 +434,7 @@ mod tests {
     fn the_sandbox_refuses_user_namespaces_ptrace_and_the_capabilities_of_its_wrapper() {
         assert!(in_sandbox("true").success());
         assert!(in_sandbox("echo x > /dev/null && echo x > /tmp/x && echo x > ./x").success());
-        // Threads and processes still start (clone without CLOEXEC_NEWUSER, clone3's ENOSYS).
+        // Threads and processes still start (clone without CLONE_NEWUSER, clone3's ENOSYS).
         assert!(in_sandbox("sh -c true & wait $!").success());
         // The check below can fail only by its ptrace: it passes without the filter.
         let traceme = "import ctypes, sys; sys.exit(ctypes.CDLL(None).ptrace(0, 0, 0, 0))";
