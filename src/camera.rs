@@ -3,6 +3,7 @@
 
 use glam::DVec3;
 
+use crate::course::RowStep;
 use crate::geometry::{normalise, Ray};
 
 /// Maps pixel coordinates to primary rays for one image size.
@@ -13,23 +14,38 @@ pub struct Camera {
     /// Width of the image plane at distance 1: `2 tan(22.5 deg)`.
     plane_width: f64,
     plane_height: f64,
-    /// Side of one (square) pixel on the image plane.
+    /// Width of one pixel on the image plane.
     step: f64,
+    /// Height of one pixel on the image plane: `step` (2016-17), or `plane_height / height`
+    /// computed on its own (later years), one ulp apart at some sizes.
+    row_step: f64,
 }
 
 impl Camera {
     /// Horizontal field of view in degrees; kept for every image size.
     pub const FOV_DEGREES: f64 = 45.0;
 
+    /// The 2016-17 camera: square pixels.
     pub fn new(width: u32, height: u32) -> Self {
+        Camera::with_rows(width, height, RowStep::Columns)
+    }
+
+    /// The camera of a year whose rows step as `rows` says (`Course::row_step`).
+    pub fn with_rows(width: u32, height: u32, rows: RowStep) -> Self {
         let plane_width = 2.0 * (Self::FOV_DEGREES / 2.0).to_radians().tan();
         let aspect = f64::from(width) / f64::from(height);
+        let plane_height = plane_width / aspect;
+        let step = plane_width / f64::from(width);
         Camera {
             width,
             height,
             plane_width,
-            plane_height: plane_width / aspect,
-            step: plane_width / f64::from(width),
+            plane_height,
+            step,
+            row_step: match rows {
+                RowStep::Columns => step,
+                RowStep::PlaneHeight => plane_height / f64::from(height),
+            },
         }
     }
 
@@ -42,7 +58,7 @@ impl Camera {
     /// only reproduced with the formula as written, so the formula is what we implement.
     pub fn plane_point(&self, x: u32, y: u32) -> (f64, f64) {
         let x_pos = (self.step - self.plane_width) / 2.0 + f64::from(x) * self.step;
-        let y_pos = (self.step + self.plane_height) / 2.0 - f64::from(y) * self.step;
+        let y_pos = (self.row_step + self.plane_height) / 2.0 - f64::from(y) * self.row_step;
         (x_pos, y_pos)
     }
 
@@ -59,7 +75,7 @@ impl Camera {
     /// supersampled images line up with the tick image.
     pub fn sub_pixel_ray(&self, x: u32, y: u32, u: f64, v: f64) -> Ray {
         let x_pos = -self.plane_width / 2.0 + (f64::from(x) + u) * self.step;
-        let y_pos = self.plane_height / 2.0 - (f64::from(y) + v - 1.0) * self.step;
+        let y_pos = self.plane_height / 2.0 - (f64::from(y) + v - 1.0) * self.row_step;
         Ray::new(DVec3::ZERO, normalise(DVec3::new(x_pos, y_pos, 1.0)))
     }
 
@@ -70,7 +86,7 @@ impl Camera {
     /// bottom at `-h/2 + step` (see `plane_point`). World space is camera space here.
     pub fn world_to_ndc(&self) -> [[f64; 4]; 4] {
         let (w, h) = (self.plane_width, self.plane_height);
-        let top = h / 2.0 + self.step;
+        let top = h / 2.0 + self.row_step;
         [
             [1.0 / w, 0.0, 0.0, 0.0],
             [0.0, -1.0 / h, 0.0, 0.0],

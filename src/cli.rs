@@ -12,6 +12,7 @@ mod parse;
 mod values;
 
 use crate::compare::{Criteria, Tolerance};
+use crate::course::Course;
 use crate::frame::{FrameSpec, Region};
 use crate::output::exr::ExrOptions;
 use crate::plan::{RenderRequest, ToneRequest};
@@ -20,7 +21,7 @@ pub use check::CheckArgs;
 pub use grade::GradeArgs;
 pub use look::{ExplainArgs, RelightArgs, ServeArgs, ViewArgs};
 use parse::*;
-pub use values::{CompressionArg, ToneMapArg};
+pub use values::{CompressionArg, CourseArg, ToneMapArg};
 
 pub use crate::frame::limits::{MAX_BOUNCES, MAX_SIDE, MAX_SPP};
 pub use crate::plan::MAX_THREADS;
@@ -246,6 +247,9 @@ pub struct TonemapArgs {
 
     #[command(flatten)]
     pub tone: ToneArgs,
+
+    #[command(flatten)]
+    pub course: ToneCourseArgs,
 }
 
 /// The image and the tick model's options, shared by `render` and `explain`.
@@ -256,27 +260,57 @@ pub struct FrameArgs {
           value_parser = parse_bounces, allow_negative_numbers = true)]
     pub bounces: u32,
 
-    /// Image width in pixels (the field of view stays 45 degrees horizontal)
-    #[arg(long, value_name = "W", default_value_t = 640, value_parser = parse_side)]
-    pub width: u32,
+    /// Image width in pixels (the field of view stays 45 degrees horizontal) [default: the
+    /// course's, 640 (800 from 2021-22)]
+    #[arg(long, value_name = "W", value_parser = parse_side)]
+    pub width: Option<u32>,
 
-    /// Image height in pixels
-    #[arg(long, value_name = "H", default_value_t = 480, value_parser = parse_side)]
-    pub height: u32,
+    /// Image height in pixels [default: the course's, 480 (600 from 2021-22)]
+    #[arg(long, value_name = "H", value_parser = parse_side)]
+    pub height: Option<u32>,
 
     /// Ignore occlusion: every light reaches every point
     #[arg(long)]
     pub no_shadows: bool,
+
+    #[command(flatten)]
+    pub course: CourseArgs,
+}
+
+/// `--course`, shared by every command that renders or reads a scene.
+#[derive(Debug, Clone, Copy, Args)]
+pub struct CourseArgs {
+    /// The year of the course whose rules, scene format, size and tone map to follow
+    /// (docs/courses.md)
+    #[arg(long = "course", value_name = "YEAR", value_enum, default_value_t = CourseArg::Y2016)]
+    pub course: CourseArg,
+}
+
+/// `--course` where it only chooses a PNG's tone map, for commands that read an EXR.
+#[derive(Debug, Clone, Copy, Args)]
+pub struct ToneCourseArgs {
+    /// The year whose tone map a PNG gets [default: the year the EXR records, else 2016-17]
+    #[arg(long = "course", value_name = "YEAR", value_enum)]
+    pub course: Option<CourseArg>,
+}
+
+impl CourseArgs {
+    pub fn course(&self) -> Course {
+        self.course.into()
+    }
 }
 
 impl FrameArgs {
     /// The frame these options ask for, with every layer.
     pub fn spec(&self) -> FrameSpec {
+        let course = self.course.course();
+        let (width, height) = course.size();
         FrameSpec {
-            width: self.width,
-            height: self.height,
+            width: self.width.unwrap_or(width),
+            height: self.height.unwrap_or(height),
             bounces: self.bounces,
             shadows: !self.no_shadows,
+            course,
             ..FrameSpec::default()
         }
     }
@@ -285,9 +319,10 @@ impl FrameArgs {
 /// How linear HDR values become PNG bytes (docs/tonemap.md).
 #[derive(Debug, Clone, Args)]
 pub struct ToneArgs {
-    /// Tone map: `tick` is the course's exact output; the others are sRGB-encoded
-    #[arg(long = "tonemap", value_name = "OP", value_enum, default_value_t = ToneMapArg::Tick)]
-    pub tonemap: ToneMapArg,
+    /// Tone map: `tick` and `sigmoid` are the course's exact outputs; the others are
+    /// sRGB-encoded [default: the course year's, `tick` (`sigmoid` from 2018-19)]
+    #[arg(long = "tonemap", value_name = "OP", value_enum)]
+    pub tonemap: Option<ToneMapArg>,
 
     /// Exposure in stops, applied before the tone map: v * 2^EV
     #[arg(long, value_name = "EV", default_value_t = 0.0, allow_negative_numbers = true,
@@ -304,9 +339,10 @@ pub struct ToneArgs {
 }
 
 impl ToneArgs {
-    pub fn request(&self) -> ToneRequest {
+    /// The encoding asked for, `course`'s tone map unless `--tonemap` names one.
+    pub fn request(&self, course: Course) -> ToneRequest {
         ToneRequest {
-            tonemap: self.tonemap.into(),
+            tonemap: self.tonemap.map_or(course.tonemap(), Into::into),
             exposure: self.exposure,
             depth: self.png_depth,
             dither: self.dither,
@@ -391,7 +427,7 @@ impl RenderArgs {
                 compression: self.compression.into(),
                 half: self.half,
             },
-            tone: self.tone.request(),
+            tone: self.tone.request(self.frame.course.course()),
             threads: self.threads,
             stamp_date: self.stamp_date,
         }

@@ -17,7 +17,7 @@ use crate::model::Model;
 use crate::sample::Sample;
 use crate::scene::Scene;
 use crate::trace::observe::{FoldStep, LightRecord, Observer, VertexRecord};
-use crate::trace::{trace_observed, BACKGROUND};
+use crate::trace::trace_observed;
 
 /// A light's terms at a vertex (with what shadows it), and the light's name.
 #[derive(Debug, Clone, PartialEq)]
@@ -41,6 +41,8 @@ pub struct Explanation {
     pub vertices: Vec<Vertex>,
     /// Where the chain left the scene, if it did: (depth, ray).
     pub miss: Option<(u32, Ray)>,
+    /// What a ray that leaves the scene sees under the model traced.
+    pub background: DVec3,
     /// The beauty's fold, far end first.
     pub fold: Vec<FoldStep>,
     /// Every layer's value for this sample (the pixel, at one sample per pixel).
@@ -134,6 +136,7 @@ pub fn explain(
         camera_ray,
         vertices: recorder.vertices,
         miss: recorder.miss,
+        background: model.background(),
         fold: recorder.fold,
         sample,
         stored,
@@ -145,7 +148,7 @@ impl Explanation {
     pub fn fold(&self) -> Vec<String> {
         let background = self
             .miss
-            .map(|(depth, _)| format!("depth {depth}: background {}", vector(BACKGROUND)));
+            .map(|(depth, _)| format!("depth {depth}: background {}", vector(self.background)));
         let steps = self.fold.iter().map(|step| match step.reflectivity {
             Some(r) => format!(
                 "depth {}: {} * (1 - {r}) + {} * {r} = {}",

@@ -6,6 +6,7 @@ pub mod limits;
 
 use crate::aov::{self, Layer};
 use crate::camera::Camera;
+use crate::course::Course;
 use crate::error::{Error, Result};
 use crate::scene::Scene;
 use crate::trace::TraceOptions;
@@ -88,6 +89,8 @@ pub struct FrameSpec {
     pub shadows: bool,
     /// `--aovs`: `all`, `beauty` or a comma-separated list of layer names.
     pub aovs: String,
+    /// The year whose rules render the frame (docs/courses.md).
+    pub course: Course,
     pub acceleration: Acceleration,
 }
 
@@ -104,6 +107,7 @@ impl Default for FrameSpec {
             shadows: true,
             aovs: "all".into(),
             acceleration: Acceleration::Bvh,
+            course: Course::default(),
         }
     }
 }
@@ -137,6 +141,7 @@ pub struct Frame {
     /// scene's lights.
     layers: Vec<Layer>,
     acceleration: Acceleration,
+    course: Course,
 }
 
 impl Frame {
@@ -161,7 +166,7 @@ impl Frame {
         let catalogue = aov::all_layers(&light_names, spec.bounces);
         let layers = aov::select(&spec.aovs, &catalogue).map_err(Error::Usage)?;
         Ok(Frame {
-            camera: Camera::new(width, height),
+            camera: Camera::with_rows(width, height, spec.course.row_step()),
             region,
             spp: spec.spp,
             trace: TraceOptions {
@@ -170,6 +175,7 @@ impl Frame {
             },
             layers,
             acceleration: spec.acceleration,
+            course: spec.course,
         })
     }
 
@@ -195,6 +201,11 @@ impl Frame {
 
     pub fn acceleration(&self) -> Acceleration {
         self.acceleration
+    }
+
+    /// The year whose rules render the frame.
+    pub fn course(&self) -> Course {
+        self.course
     }
 
     /// The same frame with no layers to fill (a render to a PNG only needs the beauty, which

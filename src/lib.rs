@@ -35,6 +35,7 @@ pub mod check;
 pub mod cli;
 pub mod commands;
 pub mod compare;
+pub mod course;
 pub mod error;
 pub mod explain;
 pub mod film;

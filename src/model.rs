@@ -14,6 +14,9 @@ use glam::DVec3;
 use crate::geometry::{divide_by_length, normalise, sphere_hit, Ray, SphereTerms, EPSILON};
 use crate::scene::PointLight;
 
+/// The radiance of every ray that leaves the scene under the course's 2016-17 rules.
+pub const BACKGROUND: DVec3 = DVec3::splat(0.1);
+
 /// The course's rules, one method each. Each default is the rule of docs/rendering.md in its
 /// operation order; an implementation overrides only the rules it changes.
 pub trait Model: Sync {
@@ -38,6 +41,17 @@ pub trait Model: Sync {
     /// Whether a plane hit at parameter `s` counts: finite and not behind the ray.
     fn plane_accepts(&self, s: f64) -> bool {
         s.is_finite() && s >= 0.0
+    }
+
+    /// The radiance of a ray that leaves the scene: 0.1 on every channel.
+    fn background(&self) -> DVec3 {
+        BACKGROUND
+    }
+
+    /// Whether a light reaches a point at all, from the raw (unclamped) `N.L`: always. A model
+    /// that says no adds neither diffuse nor specular for it and casts no shadow ray.
+    fn reaches(&self, _n_dot_l: f64) -> bool {
+        true
     }
 
     /// The lights that shade a point: all of them, in file order.
@@ -91,10 +105,11 @@ pub trait Model: Sync {
         ((colour * illumination) * kd) * n_dot_l
     }
 
-    /// `(I * kS) * max(0, R.V)^n`, white; `colour` and `n_dot_l` are there for the rules that
-    /// get it wrong.
+    /// `(I * kS) * max(0, R.V)^n`, white; `light`, `colour` and `n_dot_l` are there for the
+    /// rules that differ (later years colour it with the light's colour).
     fn specular(
         &self,
+        _light: &PointLight,
         illumination: DVec3,
         ks: f64,
         phong: f64,
@@ -104,8 +119,9 @@ pub trait Model: Sync {
         illumination * ks * phong
     }
 
-    /// The shadow ray towards a light along `l` from `p`: started `EPSILON` along `l`.
-    fn shadow_ray(&self, p: DVec3, l: DVec3) -> Ray {
+    /// The shadow ray towards a light along `l` from `p` with normal `_n`: started `EPSILON`
+    /// along `l`.
+    fn shadow_ray(&self, p: DVec3, l: DVec3, _n: DVec3) -> Ray {
         Ray::offset_by(p, l, self.epsilon())
     }
 

@@ -8,15 +8,16 @@ use rayon::prelude::*;
 
 use crate::accel::Accelerator;
 use crate::aov::Layer;
+use crate::course::Course;
 use crate::error::Result;
 use crate::film::{Film, PixelAccumulator};
 use crate::frame::{Acceleration, Frame};
 use crate::interrupt;
-use crate::model::Model;
+use crate::model::{Model, Tick};
 use crate::sample::Sample;
 use crate::scene::Scene;
 use crate::trace::observe::Silent;
-use crate::trace::{trace_beauty, trace_chain, trace_into, trace_observed};
+use crate::trace::{trace_chain, trace_observed};
 
 /// How a render went: what the summary line and the warnings report. Not part of the image.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -194,7 +195,16 @@ impl<'a> PixelRenderer<'a> {
             .zip(data)
             .enumerate()
             .map(|(task, (beauty, data))| {
-                self.render_pixels(place, task * TASK_PIXELS, layers, beauty, data)
+                let first = task * TASK_PIXELS;
+                // The year is chosen once per task; each model's loop is compiled on its own,
+                // so 2016-17 runs the very code it ran before there were years.
+                match self.frame.course() {
+                    Course::Y2016 => self.render_pixels(&Tick, place, first, layers, beauty, data),
+                    course => {
+                        let rules = course.rules();
+                        self.render_pixels(&rules, place, first, layers, beauty, data)
+                    }
+                }
             })
             .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
         rows_done(u64::from(strip.height));
@@ -205,6 +215,7 @@ impl<'a> PixelRenderer<'a> {
     /// its top-left pixel at `origin` in the image.
     fn render_pixels(
         &self,
+        model: &impl Model,
         (width, origin): (usize, (u32, u32)),
         first: usize,
         layers: &[Layer],
@@ -232,10 +243,27 @@ impl<'a> PixelRenderer<'a> {
                 } else {
                     camera.sub_pixel_ray(x, y, u, v)
                 };
+                let (scene, accel) = (self.scene, self.accel);
                 if layers.is_empty() {
-                    trace_beauty(self.scene, self.accel, ray, trace, &mut sample);
+                    trace_observed::<false>(
+                        model,
+                        scene,
+                        accel,
+                        ray,
+                        trace,
+                        &mut sample,
+                        &mut Silent,
+                    );
                 } else {
-                    trace_into(self.scene, self.accel, ray, trace, &mut sample);
+                    trace_observed::<true>(
+                        model,
+                        scene,
+                        accel,
+                        ray,
+                        trace,
+                        &mut sample,
+                        &mut Silent,
+                    );
                 }
                 rays += sample.rays;
                 accumulator.add(&sample, i == self.centre);

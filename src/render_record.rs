@@ -34,6 +34,7 @@ pub fn metadata(
         light_names,
         capture_date: plan.stamp_date.then(|| capture_date(SystemTime::now())),
         world_to_ndc: plan.frame.camera().world_to_ndc(),
+        course: plan.frame.course(),
     }
 }
 
@@ -53,8 +54,15 @@ fn render_command(plan: &RenderPlan, aovs: &str, scene_name: Option<&str>) -> St
     };
     let frame = &plan.frame;
     let mut parts = vec!["whitted render".to_string()];
+    let course = frame.course();
+    if !course.is_default() {
+        parts.push(format!("--course {course}"));
+    }
     match scene_name {
-        Some(_) if plan.embedded_scene => parts.push("(embedded tick2.xml)".to_string()),
+        Some(_) if plan.embedded_scene && course.is_default() => {
+            parts.push("(embedded tick2.xml)".to_string())
+        }
+        Some(_) if plan.embedded_scene => parts.push(format!("({})", course.default_scene().1)),
         Some(name) => parts.push(format!("--input {}", quote(name))),
         None => {}
     }

@@ -20,6 +20,9 @@ pub enum ToneMap {
     Agx,
     /// Khronos PBR Neutral, then sRGB.
     Neutral,
+    /// The course's own from 2018-19 (docs/courses.md): per channel a sigmoid of `v^1.3`,
+    /// then a 1/2.2 gamma, quantised by truncation as the course's `(int)(255 * g)`.
+    Sigmoid,
 }
 
 /// Inputs are bounded to this before an operator: every operator is saturated long before
@@ -30,6 +33,11 @@ impl ToneMap {
     /// Display values in [0, 1] for linear `v` (exposure already applied). NaN counts as 0 and
     /// negative values as 0, so that no curve maps a negative input to a bright output.
     pub fn apply(self, v: DVec3) -> DVec3 {
+        if self == ToneMap::Sigmoid {
+            // Exact to the course's arithmetic, so not bounded first: its own NaN and
+            // infinity handling is part of the image.
+            return v.to_array().map(sigmoid_gamma).into();
+        }
         let v = DVec3::from_array(v.to_array().map(|c| {
             if c.is_nan() {
                 0.0
@@ -43,12 +51,14 @@ impl ToneMap {
             ToneMap::Aces => v.to_array().map(aces).into(),
             ToneMap::Agx => agx(v),
             ToneMap::Neutral => neutral(v),
+            ToneMap::Sigmoid => unreachable!("mapped above"),
         }
     }
 
-    /// Whether the display values are then sRGB-encoded (all but the course's `tick`).
+    /// Whether the display values are then sRGB-encoded (all but the course's own, `tick`
+    /// and `sigmoid`, which are quantised by truncation as the course does).
     pub fn srgb_encoded(self) -> bool {
-        self != ToneMap::Tick
+        !matches!(self, ToneMap::Tick | ToneMap::Sigmoid)
     }
 }
 
@@ -72,6 +82,22 @@ pub fn to_display(v: DVec3, tone_map: ToneMap, gain: f64) -> [f64; 3] {
         t.map(srgb_oetf)
     } else {
         t
+    }
+}
+
+/// The course's tone map of one linear channel, in its operation order (docs/courses.md):
+/// `p = v^1.3`, `t = p * (1 / (p + (0.5/2)^1.3))`, `g = t^(1/2.2)`, clamped to [0, 1]. A NaN
+/// (from a NaN or infinite `v`, or a negative one) gives 0, as the course's `(int)` cast of
+/// NaN does.
+fn sigmoid_gamma(v: f64) -> f64 {
+    let p = v.powf(1.3);
+    let reciprocal = 1.0 / (p + (0.5f64 / 2.0).powf(1.3));
+    let t = p * reciprocal;
+    let g = t.powf(1.0 / 2.2);
+    if g.is_nan() {
+        0.0
+    } else {
+        g.clamp(0.0, 1.0)
     }
 }
 

@@ -14,8 +14,7 @@ use crate::model::{Model, Tick};
 use crate::sample::{PrimaryHit, Sample};
 use crate::scene::{Material, PointLight, Scene};
 
-/// Radiance of every ray that leaves the scene.
-pub const BACKGROUND: DVec3 = DVec3::splat(0.1);
+pub use crate::model::BACKGROUND;
 
 /// What a trace may do, from the command line.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -142,7 +141,7 @@ impl Chain {
     fn fold(&self, model: &impl Model, bounces: u32, observer: &mut impl Observer) -> DVec3 {
         let kept = self.vertices.len().min(bounces as usize + 1);
         self.vertices[..kept].iter().enumerate().rev().fold(
-            BACKGROUND,
+            model.background(),
             |reflected, (depth, &(colour, r))| {
                 let r = if depth == bounces as usize { None } else { r };
                 let result = match r {
@@ -189,7 +188,7 @@ fn follow_chain<const LAYERS: bool>(
         let Some(hit) = accel.closest_hit(model, &ray) else {
             observer.miss(k, ray);
             if LAYERS {
-                let background = BACKGROUND * throughput;
+                let background = model.background() * throughput;
                 sample.background += background;
                 *bucket(sample, k) += background;
             }
@@ -327,15 +326,23 @@ fn light_terms<O: Observer>(
     let d = to_light.length();
     let illumination = model.illumination(light, d);
     let l = model.to_light(to_light, d);
-    let n_dot_l = java_max_zero(n.dot(l));
+    let raw_n_dot_l = n.dot(l);
+    let reaches = model.reaches(raw_n_dot_l);
+    let n_dot_l = java_max_zero(raw_n_dot_l);
     let r = model.specular_mirror(n, l, n_dot_l);
-    let diffuse = model.diffuse(m.colour, illumination, m.kd, n_dot_l);
     let r_dot_v = java_max_zero(r.dot(v));
-    let phong = phong_power(r_dot_v, model.specular_exponent(m.n));
-    let specular = model.specular(illumination, m.ks, phong, m.colour, n_dot_l);
-    let shadow_ray = model.shadow_ray(p, l);
+    // A light that does not reach the point adds exact zeros: no term is computed for it.
+    let (diffuse, specular) = if reaches {
+        let diffuse = model.diffuse(m.colour, illumination, m.kd, n_dot_l);
+        let phong = phong_power(r_dot_v, model.specular_exponent(m.n));
+        let specular = model.specular(light, illumination, m.ks, phong, m.colour, n_dot_l);
+        (diffuse, specular)
+    } else {
+        (DVec3::ZERO, DVec3::ZERO)
+    };
+    let shadow_ray = model.shadow_ray(p, l, n);
     let reach = model.shadow_reach(d);
-    let (in_shadow, occluder) = match (shadows, O::RECORDS_OCCLUDERS) {
+    let (in_shadow, occluder) = match (shadows && reaches, O::RECORDS_OCCLUDERS) {
         (false, _) => (false, None),
         (true, true) => {
             // The nearest hit is before `reach` exactly when something blocks the ray.
@@ -358,7 +365,8 @@ fn light_terms<O: Observer>(
         r_dot_v,
         diffuse,
         specular,
-        shadow_ray: shadows.then_some(shadow_ray),
+        reaches,
+        shadow_ray: (shadows && reaches).then_some(shadow_ray),
         in_shadow,
         occluder,
     }
@@ -387,7 +395,7 @@ fn shade<const LAYERS: bool, O: Observer>(
     let lights = model.lights(&scene.lights).iter();
     for (index, (light, out)) in lights.zip(sample.lights.iter_mut()).enumerate() {
         let record = light_terms::<O>(model, accel, vertex, (index, light), v, shadows);
-        sample.rays += u64::from(shadows);
+        sample.rays += u64::from(shadows && record.reaches);
         let (diffuse, specular) = (record.diffuse, record.specular);
         if LAYERS {
             out.unshadowed += (diffuse + specular) * weight;
@@ -395,7 +403,7 @@ fn shade<const LAYERS: bool, O: Observer>(
                 out.occluded_at_primary = record.in_shadow;
             }
         }
-        if !record.in_shadow {
+        if record.reaches && !record.in_shadow {
             colour = model.add_light(colour, ambient, diffuse, specular);
             if LAYERS {
                 out.shadowed += (diffuse + specular) * weight;

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use clap::Args;
 
 use super::parse::*;
-use super::{FrameArgs, ToneArgs};
+use super::{FrameArgs, ToneArgs, ToneCourseArgs};
 use crate::frame::FrameSpec;
 use crate::mistakes::{Bug, Mistakes};
 
@@ -122,4 +122,7 @@ pub struct RelightArgs {
 
     #[command(flatten)]
     pub tone: ToneArgs,
+
+    #[command(flatten)]
+    pub course: ToneCourseArgs,
 }

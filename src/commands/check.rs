@@ -15,6 +15,7 @@ use crate::check::suite;
 use crate::check::summary::{self, candidates_heading, opening};
 use crate::check::{check_image, student_png, CaseReport, Findings};
 use crate::cli::CheckArgs;
+use crate::course::Course;
 use crate::error::Result;
 use crate::mistakes::Bug;
 use crate::output::destination::{refuse_clashes, Destination};
@@ -73,7 +74,7 @@ fn run_image(args: &CheckArgs, image: &std::path::Path) -> Result<bool> {
     refuse_clashes(&inputs, &outputs)?;
     let mut heatmap = args.heatmap.as_deref().map(Destination::open).transpose()?;
     let mut report = args.report.as_deref().map(Destination::open).transpose()?;
-    let input = scene::load_input(args.input.as_deref())?;
+    let input = scene::load_input(args.input.as_deref(), Course::default())?;
     let student = student_png::read(image)?;
     let (case, findings) = check_image(
         &input.scene,

@@ -4,6 +4,7 @@
 use glam::DVec3;
 
 use crate::cli::ExplainArgs;
+use crate::error::Error;
 use crate::error::Result;
 use crate::explain::compare;
 use crate::explain::json::{kind, layers, to_json};
@@ -14,11 +15,20 @@ use crate::output::stdout;
 use crate::scene::{self, Scene};
 
 pub fn run(args: &ExplainArgs) -> Result<()> {
-    let scene::Input { scene, name, .. } = scene::load_input(args.input.as_deref())?;
-    let (x, y) = args.pixel;
+    let course = args.frame.course.course();
     let mistakes = args.mistakes();
+    if !mistakes.is_empty() && !course.is_default() {
+        return Err(Error::Usage(format!(
+            "--bug traces the mistakes of the 2016-17 Tick 2; with --course {course} leave \
+             --bug out (or use --course 2016-17)"
+        )));
+    }
+    let input = scene::load_input(args.input.as_deref(), course)?;
+    input.report_warnings();
+    let scene::Input { scene, name, .. } = input;
+    let (x, y) = args.pixel;
     let e = if mistakes.is_empty() {
-        explain(&Tick, &scene, &args.frame(), x, y)?
+        explain(&course.rules(), &scene, &args.frame(), x, y)?
     } else {
         explain(
             &crate::mistakes::Variant::from(mistakes),

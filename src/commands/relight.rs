@@ -13,7 +13,6 @@ use crate::output::png::encode;
 use crate::relight::{relight, working_bytes, RelightSpec};
 
 pub fn run(args: &RelightArgs) -> Result<()> {
-    let encoding = args.tone.request().encoding()?;
     refuse_clashes(&[&args.input], &[&args.output])?;
     let to_exr = args
         .output
@@ -23,6 +22,17 @@ pub fn run(args: &RelightArgs) -> Result<()> {
         refuse_png_options(args)?;
     }
     let image = input::read_exr(&args.input)?;
+    // A PNG gets the tone map of the year the EXR was rendered under, unless one is asked for.
+    let course = args.course.course.map_or_else(
+        || {
+            image.course().map_err(|msg| Error::Exr {
+                path: args.input.clone(),
+                msg,
+            })
+        },
+        |c| Ok(c.into()),
+    )?;
+    let encoding = args.tone.request(course).encoding()?;
     memory::check(
         working_bytes(image.width * image.height),
         memory::available_bytes(),
@@ -80,7 +90,7 @@ pub fn run(args: &RelightArgs) -> Result<()> {
 fn refuse_png_options(args: &RelightArgs) -> Result<()> {
     let tone = &args.tone;
     let given = [
-        (tone.tonemap != crate::cli::ToneMapArg::Tick, "--tonemap"),
+        (tone.tonemap.is_some(), "--tonemap"),
         (tone.exposure != 0.0, "--exposure"),
         (tone.png_depth != 8, "--png-depth"),
         (tone.dither, "--dither"),

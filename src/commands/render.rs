@@ -17,7 +17,8 @@ use crate::scene;
 
 pub fn run(args: &RenderArgs) -> Result<()> {
     let started = Instant::now();
-    let input = scene::load_input(args.input.as_deref())?;
+    let input = scene::load_input(args.input.as_deref(), args.frame.course.course())?;
+    input.report_warnings();
     let load_time = started.elapsed();
     let scene = &input.scene;
     let plan = RenderPlan::new(&args.request(), scene)?;

@@ -6,7 +6,9 @@ use std::collections::HashMap;
 use glam::DVec3;
 
 use crate::aov;
+use crate::course::Course;
 use crate::input::attribute::Attribute;
+use crate::output::exr::COURSE_ATTRIBUTE;
 
 /// One channel.
 #[derive(Debug, Clone, PartialEq)]
@@ -109,6 +111,21 @@ impl Image {
         self.attributes
             .iter()
             .find_map(|(n, a)| (n == name).then_some(a))
+    }
+
+    /// The course year a whitted EXR was rendered under (`render/course`; none recorded is
+    /// the default 2016-17), or the year's name it gives that this version does not know.
+    pub fn course(&self) -> std::result::Result<Course, String> {
+        match self.attribute(COURSE_ATTRIBUTE) {
+            None => Ok(Course::default()),
+            Some(Attribute::Text(name)) => Course::from_name(name).ok_or_else(|| {
+                format!(
+                    "its {COURSE_ATTRIBUTE} is '{name}', which is none of {}",
+                    Course::names()
+                )
+            }),
+            Some(other) => Err(format!("its {COURSE_ATTRIBUTE} is not text: {other}")),
+        }
     }
 
     /// The channels grouped into layers, in name order with `beauty` first.

@@ -265,6 +265,7 @@ impl Model for Variant {
 
     fn specular(
         &self,
+        light: &PointLight,
         illumination: DVec3,
         ks: f64,
         phong: f64,
@@ -277,7 +278,7 @@ impl Model for Variant {
         let specular = if gated {
             DVec3::ZERO
         } else {
-            Tick.specular(illumination, ks, phong, colour, n_dot_l)
+            Tick.specular(light, illumination, ks, phong, colour, n_dot_l)
         };
         if self.has(Bug::SpecularObjectColour) {
             specular * colour
@@ -286,7 +287,7 @@ impl Model for Variant {
         }
     }
 
-    fn shadow_ray(&self, p: DVec3, l: DVec3) -> Ray {
+    fn shadow_ray(&self, p: DVec3, l: DVec3, _n: DVec3) -> Ray {
         if self.has(Bug::NoShadowBias) {
             Ray::new(p, l)
         } else {

@@ -9,6 +9,7 @@ use exr::meta::header::Header;
 use glam::DVec3;
 
 use crate::aov::{Kind, Layer, Z_MISS};
+use crate::course::Course;
 use crate::openexr::FlatImage;
 use crate::output::exr_block;
 use crate::output::exr_block::StoredChannel;
@@ -84,7 +85,13 @@ pub struct ExrMetadata {
     pub identity: String,
     /// A fingerprint of the scene file's bytes.
     pub scene: String,
+    /// The course year whose rules made the pixels: recorded as `render/course` unless it is
+    /// the default 2016-17 (whose files stay as they were before there were years).
+    pub course: Course,
 }
+
+/// The header attribute that names the course year of a render (docs/aovs.md).
+pub const COURSE_ATTRIBUTE: &str = "render/course";
 
 /// The sums a reader can check the layers against (docs/aovs.md, Invariants).
 pub const INVARIANTS: &str = "RGB = direct + reflected; reflected = sum_k reflected_k; \
@@ -141,6 +148,12 @@ pub fn header(
     ];
     for (name, value) in custom {
         attributes.other.insert(text(name), value);
+    }
+    if !metadata.course.is_default() {
+        attributes.other.insert(
+            text(COURSE_ATTRIBUTE),
+            AttributeValue::Text(text(metadata.course.name())),
+        );
     }
 
     let mut channels: Vec<(String, StoredChannel)> = layers

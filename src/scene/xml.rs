@@ -7,6 +7,7 @@
 //! `elements` has one function per element.
 
 mod attributes;
+pub mod course;
 mod elements;
 mod key;
 mod scan;
@@ -54,8 +55,13 @@ pub fn read_file(path: &Path) -> Result<Vec<u8>> {
 
 /// Parses a scene from raw bytes; `file` is the name used in error messages.
 pub fn parse_bytes(file: &str, bytes: &[u8]) -> Result<Scene> {
+    parse_str(file, utf8(file, bytes)?)
+}
+
+/// The scene file's text, or a located error where it stops being UTF-8.
+pub fn utf8<'a>(file: &str, bytes: &'a [u8]) -> Result<&'a str> {
     match std::str::from_utf8(bytes) {
-        Ok(text) => parse_str(file, text),
+        Ok(text) => Ok(text),
         Err(e) => {
             let valid = &bytes[..e.valid_up_to()];
             // The prefix is valid UTF-8 by construction, so this cannot fail.

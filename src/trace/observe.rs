@@ -47,6 +47,9 @@ pub struct LightRecord {
     pub r_dot_v: f64,
     pub diffuse: DVec3,
     pub specular: DVec3,
+    /// Whether the light reaches the point at all (`Model::reaches`): where it does not, its
+    /// terms are zero and no shadow ray is cast.
+    pub reaches: bool,
     /// The shadow ray as spawned, if shadows are tested, and whether something blocks it.
     pub shadow_ray: Option<Ray>,
     pub in_shadow: bool,

@@ -16,7 +16,6 @@ use crate::aov;
 use crate::explain::{explain, json::to_json};
 use crate::input::Image;
 use crate::memory;
-use crate::model::Tick;
 
 const PAGE: &str = include_str!("page/index.html");
 const STYLE: &str = include_str!("page/style.css");
@@ -197,7 +196,8 @@ fn trees(content: &Content, x: usize, y: usize) -> Reply {
     if x >= tracer.frame.width || y >= tracer.frame.height {
         return text(404, "no such pixel");
     }
-    let reference = match explain(&Tick, &tracer.scene, &tracer.frame, x, y) {
+    let rules = tracer.frame.course.rules();
+    let reference = match explain(&rules, &tracer.scene, &tracer.frame, x, y) {
         Ok(e) => to_json(&e, &tracer.scene, crate::mistakes::Mistakes::NONE),
         Err(e) => return text(400, &e.to_string()),
     };

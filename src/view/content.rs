@@ -8,6 +8,7 @@ use std::path::{Path, PathBuf};
 use serde_json::Value;
 
 use crate::check::{check_image, json::case_json, student_png};
+use crate::course::Course;
 use crate::error::{Error, Result};
 use crate::fingerprint::fingerprint;
 use crate::frame::FrameSpec;
@@ -133,7 +134,7 @@ fn load_view(image: &Path, reference: Option<&Path>, scene: Option<&Path>) -> Re
 }
 
 fn load_check(image: &Path, scene: Option<&Path>, bounces: u32, tolerance: u8) -> Result<Content> {
-    let input = scene::load_input(scene)?;
+    let input = scene::load_input(scene, Course::default())?;
     let student = student_png::read(image)?;
     let (case, findings) = check_image(&input.scene, &input.name, bounces, tolerance, student)?;
     let (width, height) = (case.student.width, case.student.height);
@@ -179,10 +180,16 @@ fn text_attribute<'a>(image: &'a Image, name: &str) -> Option<&'a str> {
 /// is given, and then only as a course render of that size.
 fn recorded_tracer(image: &Image, path: &Path, scene: Option<&Path>) -> Result<Option<Tracer>> {
     let recorded = text_attribute(image, "render/scene");
+    // The year the EXR was rendered under: its rules and scene format trace its trees.
+    let course = image.course().map_err(|msg| Error::Exr {
+        path: path.to_path_buf(),
+        msg,
+    })?;
+    let embedded = course.default_scene().0.as_bytes();
     let input = match (scene, recorded) {
-        (Some(scene), _) => scene::load_input(Some(scene))?,
-        (None, Some(print)) if print == fingerprint(&[scene::EMBEDDED_TICK2.as_bytes()]) => {
-            scene::load_input(None)?
+        (Some(scene), _) => scene::load_input(Some(scene), course)?,
+        (None, Some(print)) if print == fingerprint(&[embedded]) => {
+            scene::load_input(None, course)?
         }
         (None, _) => return Ok(None),
     };
@@ -210,7 +217,10 @@ fn recorded_tracer(image: &Image, path: &Path, scene: Option<&Path>) -> Result<O
         u32::try_from(window.max[axis] - window.min[axis] + 1)
             .map_err(|_| Error::Usage(format!("{}: no render has that size", path.display())))
     };
-    let frame = FrameSpec::tick(side(0)?, side(1)?, bounces, shadows);
+    let frame = FrameSpec {
+        course,
+        ..FrameSpec::tick(side(0)?, side(1)?, bounces, shadows)
+    };
     crate::frame::Frame::new(&input.scene, &frame)?;
     let data = image.data_window;
     let offset = |axis: usize| u32::try_from(data.min[axis] - window.min[axis]).ok();

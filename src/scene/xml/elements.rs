@@ -216,7 +216,12 @@ impl SceneBuilder {
         Ok(())
     }
 
-    fn check_light_name(&mut self, source: &Source, name: &str, offset: usize) -> Result<()> {
+    pub(super) fn check_light_name(
+        &mut self,
+        source: &Source,
+        name: &str,
+        offset: usize,
+    ) -> Result<()> {
         let mut chars = name.chars();
         let well_formed = chars.next().is_some_and(|c| c.is_ascii_alphabetic())
             && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
