@@ -21,8 +21,9 @@ pub const BACKGROUND: DVec3 = DVec3::splat(0.1);
 /// operation order; an implementation overrides only the rules it changes.
 pub trait Model: Sync {
     /// Whether the hierarchy's exactness argument (`accel/margin.rs`) covers this model's
-    /// hits: it assumes the near sphere root and planes ahead of the ray. A model that
-    /// accepts other hits is rendered with brute force.
+    /// hits: it assumes sphere hits at a root of the course's quadratic (near, or far as the
+    /// later years take it) and planes ahead of the ray. A model that accepts other hits is
+    /// rendered with brute force.
     fn hierarchy_exact(&self) -> bool {
         true
     }

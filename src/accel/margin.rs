@@ -22,7 +22,8 @@ pub(super) const CONDITIONING_BOUND: f64 = 1.0 / (1u64 << 23) as f64;
 /// distance from C to the ray's line, so a reported hit (disc >= 0) needs
 /// `h^2 <= r^2 + E`, E = |err| / (4a) <= 16 e (|w|^2 + r^2) (the renderer's rays are unit,
 /// a = 1 to within 3e). The reported root then lies sqrt(disc)/(2a) before the closest
-/// approach, so the reported point Q = O + sD is at distance <= sqrt(r^2 + E) + (rounding of
+/// approach (the far root of the later course years, `(-b + sqrt(disc)) / 2a`, as far after
+/// it: the bound below holds for either), so the reported point Q = O + sD is at distance <= sqrt(r^2 + E) + (rounding of
 /// s, a few e |w|) from C, and sqrt(r^2 + E) <= r + sqrt(E) <= r + 4 sqrt(e) (|w| + r). With
 /// sqrt(e) = 1.05e-8, every reported point is within
 /// r + 4.3e-8 (|w| + r) + (a few e |w|) < r + 2^-23 wmax

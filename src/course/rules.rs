@@ -112,6 +112,32 @@ mod tests {
     }
 
     #[test]
+    fn the_2016_17_rules_render_what_tick_renders_on_every_pixel() {
+        // `render` runs `Tick` for 2016-17 (the same code as before there were years); the
+        // data-driven rules, which `explain` and the viewer trace, must agree with it.
+        use crate::accel::Accelerator;
+        use crate::frame::{Frame, FrameSpec};
+        use crate::render::trace_pixels;
+        let scene =
+            crate::scene::parse_str("tick2.xml", crate::scene::EMBEDDED_TICK2).expect("tick2");
+        let frame = Frame::new(&scene, &FrameSpec::tick(64, 48, 3, true)).expect("frame");
+        let accel = Accelerator::build(&scene.objects);
+        let pixels: Vec<(u32, u32)> = (0..48).flat_map(|y| (0..64).map(move |x| (x, y))).collect();
+        let tick =
+            trace_pixels::<true, _>(&Tick, &scene, &accel, &frame, &pixels, |s| format!("{s:?}"));
+        let rules = trace_pixels::<true, _>(
+            &Course::Y2016.rules(),
+            &scene,
+            &accel,
+            &frame,
+            &pixels,
+            |s| format!("{s:?}"),
+        );
+        assert_eq!(tick.len(), 64 * 48);
+        assert_eq!(tick, rules);
+    }
+
+    #[test]
     fn later_years_gate_on_n_dot_l_and_move_the_shadow_ray_along_n() {
         let rules = Course::Y2020.rules();
         assert!(!rules.reaches(-1e-300));
