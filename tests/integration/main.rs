@@ -4,6 +4,7 @@
 mod check;
 mod cli_errors;
 mod common;
+mod courses;
 mod determinism;
 mod differential;
 mod explain;
