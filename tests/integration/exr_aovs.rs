@@ -804,3 +804,87 @@ fn the_openexr_library_reads_every_codec_to_the_same_values() {
         String::from_utf8_lossy(&run.stderr)
     );
 }
+
+/// A later year's render: its layers still add up to the beauty (the N.L gate and the
+/// doubled light colour land in the light and specular layers, not in a layer of their own),
+/// the header names the year, and `tonemap` of the EXR gives the year's PNG.
+#[test]
+fn a_later_year_s_layers_add_up_and_its_header_names_the_year() {
+    use exr::prelude::AttributeValue;
+    let dir = tempfile::tempdir().expect("tempdir");
+    let exr_path = render_exr(
+        dir.path(),
+        &scene("courses/2021-24/test1.xml"),
+        "y.exr",
+        &["--course", "2021-22"],
+    );
+    let png = whitted(
+        dir.path(),
+        &[
+            "render",
+            "--course",
+            "2021-22",
+            "-i",
+            s(&scene("courses/2021-24/test1.xml")),
+            "-o",
+            "render.png",
+        ],
+    );
+    assert!(png.status.success(), "{}", stderr(&png));
+    assert_sum(&exr_path, &["direct", "reflected"], &exr_path, &[""], "y1");
+    assert_sum(
+        &exr_path,
+        &["ambient", "light_0", "light_1", "background"],
+        &exr_path,
+        &[""],
+        "y3",
+    );
+    assert_sum(
+        &exr_path,
+        &["ambient", "diffuse", "specular", "background"],
+        &exr_path,
+        &[""],
+        "y4",
+    );
+    let exr = read_exr(&exr_path);
+    assert_eq!((exr.width, exr.height), (800, 600));
+    let course = exr
+        .layer
+        .other
+        .iter()
+        .chain(exr.image.other.iter())
+        .find(|(k, _)| **k == *"render/course")
+        .map(|(_, v)| v.clone());
+    assert_eq!(course, Some(AttributeValue::Text("2021-22".into())));
+    // The background is the year's 0.001 (times the mirrors' r = 0.3 on the way) where a ray
+    // leaves the scene, 0.1 in 2016-17.
+    let mut seen: Vec<f32> = (0..exr.height)
+        .flat_map(|y| (0..exr.width).map(move |x| (x, y)))
+        .map(|(x, y)| exr.at("background.R", x, y))
+        .filter(|&v| v > 0.0)
+        .collect();
+    seen.sort_by(f32::total_cmp);
+    seen.dedup();
+    // test1's plane fills the frame: rays leave the scene after one or two mirrors.
+    let shares: Vec<f64> = seen.iter().map(|&v| f64::from(v) / 0.001).collect();
+    assert_eq!(shares.len(), 2, "{seen:?}");
+    assert!(
+        (shares[0] - 0.09).abs() < 1e-6 && (shares[1] - 0.3).abs() < 1e-6,
+        "{seen:?}"
+    );
+    // The year's tone map is what `tonemap` applies to this EXR by default.
+    let run = whitted(dir.path(), &["tonemap", s(&exr_path), "-o", "again.png"]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    assert_eq!(
+        read_png(&dir.path().join("again.png")).data,
+        read_png(&dir.path().join("render.png")).data
+    );
+    // A 2016-17 file records no year: its header is as it was before there were years.
+    let old = read_exr(tick2_exr());
+    assert!(!old
+        .layer
+        .other
+        .iter()
+        .chain(old.image.other.iter())
+        .any(|(k, _)| *k == *"render/course"));
+}
