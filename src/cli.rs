@@ -106,13 +106,24 @@ pub struct RegionsArgs {
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=65_535))]
     pub parts: u32,
 
-    /// Image width in pixels
-    #[arg(long, value_name = "W", default_value_t = 640, value_parser = parse_side)]
-    pub width: u32,
+    /// Image width in pixels [default: the course's, 640 (800 from 2021-22)]
+    #[arg(long, value_name = "W", value_parser = parse_side)]
+    pub width: Option<u32>,
 
-    /// Image height in pixels
-    #[arg(long, value_name = "H", default_value_t = 480, value_parser = parse_side)]
-    pub height: u32,
+    /// Image height in pixels [default: the course's, 480 (600 from 2021-22)]
+    #[arg(long, value_name = "H", value_parser = parse_side)]
+    pub height: Option<u32>,
+
+    #[command(flatten)]
+    pub course: CourseArgs,
+}
+
+impl RegionsArgs {
+    /// The frame's size: as given, else the course year's.
+    pub fn size(&self) -> (u32, u32) {
+        let (width, height) = self.course.course().size();
+        (self.width.unwrap_or(width), self.height.unwrap_or(height))
+    }
 }
 
 #[derive(Debug, Clone, Args)]
@@ -221,9 +232,13 @@ pub struct SheetArgs {
     #[arg(long, value_name = "W", default_value_t = 320, value_parser = clap::value_parser!(u32).range(16..=4096))]
     pub tile_width: u32,
 
-    /// Tone map for colour layers
-    #[arg(long = "tonemap", value_name = "OP", value_enum, default_value_t = ToneMapArg::Clamp)]
-    pub tonemap: ToneMapArg,
+    /// Tone map for colour layers [default: clamp, or the course year's for a later year's
+    /// EXR or with --course]
+    #[arg(long = "tonemap", value_name = "OP", value_enum)]
+    pub tonemap: Option<ToneMapArg>,
+
+    #[command(flatten)]
+    pub course: ToneCourseArgs,
 
     /// Exposure in stops for colour layers
     #[arg(long, value_name = "EV", default_value_t = 0.0, allow_negative_numbers = true,
@@ -451,11 +466,20 @@ impl DiffArgs {
 }
 
 impl SheetArgs {
-    pub fn options(&self) -> SheetOptions {
+    /// The sheet's options for an image rendered under `recorded` (the year its header names):
+    /// `--tonemap`, else the year's tone map where a year is asked for or recorded, else clamp.
+    pub fn options(&self, recorded: Course) -> SheetOptions {
+        let course = self.course.course.map(Course::from).unwrap_or(recorded);
+        let tonemap = match (self.tonemap, self.course.course) {
+            (Some(op), _) => op.into(),
+            (None, Some(_)) => course.tonemap(),
+            (None, None) if !course.is_default() => course.tonemap(),
+            (None, None) => crate::tonemap::ToneMap::Clamp,
+        };
         SheetOptions {
             columns: self.columns,
             tile_width: self.tile_width,
-            tonemap: self.tonemap.into(),
+            tonemap,
             exposure: self.exposure,
         }
     }
@@ -505,5 +529,54 @@ mod tests {
             .expect("parses");
         let (_, relight) = matches.subcommand().expect("relight");
         assert_eq!(relight.get_one::<f64>("ambient"), Some(&-1.0));
+    }
+
+    #[test]
+    fn a_course_year_chooses_the_size_and_the_tone_map_unless_they_are_given() {
+        use crate::tonemap::ToneMap;
+        let render = |args: &[&str]| {
+            let matches = Cli::command_line()
+                .try_get_matches_from(args)
+                .expect("parses");
+            let (_, sub) = matches.subcommand().expect("render");
+            RenderArgs::from_arg_matches(sub).expect("render args")
+        };
+        let later = render(&["whitted", "render", "--course", "2023-24"]).request();
+        assert_eq!((later.frame.width, later.frame.height), (800, 600));
+        assert_eq!(later.tone.tonemap, ToneMap::Sigmoid);
+        assert_eq!(later.frame.course, Course::Y2023);
+        let given = render(&[
+            "whitted",
+            "render",
+            "--course",
+            "2022-23",
+            "--width",
+            "64",
+            "--tonemap",
+            "aces",
+        ])
+        .request();
+        assert_eq!((given.frame.width, given.frame.height), (64, 600));
+        assert_eq!(given.tone.tonemap, ToneMap::Aces);
+        assert_eq!(given.frame.course, Course::Y2021);
+        let default = render(&["whitted", "render"]).request();
+        assert_eq!((default.frame.width, default.frame.height), (640, 480));
+        assert_eq!(default.tone.tonemap, ToneMap::Tick);
+
+        let sheet = |args: &[&str], recorded: Course| {
+            let matches = Cli::command_line()
+                .try_get_matches_from(args)
+                .expect("parses");
+            let (_, sub) = matches.subcommand().expect("sheet");
+            SheetArgs::from_arg_matches(sub)
+                .expect("sheet args")
+                .options(recorded)
+                .tonemap
+        };
+        let base = ["whitted", "sheet", "a.exr", "-o", "s.png"];
+        assert_eq!(sheet(&base, Course::Y2016), ToneMap::Clamp);
+        assert_eq!(sheet(&base, Course::Y2020), ToneMap::Sigmoid);
+        let asked = [&base[..], &["--course", "2016-17"]].concat();
+        assert_eq!(sheet(&asked, Course::Y2020), ToneMap::Tick);
     }
 }

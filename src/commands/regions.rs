@@ -1,4 +1,4 @@
-//! `whitted regions --parts N [--width W --height H]`: one `--region` value per line, so a
+//! `whitted regions --parts N [--width W --height H] [--course YEAR]`: one `--region` value per line, so a
 //! scheduler's array index can pick its line (`sed -n "$((i + 1))p"`).
 
 use crate::cli::RegionsArgs;
@@ -7,7 +7,8 @@ use crate::frame::balanced_regions;
 use crate::output::stdout;
 
 pub fn run(args: &RegionsArgs) -> Result<()> {
-    let lines: Vec<String> = balanced_regions(args.width, args.height, args.parts)?
+    let (width, height) = args.size();
+    let lines: Vec<String> = balanced_regions(width, height, args.parts)?
         .iter()
         .map(|r| format!("{},{},{},{}", r.x0, r.y0, r.x1, r.y1))
         .collect();
