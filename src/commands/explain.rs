@@ -4,7 +4,9 @@
 use glam::DVec3;
 
 use crate::cli::ExplainArgs;
+use crate::course::Course;
 use crate::error::Error;
+use crate::tonemap::ToneMap;
 use crate::error::Result;
 use crate::explain::compare;
 use crate::explain::json::{kind, layers, to_json};
@@ -50,12 +52,18 @@ pub fn run(args: &ExplainArgs) -> Result<()> {
         // serde_json cannot fail to print a Value it built itself.
         serde_json::to_string_pretty(&to_json(&e, &scene, mistakes)).unwrap_or_default()
     } else {
-        tree(&e, &scene, &name, mistakes)
+        tree(&e, &scene, &name, mistakes, course)
     };
     stdout::print_line(&text)
 }
 
-fn tree(e: &Explanation, scene: &Scene, name: &str, mistakes: Mistakes) -> String {
+fn tree(
+    e: &Explanation,
+    scene: &Scene,
+    name: &str,
+    mistakes: Mistakes,
+    course: Course,
+) -> String {
     let model = match mistakes.ids().join(", ") {
         ids if ids.is_empty() => String::new(),
         ids => format!(" as a program with the mistake {ids} traces it"),
@@ -90,6 +98,10 @@ fn tree(e: &Explanation, scene: &Scene, name: &str, mistakes: Mistakes) -> Strin
         for light in &vertex.lights {
             let l = &light.record;
             let shadow = match (&l.shadow_ray, l.occluder) {
+                _ if !l.reaches => {
+                    "N.L < 0: the light does not reach this side, adds nothing and casts no shadow ray"
+                        .to_string()
+                }
                 (None, _) => "shadows off: lit".to_string(),
                 (Some(ray), Some(hit)) => format!(
                     "shadow ray from {}: blocked by object {} ({}) at s = {}: in shadow, adds nothing",
@@ -128,8 +140,12 @@ fn tree(e: &Explanation, scene: &Scene, name: &str, mistakes: Mistakes) -> Strin
         out += &format!("  {line}\n");
     }
     let stored = e.stored.map(f64::from);
+    let byte = match course.tonemap() {
+        ToneMap::Sigmoid => "the PNG byte is the course's sigmoid tone map of it",
+        _ => "the tick PNG byte is floor(255 * clamp)",
+    };
     out += &format!(
-        "\nbeauty = {} (stored in the EXR as {}; the tick PNG byte is floor(255 * clamp))\n",
+        "\nbeauty = {} (stored in the EXR as {}; {byte})\n",
         vector(e.sample.beauty),
         vector(DVec3::from_array(stored))
     );

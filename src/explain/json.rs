@@ -59,6 +59,7 @@ pub fn to_json(e: &Explanation, scene: &Scene, mistakes: Mistakes) -> Value {
                         "r_dot_v": l.r_dot_v,
                         "diffuse": array(l.diffuse),
                         "specular": array(l.specular),
+                        "reaches": l.reaches,
                         "shadow_tested": l.shadow_ray.is_some(),
                         "in_shadow": l.in_shadow,
                         "shadow_origin": l.shadow_ray.map(|r| array(r.origin)),
