@@ -154,6 +154,10 @@ impl PixelAccumulator {
     /// pixel keeps. Values are written straight into the sums wherever they replace them (a
     /// pixel's first sample, the nearest-centre sample): at one sample per pixel that is
     /// every value, with nothing added and nothing copied twice.
+    ///
+    /// Always inlined: the render loop is compiled once per course model, and a function
+    /// called from two loops is otherwise left out of line (tick2 +1.4% instructions).
+    #[inline(always)]
     pub fn add(&mut self, sample: &Sample, nearest_centre: bool) {
         self.beauty += sample.beauty;
         let first = self.samples == 0;
@@ -185,6 +189,7 @@ impl PixelAccumulator {
     /// values is +0.0: `add` starts from `v1` instead, and adding the channel's `zero` here
     /// gives the same value (the two running sums differ at most in the sign of a zero, which
     /// adding +0.0 removes). Branch-free at one sample, so that it vectorises.
+    #[inline(always)]
     pub fn finish(&mut self, beauty: &mut DVec3, out: &mut [f32]) -> u64 {
         let count = f64::from(self.samples.max(1));
         *beauty = self.beauty / count;

@@ -40,7 +40,11 @@ pub fn load_input(path: Option<&std::path::Path>, course: Course) -> crate::Resu
         None => embedded.as_bytes().to_vec(),
     };
     let name = path.map_or(embedded_name.to_string(), |p| p.display().to_string());
-    let (scene, warnings) = parse_for_course(&name, &bytes, course)?;
+    let (scene, mut warnings) = parse_for_course(&name, &bytes, course)?;
+    if path.is_none() {
+        // The course's own file, read as the course read it: nothing for the user to fix.
+        warnings.clear();
+    }
     Ok(Input {
         scene,
         bytes,

@@ -33,25 +33,16 @@ impl ToneMap {
     /// Display values in [0, 1] for linear `v` (exposure already applied). NaN counts as 0 and
     /// negative values as 0, so that no curve maps a negative input to a bright output.
     pub fn apply(self, v: DVec3) -> DVec3 {
-        if self == ToneMap::Sigmoid {
-            // Exact to the course's arithmetic, so not bounded first: its own NaN and
-            // infinity handling is part of the image.
-            return v.to_array().map(sigmoid_gamma).into();
-        }
-        let v = DVec3::from_array(v.to_array().map(|c| {
-            if c.is_nan() {
-                0.0
-            } else {
-                c.clamp(0.0, MAX_INPUT)
-            }
-        }));
+        let bounded = bounded(v);
         match self {
-            ToneMap::Tick | ToneMap::Clamp => v.clamp(DVec3::ZERO, DVec3::ONE),
-            ToneMap::Reinhard => v / (DVec3::ONE + v),
-            ToneMap::Aces => v.to_array().map(aces).into(),
-            ToneMap::Agx => agx(v),
-            ToneMap::Neutral => neutral(v),
-            ToneMap::Sigmoid => unreachable!("mapped above"),
+            ToneMap::Tick | ToneMap::Clamp => bounded.clamp(DVec3::ZERO, DVec3::ONE),
+            ToneMap::Reinhard => bounded / (DVec3::ONE + bounded),
+            ToneMap::Aces => bounded.to_array().map(aces).into(),
+            ToneMap::Agx => agx(bounded),
+            ToneMap::Neutral => neutral(bounded),
+            // The course's arithmetic on the exact value: its own NaN and infinity handling is
+            // part of the image.
+            ToneMap::Sigmoid => v.to_array().map(sigmoid_gamma).into(),
         }
     }
 
@@ -60,6 +51,18 @@ impl ToneMap {
     pub fn srgb_encoded(self) -> bool {
         !matches!(self, ToneMap::Tick | ToneMap::Sigmoid)
     }
+}
+
+/// `v` with NaN as 0 and every channel within [0, `MAX_INPUT`]: what the display operators
+/// take.
+fn bounded(v: DVec3) -> DVec3 {
+    DVec3::from_array(v.to_array().map(|c| {
+        if c.is_nan() {
+            0.0
+        } else {
+            c.clamp(0.0, MAX_INPUT)
+        }
+    }))
 }
 
 /// The factor `2^EV` an exposure of `ev` stops multiplies linear values by: computed once per

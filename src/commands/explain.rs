@@ -6,7 +6,6 @@ use glam::DVec3;
 use crate::cli::ExplainArgs;
 use crate::course::Course;
 use crate::error::Error;
-use crate::tonemap::ToneMap;
 use crate::error::Result;
 use crate::explain::compare;
 use crate::explain::json::{kind, layers, to_json};
@@ -15,6 +14,7 @@ use crate::mistakes::Mistakes;
 use crate::model::Tick;
 use crate::output::stdout;
 use crate::scene::{self, Scene};
+use crate::tonemap::ToneMap;
 
 pub fn run(args: &ExplainArgs) -> Result<()> {
     let course = args.frame.course.course();
@@ -57,13 +57,7 @@ pub fn run(args: &ExplainArgs) -> Result<()> {
     stdout::print_line(&text)
 }
 
-fn tree(
-    e: &Explanation,
-    scene: &Scene,
-    name: &str,
-    mistakes: Mistakes,
-    course: Course,
-) -> String {
+fn tree(e: &Explanation, scene: &Scene, name: &str, mistakes: Mistakes, course: Course) -> String {
     let model = match mistakes.ids().join(", ") {
         ids if ids.is_empty() => String::new(),
         ids => format!(" as a program with the mistake {ids} traces it"),

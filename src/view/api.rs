@@ -256,9 +256,15 @@ fn describe(now: &Snapshot) -> serde_json::Value {
         .into_iter()
         .filter_map(|l| aov::light_of_layer(&l).map(str::to_string))
         .collect();
+    // The tone map the image's course year writes its PNG with: what the page starts on.
+    let tonemap = match image.course().map(|c| c.tonemap()) {
+        Ok(crate::tonemap::ToneMap::Sigmoid) => "sigmoid",
+        _ => "tick",
+    };
     json!({
         "width": image.width,
         "height": image.height,
+        "tonemap": tonemap,
         "layers": layers,
         "lights": lights,
         "reference": content.reference.is_some(),

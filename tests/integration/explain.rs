@@ -96,3 +96,58 @@ fn explain_traces_a_mistake_as_the_program_with_it_would() {
         stderr(&run)
     );
 }
+
+/// Under a later year the tree is that year's: its beauty is what `render --course` stores, and
+/// a light the N.L gate keeps out has no terms and no shadow ray.
+#[test]
+fn a_later_year_s_tree_is_that_year_s_render() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let test2 = scene("courses/2021-24/test2.xml");
+    let course = ["--course", "2021-22", "--width", "160", "--height", "120"];
+    let exr = read_exr(&render_exr(d, &test2, "t.exr", &course));
+    let mut gated = 0;
+    for (x, y) in [(80, 10), (20, 100), (80, 60), (120, 70)] {
+        let pixel = format!("{x},{y}");
+        let mut args = vec!["explain", "-i", s(&test2), "--pixel", &pixel, "--json"];
+        args.extend(course);
+        let run = whitted(d, &args);
+        assert!(run.status.success(), "{}", stderr(&run));
+        let json: serde_json::Value = serde_json::from_slice(&run.stdout).expect("json");
+        for (c, name) in ["R", "G", "B"].iter().enumerate() {
+            let stored = f64::from(exr.at(name, x as usize, y as usize));
+            assert_eq!(
+                json["beauty"][c].as_f64(),
+                Some(stored),
+                "({x}, {y}) {name}"
+            );
+        }
+        let lights = json["vertices"][0]["lights"].as_array().expect("lights");
+        for light in lights.iter().filter(|l| l["reaches"] == false) {
+            gated += 1;
+            assert_eq!(light["shadow_tested"], false, "{light}");
+            assert_eq!(
+                light["diffuse"],
+                serde_json::json!([0.0, 0.0, 0.0]),
+                "{light}"
+            );
+        }
+    }
+    // Light 0 sits above the ceiling plane: the ceiling's lower side never sees it.
+    assert!(gated > 0);
+    // The mistakes are 2016-17's: asked for under a later year, a clear refusal.
+    let refused = whitted(
+        d,
+        &[
+            "explain",
+            "--pixel",
+            "1,1",
+            "--course",
+            "2020-21",
+            "--bug",
+            "no-ambient",
+        ],
+    );
+    assert_eq!(refused.status.code(), Some(2));
+    assert!(stderr(&refused).contains("--bug"), "{}", stderr(&refused));
+}

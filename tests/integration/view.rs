@@ -763,3 +763,35 @@ fn ctrl_c_while_replies_compute_leaves_no_redirect_page() {
     assert_eq!(status.code(), Some(130));
     assert_eq!(pages(), 0, "the redirect page was left behind");
 }
+
+/// A later year's EXR: the page starts on the year's tone map, and a click's ray tree is
+/// traced under the year's rules from the embedded scene the EXR records (no `-i` needed).
+#[test]
+fn a_later_year_s_exr_opens_on_its_tone_map_and_traces_its_rules() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let run = whitted(
+        d,
+        &[
+            "render", "-q", "--course", "2021-22", "--width", "80", "--height", "60", "--no-png",
+            "--exr", "y.exr",
+        ],
+    );
+    assert!(run.status.success(), "{}", stderr(&run));
+    let exr = read_exr(&d.join("y.exr"));
+    let viewer = Viewer::start(d, &d.join("y.exr"));
+    let meta = viewer.json("/api/image");
+    assert_eq!(meta["tonemap"], "sigmoid");
+    assert_eq!(meta["trees"], true);
+    let trees = viewer.json("/api/trees?x=40&y=30");
+    for (c, name) in ["R", "G", "B"].iter().enumerate() {
+        assert_eq!(
+            trees["reference"]["beauty"][c].as_f64(),
+            Some(f64::from(exr.at(name, 40, 30))),
+            "{name}"
+        );
+    }
+    drop(viewer);
+    let old = Viewer::start(d, &small_render(d));
+    assert_eq!(old.json("/api/image")["tonemap"], "tick");
+}

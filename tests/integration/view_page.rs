@@ -356,7 +356,9 @@ fn a_png_opens_with_its_own_bytes_and_the_tone_maps_are_the_clis() {
     let exr = small_render(d);
     let viewer = Viewer::start(d, &exr);
     browser.open(viewer.url());
-    for op in ["tick", "clamp", "reinhard", "aces", "agx", "neutral"] {
+    for op in [
+        "tick", "clamp", "reinhard", "aces", "agx", "neutral", "sigmoid",
+    ] {
         browser.script(
             "return window.whitted.setToneMap(arguments[0], 0.7)",
             json!([op]),

@@ -65,7 +65,8 @@ function zoomAtCentre(factor) {
 }
 function reset() {
   Object.assign(state, { gains: new Map(), shadows: new Map(), ambient: 1, background: 1 });
-  $("tonemap").value = "tick";
+  // The course year's own PNG: `sigmoid` for a later year's EXR (`render/course`).
+  $("tonemap").value = state.meta.tonemap || "tick";
   relightPanel();
   state.fitted = true;
   return setExposure(0);
@@ -99,6 +100,7 @@ const KEYS = {
 
 function wireControls() {
   for (const op of TONEMAP.names) $("tonemap").append(new Option(op, op));
+  $("tonemap").value = state.meta.tonemap || "tick";
   for (const map of COLORMAP.names) $("colormap").append(new Option(map, map));
   const compare = $("compare");
   compare.append(new Option("the image", "a"), new Option("the reference", "b"));

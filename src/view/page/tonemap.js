@@ -1,6 +1,7 @@
 // ---- tone maps: docs/tonemap.md, evaluated as src/tonemap.rs evaluates them ----
 // One path for every pixel the page shows (the view, the thumbnails, the saved PNG): bound
-// the input, apply the operator, sRGB-encode (all but `tick`), quantise as the PNG writer
+// the input, apply the operator, sRGB-encode (all but `tick` and `sigmoid`, the course's),
+// quantise as the PNG writer
 // does. A browser test compares it with `whitted tonemap` for every operator.
 "use strict";
 
@@ -49,6 +50,13 @@ const TONEMAP = (() => {
     const g = 1 - 1 / (0.15 * (peak - newPeak) + 1);
     for (let c = 0; c < 3; c++) v[c] = v[c] * (newPeak / peak) * (1 - g) + newPeak * g;
   }
+  /** The course's own from 2018-19 (docs/courses.md), on the exact value: NaN, infinite or
+   * negative input gives 0, as the course's arithmetic does. */
+  const sigmoid = (x) => {
+    const p = Math.pow(x, 1.3);
+    const g = Math.pow(p * (1 / (p + Math.pow(0.5 / 2, 1.3))), 1 / 2.2);
+    return Number.isNaN(g) ? 0 : clamp01(g);
+  };
   const OPERATORS = {
     tick() { for (let c = 0; c < 3; c++) v[c] = clamp01(v[c]); },
     clamp() { for (let c = 0; c < 3; c++) v[c] = clamp01(v[c]); },
@@ -56,15 +64,22 @@ const TONEMAP = (() => {
     aces() { for (let c = 0; c < 3; c++) v[c] = aces(v[c]); },
     agx,
     neutral,
+    sigmoid() { },
   };
+  /** Whether an operator's display values are sRGB-encoded (not the course's two). */
+  const encoded = (op) => op !== "tick" && op !== "sigmoid";
   return {
     names: Object.keys(OPERATORS),
     /** Writes the display bytes of linear (r, g, b) times `gain` (2^EV) into out[o..o+3]. */
     into(r, g, b, op, gain, out, o) {
-      v[0] = bound(r * gain); v[1] = bound(g * gain); v[2] = bound(b * gain);
-      OPERATORS[op]();
+      if (op === "sigmoid") {
+        v[0] = sigmoid(r * gain); v[1] = sigmoid(g * gain); v[2] = sigmoid(b * gain);
+      } else {
+        v[0] = bound(r * gain); v[1] = bound(g * gain); v[2] = bound(b * gain);
+        OPERATORS[op]();
+      }
       for (let c = 0; c < 3; c++) {
-        out[o + c] = op === "tick"
+        out[o + c] = !encoded(op)
           ? Math.floor(255 * v[c])
           : Math.min(255, Math.max(0, Math.floor(255 * srgb(v[c]) + 0.5)));
       }
