@@ -31,10 +31,10 @@ pub struct ToneRequest {
 impl ToneRequest {
     /// The PNG encoding asked for, or why it cannot be had.
     pub fn encoding(&self) -> Result<PngEncoding> {
-        if self.dither && self.tonemap == ToneMap::Tick {
+        if self.dither && !self.tonemap.srgb_encoded() {
             return Err(Error::Usage(
                 "--dither needs an sRGB tone map such as --tonemap clamp \
-                 (tick is the course's exact, undithered output)"
+                 (tick and sigmoid are the course's exact, undithered outputs)"
                     .into(),
             ));
         }

@@ -1,6 +1,10 @@
 //! Tone maps (docs/tonemap.md): pure functions from linear, scene-referred Rec.709 RGB to display
 //! values in [0, 1], and the sRGB transfer function that encodes them.
 
+mod sigmoid_bytes;
+
+pub use sigmoid_bytes::sigmoid_byte;
+
 use glam::{DMat3, DVec3};
 use palette::encoding::{FromLinear, Srgb};
 
