@@ -12,8 +12,10 @@
 //! k = 254). So outside `V_k (1 +- 1e-9)` the computed byte is the side of `V_k` that `v` is
 //! on, with a factor of 50 to spare; inside such a zone, and wherever the argument does not
 //! hold (not finite, not positive, or so large that `g` rounds towards 1), the course's
-//! arithmetic itself is evaluated. `tests` checks the two against each other on every zone's
-//! edges and on millions of values.
+//! arithmetic itself is evaluated. A value's byte is then one look-up in a table of buckets
+//! by the value's top bits (128 a doubling), except in the few buckets a zone meets. `tests`
+//! checks the two against each other on every zone's and bucket's edges and on millions of
+//! values.
 
 use std::sync::OnceLock;
 
@@ -22,6 +24,41 @@ const ZONE: f64 = 1e-9;
 
 /// Beyond this, `g` is within 1e-13 of 1 and the error argument does not hold: evaluated.
 const LARGE: f64 = 1e8;
+
+/// Below this every value is byte 0: the first crossing is near 2.1e-5.
+const FLOOR: f64 = 1.0 / (1u64 << 20) as f64;
+
+/// Buckets of values by their top bits (the exponent and 7 bits of mantissa: 128 a doubling)
+/// from `FLOOR` to `LARGE`: each holds its byte, or `CROSSED` when a zone meets it.
+const BUCKET_SHIFT: u32 = 45;
+const CROSSED: u16 = 0x100;
+
+fn bucket(v: f64) -> usize {
+    ((v.to_bits() >> BUCKET_SHIFT) - (FLOOR.to_bits() >> BUCKET_SHIFT)) as usize
+}
+
+/// The buckets from `FLOOR` to `LARGE`: a value's byte in one look-up, except in the few
+/// buckets a crossing's zone meets.
+fn buckets() -> &'static [u16] {
+    static BUCKETS: OnceLock<Vec<u16>> = OnceLock::new();
+    BUCKETS.get_or_init(|| {
+        let zones = zones();
+        (0..=bucket(LARGE))
+            .map(|b| {
+                let first = (b as u64 + (FLOOR.to_bits() >> BUCKET_SHIFT)) << BUCKET_SHIFT;
+                let (lo, hi) = (
+                    f64::from_bits(first),
+                    f64::from_bits(first + (1 << BUCKET_SHIFT) - 1),
+                );
+                let passed = zones.partition_point(|&(_, zone_hi)| zone_hi < lo);
+                match zones.get(passed) {
+                    Some(&(zone_lo, _)) if zone_lo <= hi => CROSSED,
+                    _ => passed as u16,
+                }
+            })
+            .collect()
+    })
+}
 
 /// The crossings' zones, `(lo, hi)` for k = 1..=254 in order.
 fn zones() -> &'static [(f64, f64); 254] {
@@ -44,6 +81,13 @@ pub fn sigmoid_byte(v: f64) -> u8 {
     if !(v > 0.0 && v < LARGE) {
         return exact(v);
     }
+    if v < FLOOR {
+        return 0;
+    }
+    let entry = buckets()[bucket(v)];
+    if entry != CROSSED {
+        return entry as u8;
+    }
     let zones = zones();
     // Crossings certainly passed: their zone lies wholly below v.
     let passed = zones.partition_point(|&(_, hi)| hi < v);
@@ -60,6 +104,26 @@ fn exact(v: f64) -> u8 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_buckets_cover_the_range_and_few_are_crossed() {
+        assert!(zones()[0].0 > FLOOR, "the first crossing lies above FLOOR");
+        let crossed = buckets().iter().filter(|&&b| b == CROSSED).count();
+        assert!(crossed <= 254 * 2, "{crossed}");
+        assert!(buckets().len() > 5000);
+        // Every bucket's edges: the byte it holds is the course's.
+        for b in 0..buckets().len() {
+            let first = (b as u64 + (FLOOR.to_bits() >> BUCKET_SHIFT)) << BUCKET_SHIFT;
+            for v in [
+                f64::from_bits(first),
+                f64::from_bits(first + (1 << BUCKET_SHIFT) - 1),
+            ] {
+                if v < LARGE {
+                    assert_eq!(sigmoid_byte(v), exact(v), "{v:e}");
+                }
+            }
+        }
+    }
 
     #[test]
     fn every_zone_edge_and_its_neighbours_give_the_course_s_byte() {
