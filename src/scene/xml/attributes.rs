@@ -70,8 +70,9 @@ pub(super) fn read_attributes<'e>(
             return Err(source.error_at(
                 offset,
                 format!(
-                    "unknown attribute `{}` on <{element}> ({hint}{expected})",
-                    shown(name)
+                    "unknown attribute `{}` on <{element}> ({hint}{expected}){}",
+                    shown(name),
+                    later_year_hint(element, name)
                 ),
             ));
         };
@@ -105,6 +106,23 @@ pub(super) fn read_attributes<'e>(
         element,
         values,
     })
+}
+
+/// For an attribute only a later year's scene format has (docs/courses.md), how to read it:
+/// whitted's own format is 2016-17's, and a 2019-20 scene's `intensity` on the ambient light
+/// is otherwise a puzzle.
+pub(super) fn later_year_hint(element: &str, name: &str) -> &'static str {
+    let later = match element {
+        "ambient-light" => name == "intensity",
+        "sphere" | "plane" => matches!(name, "alphaS" | "tr" | "tg" | "tb"),
+        _ => false,
+    };
+    if later {
+        "; a scene of the course's later years: give --course YEAR, e.g. --course 2021-22 \
+         (docs/courses.md)"
+    } else {
+        ""
+    }
 }
 
 /// Whether XML 1.0's attribute-value normalisation would change `raw`: only tabs, line ends

@@ -80,9 +80,15 @@ impl SceneBuilder {
                 Err(e.source.error_at(
                     e.offset,
                     format!(
-                        "unknown element <{}> ({hint}expected one of <{}>)",
+                        "unknown element <{}> ({hint}expected one of <{}>){}",
                         shown(other),
-                        ELEMENTS.join(">, <")
+                        ELEMENTS.join(">, <"),
+                        if other == "bumpy-sphere" {
+                            "; <bumpy-sphere> is the course's Tick 1*: give --course YEAR \
+                             (docs/courses.md)"
+                        } else {
+                            ""
+                        }
                     ),
                 ))
             }

@@ -236,3 +236,17 @@ fn values_are_trimmed_and_normalised_as_the_library_does() {
     };
     assert_eq!(centre, DVec3::new(1.0, 2.0, 3.0));
 }
+
+#[test]
+fn a_later_year_s_scene_is_pointed_to_its_course() {
+    let msg = |xml: &str| parse_str("s.xml", xml).err().expect("an error").to_string();
+    let ambient = msg(r##"<scene><ambient-light colour="#010101" intensity="2"/></scene>"##);
+    assert!(ambient.contains("--course YEAR"), "{ambient}");
+    let alpha = msg(r##"<scene><sphere colour="#010101" alphaS="20"/></scene>"##);
+    assert!(alpha.contains("--course YEAR"), "{alpha}");
+    let bumpy = msg(r##"<scene><bumpy-sphere colour="#010101"/></scene>"##);
+    assert!(bumpy.contains("Tick 1*"), "{bumpy}");
+    // Not for what no year has.
+    let color = msg(r##"<scene><sphere color="#010101"/></scene>"##);
+    assert!(!color.contains("--course"), "{color}");
+}
