@@ -239,7 +239,7 @@ fn values_are_trimmed_and_normalised_as_the_library_does() {
 
 #[test]
 fn a_later_year_s_scene_is_pointed_to_its_course() {
-    let msg = |xml: &str| parse_str("s.xml", xml).err().expect("an error").to_string();
+    let msg = |xml: &str| parse_str("s.xml", xml).expect_err("an error").to_string();
     let ambient = msg(r##"<scene><ambient-light colour="#010101" intensity="2"/></scene>"##);
     assert!(ambient.contains("--course YEAR"), "{ambient}");
     let alpha = msg(r##"<scene><sphere colour="#010101" alphaS="20"/></scene>"##);
