@@ -1,7 +1,7 @@
 //! The command line (docs/cli.md), as clap derive types. `whitted [render options]` is
 //! `whitted render [render options]`, so the course's `--input/--output/--bounces` just work.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::{Args, CommandFactory, FromArgMatches, Parser, Subcommand};
 
@@ -13,7 +13,9 @@ mod values;
 
 use crate::compare::{Criteria, Tolerance};
 use crate::course::Course;
+use crate::error::Result;
 use crate::frame::{FrameSpec, Region};
+use crate::input::Image;
 use crate::output::exr::ExrOptions;
 use crate::plan::{RenderRequest, ToneRequest};
 use crate::sheet::SheetOptions;
@@ -307,6 +309,17 @@ pub struct ToneCourseArgs {
     /// The year whose tone map a PNG gets [default: the year the EXR records, else 2016-17]
     #[arg(long = "course", value_name = "YEAR", value_enum)]
     pub course: Option<CourseArg>,
+}
+
+impl ToneCourseArgs {
+    /// The year asked for, else the one `image` (read from `path`) records: whose tone map a
+    /// PNG of it gets. The header is read only when no year is asked for.
+    pub fn course(&self, image: &Image, path: &Path) -> Result<Course> {
+        match self.course {
+            Some(course) => Ok(course.into()),
+            None => image.course(path),
+        }
+    }
 }
 
 impl CourseArgs {

@@ -137,6 +137,18 @@ pub fn sphere_far_hit(
     (s > 0.0).then_some(s)
 }
 
+/// The near root if positive, else the far one if positive: a sphere hit from inside counts
+/// (the later course years' rule, and the `sphere-far-root` mistake of 2016-17).
+pub fn sphere_near_else_far_hit(
+    ray: &Ray,
+    terms: &SphereTerms,
+    centre: DVec3,
+    radius_squared: f64,
+) -> Option<f64> {
+    sphere_hit(ray, terms, centre, radius_squared)
+        .or_else(|| sphere_far_hit(ray, terms, centre, radius_squared))
+}
+
 /// The parameter `s = ((Q - O).N) / (D.N)` at which `ray` meets the plane through `point`
 /// with `normal`, before any test: infinite or NaN for a ray parallel to it, negative
 /// behind it (the model decides which hits count).

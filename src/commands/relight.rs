@@ -23,15 +23,7 @@ pub fn run(args: &RelightArgs) -> Result<()> {
     }
     let image = input::read_exr(&args.input)?;
     // A PNG gets the tone map of the year the EXR was rendered under, unless one is asked for.
-    let course = args.course.course.map_or_else(
-        || {
-            image.course().map_err(|msg| Error::Exr {
-                path: args.input.clone(),
-                msg,
-            })
-        },
-        |c| Ok(c.into()),
-    )?;
+    let course = args.course.course(&image, &args.input)?;
     let encoding = args.tone.request(course).encoding()?;
     memory::check(
         working_bytes(image.width * image.height),

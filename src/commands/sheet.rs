@@ -2,7 +2,7 @@
 //! (OpenEXR, PNG, JPEG, TIFF or Radiance HDR).
 
 use crate::cli::SheetArgs;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::input;
 use crate::output::destination::{refuse_clashes, Destination};
 use crate::sheet::{compose, select};
@@ -12,11 +12,7 @@ pub fn run(args: &SheetArgs) -> Result<()> {
     let mut output = Destination::open(&args.output)?;
     let image = input::read(&args.input)?;
     let layers = select(&image, &args.layers)?;
-    let recorded = image.course().map_err(|msg| Error::Exr {
-        path: args.input.clone(),
-        msg,
-    })?;
-    let sheet = compose(&image, &layers, &args.options(recorded));
+    let sheet = compose(&image, &layers, &args.options(image.course(&args.input)?));
     output.write_png(&sheet.into_png())?;
     output.commit()
 }

@@ -12,15 +12,7 @@ pub fn run(args: &TonemapArgs) -> Result<()> {
     let mut output = Destination::open(&args.output)?;
     let image = input::read_exr(&args.input)?;
     // A PNG gets the tone map of the year the EXR was rendered under, unless one is asked for.
-    let course = args.course.course.map_or_else(
-        || {
-            image.course().map_err(|msg| Error::Exr {
-                path: args.input.clone(),
-                msg,
-            })
-        },
-        |c| Ok(c.into()),
-    )?;
+    let course = args.course.course(&image, &args.input)?;
     let encoding = args.tone.request(course).encoding()?;
     let pixels = image.colour_layer(&args.layer).map_err(|msg| Error::Exr {
         path: args.input.clone(),

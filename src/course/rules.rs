@@ -5,7 +5,7 @@
 use glam::DVec3;
 
 use super::{ShadowBias, View};
-use crate::geometry::{normalise, sphere_far_hit, Ray, SphereTerms};
+use crate::geometry::{normalise, sphere_near_else_far_hit, Ray, SphereTerms};
 use crate::model::{Model, Tick};
 use crate::scene::PointLight;
 
@@ -35,11 +35,10 @@ impl Model for Rules {
         centre: DVec3,
         radius_squared: f64,
     ) -> Option<f64> {
-        let near = Tick.sphere_root(ray, terms, centre, radius_squared);
         if self.far_root {
-            near.or_else(|| sphere_far_hit(ray, terms, centre, radius_squared))
+            sphere_near_else_far_hit(ray, terms, centre, radius_squared)
         } else {
-            near
+            Tick.sphere_root(ray, terms, centre, radius_squared)
         }
     }
 

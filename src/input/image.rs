@@ -114,17 +114,24 @@ impl Image {
     }
 
     /// The course year a whitted EXR was rendered under (`render/course`; none recorded is
-    /// the default 2016-17), or the year's name it gives that this version does not know.
-    pub fn course(&self) -> std::result::Result<Course, String> {
+    /// the default 2016-17). A year this version does not know is an error naming the file
+    /// read from `path`.
+    pub fn course(&self, path: &std::path::Path) -> crate::Result<Course> {
+        let unknown = |msg: String| crate::Error::Exr {
+            path: path.to_path_buf(),
+            msg,
+        };
         match self.attribute(COURSE_ATTRIBUTE) {
             None => Ok(Course::default()),
             Some(Attribute::Text(name)) => Course::from_name(name).ok_or_else(|| {
-                format!(
+                unknown(format!(
                     "its {COURSE_ATTRIBUTE} is '{name}', which is none of {}",
                     Course::names()
-                )
+                ))
             }),
-            Some(other) => Err(format!("its {COURSE_ATTRIBUTE} is not text: {other}")),
+            Some(other) => Err(unknown(format!(
+                "its {COURSE_ATTRIBUTE} is not text: {other}"
+            ))),
         }
     }
 

@@ -6,7 +6,7 @@
 use glam::DVec3;
 
 use super::{Bug, Mistakes};
-use crate::geometry::{normalise, sphere_far_hit, Ray, SphereTerms, EPSILON};
+use crate::geometry::{normalise, sphere_near_else_far_hit, Ray, SphereTerms, EPSILON};
 use crate::model::{mirror_direction, Model, Tick};
 use crate::scene::PointLight;
 
@@ -165,11 +165,10 @@ impl Model for Variant {
         radius_squared: f64,
     ) -> Option<f64> {
         // The handout read literally: the near root if positive, else the far one.
-        let near = Tick.sphere_root(ray, terms, centre, radius_squared);
         if self.has(Bug::SphereFarRoot) {
-            near.or_else(|| sphere_far_hit(ray, terms, centre, radius_squared))
+            sphere_near_else_far_hit(ray, terms, centre, radius_squared)
         } else {
-            near
+            Tick.sphere_root(ray, terms, centre, radius_squared)
         }
     }
 

@@ -181,10 +181,7 @@ fn text_attribute<'a>(image: &'a Image, name: &str) -> Option<&'a str> {
 fn recorded_tracer(image: &Image, path: &Path, scene: Option<&Path>) -> Result<Option<Tracer>> {
     let recorded = text_attribute(image, "render/scene");
     // The year the EXR was rendered under: its rules and scene format trace its trees.
-    let course = image.course().map_err(|msg| Error::Exr {
-        path: path.to_path_buf(),
-        msg,
-    })?;
+    let course = image.course(path)?;
     let embedded = course.default_scene().0.as_bytes();
     let input = match (scene, recorded) {
         (Some(scene), _) => scene::load_input(Some(scene), course)?,

@@ -17,18 +17,7 @@ use crate::common::*;
 /// The compiled Java program's class directory, built once for every test here.
 fn classes() -> &'static Path {
     static CLASSES: OnceLock<PathBuf> = OnceLock::new();
-    CLASSES.get_or_init(|| {
-        let dir = std::env::temp_dir().join(format!("whitted-java-{}", std::process::id()));
-        let source = root().join("tests/java/gfx/tick2/Tick2.java");
-        let javac = Command::new("javac")
-            .arg("-d")
-            .arg(&dir)
-            .arg(&source)
-            .output()
-            .expect("javac runs (tools/test installs default-jdk-headless)");
-        assert!(javac.status.success(), "{}", stderr(&javac));
-        dir
-    })
+    CLASSES.get_or_init(|| javac("tests/java/gfx/tick2/Tick2.java", "java"))
 }
 
 /// `java -Dbug=... -cp CLASSES gfx.tick2.Tick2` as one --program string.

@@ -217,3 +217,42 @@ pub fn render_frame(
     let frame = whitted::frame::Frame::new(scene, spec).unwrap_or_else(|e| panic!("{e}"));
     whitted::render::render(scene, &frame, &|_| {}).expect("render")
 }
+
+/// A small deterministic generator, so that generated scenes are the same on every run.
+pub struct Lcg(pub u64);
+
+impl Lcg {
+    pub fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.next()
+    }
+
+    pub fn colour(&mut self) -> String {
+        format!("#{:06X}", (self.next() * f64::from(0xFF_FFFF)) as u32)
+    }
+
+    pub fn chance(&mut self, p: f64) -> bool {
+        self.next() < p
+    }
+}
+
+/// `javac -d DIR SOURCE` for a Java program under `tests/java/`, into a fresh class
+/// directory of this process named for `tag`; the directory.
+pub fn javac(source: &str, tag: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("whitted-{tag}-{}", std::process::id()));
+    let javac = Command::new("javac")
+        .arg("-d")
+        .arg(&dir)
+        .arg(root().join(source))
+        .output()
+        .expect("javac runs (tools/test installs default-jdk-headless)");
+    assert!(javac.status.success(), "{}", stderr(&javac));
+    dir
+}

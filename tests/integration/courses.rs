@@ -16,42 +16,11 @@ use crate::common::*;
 fn classes() -> &'static Path {
     static CLASSES: OnceLock<PathBuf> = OnceLock::new();
     CLASSES.get_or_init(|| {
-        let dir = std::env::temp_dir().join(format!("whitted-tick1-{}", std::process::id()));
-        let source = root().join("tests/java/uk/ac/cam/cl/gfxintro/whitted/tick1/Tick1.java");
-        let javac = Command::new("javac")
-            .arg("-d")
-            .arg(&dir)
-            .arg(&source)
-            .output()
-            .expect("javac runs (tools/test installs default-jdk-headless)");
-        assert!(javac.status.success(), "{}", stderr(&javac));
-        dir
+        javac(
+            "tests/java/uk/ac/cam/cl/gfxintro/whitted/tick1/Tick1.java",
+            "tick1",
+        )
     })
-}
-
-/// A small deterministic generator, so the scenes are the same on every run.
-struct Lcg(u64);
-
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
-    }
-
-    fn colour(&mut self) -> String {
-        format!("#{:06X}", (self.next() * f64::from(0xFF_FFFF)) as u32)
-    }
-
-    fn chance(&mut self, p: f64) -> bool {
-        self.next() < p
-    }
 }
 
 /// Whether the year's loader reads material attributes and an ambient intensity.

@@ -5,33 +5,12 @@
 //! `cargo test` runs a few scenes of every class. `WHITTED_DIFFERENTIAL_SCENES=N` runs N
 //! scenes per class instead (the longer run reported in issue notes).
 
-use crate::common::render_frame;
+use crate::common::{render_frame, Lcg};
 use whitted::course::Course;
 use whitted::film::Film;
 use whitted::frame::{Acceleration, FrameSpec};
 use whitted::render::RenderStats;
 use whitted::scene::parse_str;
-
-/// A small deterministic generator, so scenes are the same on every run.
-struct Lcg(u64);
-
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
-    }
-
-    fn colour(&mut self) -> String {
-        format!("#{:06X}", (self.next() * f64::from(0xFF_FFFF)) as u32)
-    }
-}
 
 /// The kinds of scene that stress the rules at their edges.
 #[derive(Debug, Clone, Copy)]
