@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use crate::cli::MAX_SIDE;
+use crate::frame::limits::MAX_SIDE;
 use crate::error::{Error, Result};
 use crate::memory;
 

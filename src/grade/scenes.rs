@@ -17,7 +17,7 @@ pub fn bounces_of(file: &str) -> u32 {
     let stem = file.strip_suffix(".xml").unwrap_or(file);
     stem.rsplit_once("_b")
         .and_then(|(_, n)| n.parse::<u32>().ok())
-        .filter(|&n| n <= crate::cli::MAX_BOUNCES)
+        .filter(|&n| n <= crate::frame::limits::MAX_BOUNCES)
         .unwrap_or(2)
 }
 
