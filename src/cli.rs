@@ -11,22 +11,22 @@ mod look;
 mod parse;
 mod values;
 
-use crate::compare::{Criteria, Tolerance};
-use crate::course::Course;
-use crate::error::Result;
-use crate::frame::{FrameSpec, Region};
-use crate::input::Image;
-use crate::output::exr::ExrOptions;
-use crate::plan::{RenderRequest, ToneRequest};
-use crate::sheet::SheetOptions;
 pub use check::CheckArgs;
 pub use grade::GradeArgs;
 pub use look::{ExplainArgs, RelightArgs, ServeArgs, ViewArgs};
 use parse::*;
 pub use values::{CompressionArg, CourseArg, ToneMapArg};
+use whitted_core::course::Course;
+use whitted_core::error::Result;
+use whitted_core::frame::{FrameSpec, Region};
+use whitted_io::compare::{Criteria, Tolerance};
+use whitted_io::input::Image;
+use whitted_io::output::exr::ExrOptions;
+use whitted_io::plan::{RenderRequest, ToneRequest};
+use whitted_io::sheet::SheetOptions;
 
-pub use crate::frame::limits::{MAX_BOUNCES, MAX_SIDE, MAX_SPP};
-pub use crate::plan::MAX_THREADS;
+pub use whitted_core::frame::limits::{MAX_BOUNCES, MAX_SIDE, MAX_SPP};
+pub use whitted_io::plan::MAX_THREADS;
 
 #[derive(Debug, Parser)]
 #[command(
@@ -487,7 +487,7 @@ impl SheetArgs {
             (Some(op), _) => op.into(),
             (None, Some(_)) => course.tonemap(),
             (None, None) if !course.is_default() => course.tonemap(),
-            (None, None) => crate::tonemap::ToneMap::Clamp,
+            (None, None) => whitted_core::tonemap::ToneMap::Clamp,
         };
         SheetOptions {
             columns: self.columns,
@@ -546,7 +546,7 @@ mod tests {
 
     #[test]
     fn a_course_year_chooses_the_size_and_the_tone_map_unless_they_are_given() {
-        use crate::tonemap::ToneMap;
+        use whitted_core::tonemap::ToneMap;
         let render = |args: &[&str]| {
             let matches = Cli::command_line()
                 .try_get_matches_from(args)

@@ -18,7 +18,7 @@ static PROBE_STDOUT_BEFORE_RUNTIME: extern "C" fn() = probe_stdout;
 
 #[cfg(target_os = "linux")]
 extern "C" fn probe_stdout() {
-    whitted::output::stdout::probe();
+    whitted_io::output::stdout::probe();
 }
 
 fn main() -> ExitCode {
@@ -26,7 +26,7 @@ fn main() -> ExitCode {
         Ok(cli) => cli,
         Err(e) => return usage_error(&e),
     };
-    whitted::interrupt::install();
+    whitted_core::interrupt::install();
     let result = match &cli.command {
         Some(Command::Render(args)) => commands::render::run(args).map(|()| true),
         Some(Command::Tonemap(args)) => commands::tonemap::run(args).map(|()| true),

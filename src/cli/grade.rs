@@ -5,8 +5,8 @@ use std::path::PathBuf;
 use clap::Args;
 
 use super::parse::*;
-use crate::grade::{Grading, Rerun};
 use clap::ValueEnum;
+use whitted_grade::{Grading, Rerun};
 
 #[derive(Debug, Clone, Args)]
 pub struct GradeArgs {

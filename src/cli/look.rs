@@ -6,8 +6,8 @@ use clap::Args;
 
 use super::parse::*;
 use super::{FrameArgs, ToneArgs, ToneCourseArgs};
-use crate::frame::FrameSpec;
-use crate::mistakes::{Bug, Mistakes};
+use whitted_check::mistakes::{Bug, Mistakes};
+use whitted_core::frame::FrameSpec;
 
 #[derive(Debug, Clone, Args)]
 pub struct ExplainArgs {

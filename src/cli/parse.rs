@@ -2,7 +2,7 @@
 //! expected. Checks that depend on other options or on the scene are the plan's.
 
 use super::MAX_THREADS;
-use crate::frame::{limits, Region};
+use whitted_core::frame::{limits, Region};
 
 /// A whole number, or the message saying that `what` was expected.
 fn whole(s: &str, what: &str) -> Result<i64, String> {
@@ -117,10 +117,13 @@ pub(super) fn parse_timeout(s: &str) -> Result<u64, String> {
     }
 }
 
-pub(super) fn parse_bug(s: &str) -> Result<crate::mistakes::Bug, String> {
-    crate::mistakes::Bug::from_id(s.trim()).ok_or_else(|| {
-        let ids: Vec<&str> = crate::mistakes::Bug::ALL.iter().map(|b| b.id()).collect();
-        let hint = crate::suggest::nearest(s.trim(), &ids)
+pub(super) fn parse_bug(s: &str) -> Result<whitted_check::mistakes::Bug, String> {
+    whitted_check::mistakes::Bug::from_id(s.trim()).ok_or_else(|| {
+        let ids: Vec<&str> = whitted_check::mistakes::Bug::ALL
+            .iter()
+            .map(|b| b.id())
+            .collect();
+        let hint = whitted_core::suggest::nearest(s.trim(), &ids)
             .map_or(String::new(), |n| format!("did you mean `{n}`? "));
         format!("unknown mistake `{s}`; {hint}`whitted check --list-bugs` lists them")
     })

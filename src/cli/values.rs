@@ -3,9 +3,9 @@
 
 use clap::ValueEnum;
 
-use crate::course::Course;
-use crate::output::exr::ExrCompression;
-use crate::tonemap::ToneMap;
+use whitted_core::course::Course;
+use whitted_core::tonemap::ToneMap;
+use whitted_io::output::exr::ExrCompression;
 
 /// `--tonemap` values: the tone maps of docs/tonemap.md, named for the command line.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]

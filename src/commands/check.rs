@@ -6,21 +6,21 @@ use std::path::Path;
 
 use serde_json::Value;
 
-use crate::check::diagnose::Diagnosis;
-use crate::check::json::{case_json, suite_json};
-use crate::check::program::{run_suite, Status, SuiteRun};
-use crate::check::report::{contact_sheet, failing_rows, heat_map, ReportRow};
-use crate::check::reproduce::{explain_commands, Reproduce};
-use crate::check::suite;
-use crate::check::summary::{self, candidates_heading, opening};
-use crate::check::{check_image, student_png, CaseReport, Findings};
 use crate::cli::CheckArgs;
-use crate::course::Course;
-use crate::error::Result;
-use crate::mistakes::Bug;
-use crate::output::destination::{refuse_clashes, Destination};
-use crate::output::stdout;
-use crate::scene;
+use whitted_check::check::diagnose::Diagnosis;
+use whitted_check::check::json::{case_json, suite_json};
+use whitted_check::check::program::{run_suite, Status, SuiteRun};
+use whitted_check::check::report::{contact_sheet, failing_rows, heat_map, ReportRow};
+use whitted_check::check::reproduce::{explain_commands, Reproduce};
+use whitted_check::check::suite;
+use whitted_check::check::summary::{self, candidates_heading, opening};
+use whitted_check::check::{check_image, student_png, CaseReport, Findings};
+use whitted_check::mistakes::Bug;
+use whitted_core::course::Course;
+use whitted_core::error::Result;
+use whitted_core::scene;
+use whitted_io::output::destination::{refuse_clashes, Destination};
+use whitted_io::output::stdout;
 
 /// Returns whether every image passed.
 pub fn run(args: &CheckArgs) -> Result<bool> {
@@ -30,7 +30,7 @@ pub fn run(args: &CheckArgs) -> Result<bool> {
     }
     let serve = &args.serve;
     if !args.view && (serve.watch || serve.no_browser || serve.port != 0) {
-        return Err(crate::Error::Usage(
+        return Err(whitted_core::Error::Usage(
             "--watch, --no-browser and --port are options of --view".into(),
         ));
     }
@@ -38,7 +38,7 @@ pub fn run(args: &CheckArgs) -> Result<bool> {
         (Some(program), _) => run_program(args, program),
         (None, Some(image)) if args.view => view(args, image),
         (None, Some(image)) => run_image(args, image),
-        (None, None) => Err(crate::Error::Usage(
+        (None, None) => Err(whitted_core::Error::Usage(
             "give the PNG to check, or --program 'CMD ARGS'".into(),
         )),
     }
@@ -108,14 +108,14 @@ fn run_image(args: &CheckArgs, image: &std::path::Path) -> Result<bool> {
 
 /// `--view`: the check in the viewer, until a signal stops it (the status is then 130).
 fn view(args: &CheckArgs, image: &std::path::Path) -> Result<bool> {
-    let source = crate::view::Source::Check {
+    let source = whitted_view::Source::Check {
         image: image.to_path_buf(),
         scene: args.input.clone(),
         bounces: args.bounces,
         tolerance: args.tolerance,
     };
     let serve = &args.serve;
-    crate::view::serve(source, serve.port, serve.no_browser, serve.watch)?;
+    whitted_view::serve(source, serve.port, serve.no_browser, serve.watch)?;
     Ok(true)
 }
 
@@ -194,7 +194,7 @@ fn case_line(case: &CaseReport) -> String {
         format!(
             "; shows {} ({}% of this case explained)",
             t.mistakes.name(),
-            crate::numbers::plain(100.0 * t.explained)
+            whitted_core::numbers::plain(100.0 * t.explained)
         )
     });
     format!(

@@ -1,8 +1,8 @@
 //! `whitted completions SHELL`: a completion script for the shell, from the clap definition.
 
 use crate::cli::{Cli, CompletionsArgs};
-use crate::error::Result;
-use crate::output::stdout;
+use whitted_core::error::Result;
+use whitted_io::output::stdout;
 
 pub fn run(args: &CompletionsArgs) -> Result<()> {
     let mut script = Vec::new();

@@ -6,13 +6,13 @@
 use serde_json::json;
 
 use crate::cli::DiffArgs;
-use crate::compare::{align, compare_files, excess_map, matching_part, PartReport};
-use crate::error::{Error, Result};
-use crate::input;
-use crate::numbers::{compact as number, finite_or_null};
-use crate::output::destination::{refuse_clashes, Destination};
-use crate::output::png::{PngImage, PngPixels};
-use crate::output::stdout;
+use whitted_core::error::{Error, Result};
+use whitted_core::numbers::{compact as number, finite_or_null};
+use whitted_io::compare::{align, compare_files, excess_map, matching_part, PartReport};
+use whitted_io::input;
+use whitted_io::output::destination::{refuse_clashes, Destination};
+use whitted_io::output::png::{PngImage, PngPixels};
+use whitted_io::output::stdout;
 
 /// Returns whether the images match.
 pub fn run(args: &DiffArgs) -> Result<bool> {

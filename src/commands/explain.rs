@@ -4,17 +4,17 @@
 use glam::DVec3;
 
 use crate::cli::ExplainArgs;
-use crate::course::Course;
-use crate::error::Error;
-use crate::error::Result;
-use crate::explain::compare;
-use crate::explain::json::{kind, layers, to_json};
-use crate::explain::{explain, vector, Explanation};
-use crate::mistakes::Mistakes;
-use crate::model::Tick;
-use crate::output::stdout;
-use crate::scene::{self, Scene};
-use crate::tonemap::ToneMap;
+use whitted_check::explain::compare;
+use whitted_check::explain::json::{kind, layers, to_json};
+use whitted_check::explain::{explain, vector, Explanation};
+use whitted_check::mistakes::Mistakes;
+use whitted_core::course::Course;
+use whitted_core::error::Error;
+use whitted_core::error::Result;
+use whitted_core::model::Tick;
+use whitted_core::scene::{self, Scene};
+use whitted_core::tonemap::ToneMap;
+use whitted_io::output::stdout;
 
 pub fn run(args: &ExplainArgs) -> Result<()> {
     let course = args.frame.course.course();
@@ -33,7 +33,7 @@ pub fn run(args: &ExplainArgs) -> Result<()> {
         explain(&course.rules(), &scene, &args.frame(), x, y)?
     } else {
         explain(
-            &crate::mistakes::Variant::from(mistakes),
+            &whitted_check::mistakes::Variant::from(mistakes),
             &scene,
             &args.frame(),
             x,

@@ -3,9 +3,9 @@
 //! students finished by then are kept).
 
 use crate::cli::GradeArgs;
-use crate::error::Result;
-use crate::grade::{self, Limits, Options};
-use crate::output::stdout;
+use whitted_core::error::Result;
+use whitted_grade::{Limits, Options};
+use whitted_io::output::stdout;
 
 pub fn run(args: &GradeArgs) -> Result<()> {
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
@@ -31,13 +31,13 @@ pub fn run(args: &GradeArgs) -> Result<()> {
         quiet: args.quiet,
     };
     if args.list {
-        let lines: Vec<String> = grade::list(&options)?
+        let lines: Vec<String> = whitted_grade::list(&options)?
             .into_iter()
             .map(|(id, done)| format!("{id}\t{}", if done { "done" } else { "todo" }))
             .collect();
         return stdout::print_line(&lines.join("\n"));
     }
-    let summary = grade::run(&options)?;
+    let summary = whitted_grade::run(&options)?;
     let statuses: Vec<String> = summary
         .statuses
         .iter()

@@ -4,11 +4,11 @@
 use serde_json::json;
 
 use crate::cli::InfoArgs;
-use crate::error::Result;
-use crate::input::{self, Image, Layer, Window};
-use crate::numbers::{compact as number, finite_or_null};
-use crate::output::stdout;
-use crate::stats::Stats;
+use whitted_core::error::Result;
+use whitted_core::numbers::{compact as number, finite_or_null};
+use whitted_io::input::{self, Image, Layer, Window};
+use whitted_io::output::stdout;
+use whitted_io::stats::Stats;
 
 pub fn run(args: &InfoArgs) -> Result<()> {
     let image = input::read(&args.input)?;

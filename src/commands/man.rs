@@ -6,9 +6,9 @@ use std::io::Write;
 use std::path::Path;
 
 use crate::cli::{Cli, ManArgs};
-use crate::error::{Error, Result};
-use crate::output::atomic::AtomicFile;
-use crate::output::stdout;
+use whitted_core::error::{Error, Result};
+use whitted_io::output::atomic::AtomicFile;
+use whitted_io::output::stdout;
 
 pub fn run(args: &ManArgs) -> Result<()> {
     let command = Cli::command_line();

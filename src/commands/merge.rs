@@ -3,13 +3,13 @@
 use std::path::{Path, PathBuf};
 
 use crate::cli::MergeArgs;
-use crate::error::{Error, Result};
-use crate::input::exr::read_flat;
-use crate::merge::merge;
-use crate::openexr::FlatImage;
-use crate::output::atomic::AtomicFile;
-use crate::output::destination::{refuse_clashes, STDOUT};
-use crate::output::exr::write_image;
+use whitted_core::error::{Error, Result};
+use whitted_io::input::exr::read_flat;
+use whitted_io::merge::merge;
+use whitted_io::openexr::FlatImage;
+use whitted_io::output::atomic::AtomicFile;
+use whitted_io::output::destination::{refuse_clashes, STDOUT};
+use whitted_io::output::exr::write_image;
 
 pub fn run(args: &MergeArgs) -> Result<()> {
     if args.output.as_os_str() == STDOUT {
@@ -31,6 +31,6 @@ pub fn run(args: &MergeArgs) -> Result<()> {
 }
 
 fn read(path: &Path) -> Result<FlatImage> {
-    crate::interrupt::check()?;
+    whitted_core::interrupt::check()?;
     read_flat(path)
 }

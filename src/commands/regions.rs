@@ -2,9 +2,9 @@
 //! scheduler's array index can pick its line (`sed -n "$((i + 1))p"`).
 
 use crate::cli::RegionsArgs;
-use crate::error::Result;
-use crate::frame::balanced_regions;
-use crate::output::stdout;
+use whitted_core::error::Result;
+use whitted_core::frame::balanced_regions;
+use whitted_io::output::stdout;
 
 pub fn run(args: &RegionsArgs) -> Result<()> {
     let (width, height) = args.size();

@@ -3,14 +3,14 @@
 use glam::DVec3;
 
 use crate::cli::RelightArgs;
-use crate::error::{Error, Result};
-use crate::input;
-use crate::memory;
-use crate::output::atomic::AtomicFile;
-use crate::output::destination::{refuse_clashes, Destination};
-use crate::output::exr::{write_rgba, Placement};
-use crate::output::png::encode;
-use crate::relight::{relight, working_bytes, RelightSpec};
+use whitted_core::error::{Error, Result};
+use whitted_core::memory;
+use whitted_io::input;
+use whitted_io::output::atomic::AtomicFile;
+use whitted_io::output::destination::{refuse_clashes, Destination};
+use whitted_io::output::exr::{write_rgba, Placement};
+use whitted_io::output::png::encode;
+use whitted_io::relight::{relight, working_bytes, RelightSpec};
 
 pub fn run(args: &RelightArgs) -> Result<()> {
     refuse_clashes(&[&args.input], &[&args.output])?;
@@ -63,7 +63,7 @@ pub fn run(args: &RelightArgs) -> Result<()> {
             path: args.output.clone(),
             msg,
         })?;
-        crate::interrupt::check()?;
+        whitted_core::interrupt::check()?;
         return file.commit();
     }
     let mut output = Destination::open(&args.output)?;

@@ -4,16 +4,16 @@
 use std::time::{Duration, Instant};
 
 use crate::cli::RenderArgs;
-use crate::error::{Error, Result};
-use crate::output::atomic::AtomicFile;
-use crate::output::destination::{Destination, STDOUT};
-use crate::output::exr::Placement;
-use crate::output::writers::{Outputs, Writers};
-use crate::plan::RenderPlan;
-use crate::progress::Progress;
-use crate::render::{render_strips, RenderStats};
-use crate::render_record;
-use crate::scene;
+use whitted_core::error::{Error, Result};
+use whitted_core::progress::Progress;
+use whitted_core::render::{render_strips, RenderStats};
+use whitted_core::scene;
+use whitted_io::output::atomic::AtomicFile;
+use whitted_io::output::destination::{Destination, STDOUT};
+use whitted_io::output::exr::Placement;
+use whitted_io::output::writers::{Outputs, Writers};
+use whitted_io::plan::RenderPlan;
+use whitted_io::render_record;
 
 pub fn run(args: &RenderArgs) -> Result<()> {
     let started = Instant::now();
@@ -55,7 +55,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         );
     }
     // Ctrl-C while the files were being written: drop them rather than publish them.
-    crate::interrupt::check()?;
+    whitted_core::interrupt::check()?;
     if let Some(file) = exr_file {
         file.commit()?;
     }

@@ -2,10 +2,10 @@
 //! (OpenEXR, PNG, JPEG, TIFF or Radiance HDR).
 
 use crate::cli::SheetArgs;
-use crate::error::Result;
-use crate::input;
-use crate::output::destination::{refuse_clashes, Destination};
-use crate::sheet::{compose, select};
+use whitted_core::error::Result;
+use whitted_io::input;
+use whitted_io::output::destination::{refuse_clashes, Destination};
+use whitted_io::sheet::{compose, select};
 
 pub fn run(args: &SheetArgs) -> Result<()> {
     refuse_clashes(&[&args.input], &[&args.output])?;

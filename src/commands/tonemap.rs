@@ -2,10 +2,10 @@
 //! any tone map and exposure, without re-rendering.
 
 use crate::cli::TonemapArgs;
-use crate::error::{Error, Result};
-use crate::input;
-use crate::output::destination::{refuse_clashes, Destination};
-use crate::output::png::encode;
+use whitted_core::error::{Error, Result};
+use whitted_io::input;
+use whitted_io::output::destination::{refuse_clashes, Destination};
+use whitted_io::output::png::encode;
 
 pub fn run(args: &TonemapArgs) -> Result<()> {
     refuse_clashes(&[&args.input], &[&args.output])?;

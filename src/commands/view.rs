@@ -3,8 +3,8 @@
 //! so that a student's PNG can be set against the reference (`view/content.rs` reads them).
 
 use crate::cli::ViewArgs;
-use crate::error::Result;
-use crate::view::{serve, Source};
+use whitted_core::error::Result;
+use whitted_view::{serve, Source};
 
 pub fn run(args: &ViewArgs) -> Result<()> {
     let source = Source::View {

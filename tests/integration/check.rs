@@ -7,10 +7,10 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
 
-use whitted::check::difference::difference;
-use whitted::check::renderer::Renderer;
-use whitted::check::suite::{cases, SuiteCase};
-use whitted::mistakes::{Bug, Mistakes};
+use whitted_check::check::difference::difference;
+use whitted_check::check::renderer::Renderer;
+use whitted_check::check::suite::{cases, SuiteCase};
+use whitted_check::mistakes::{Bug, Mistakes};
 
 use crate::common::*;
 
@@ -59,7 +59,7 @@ fn java_render(dir: &Path, case: &SuiteCase, bugs: &[&str], name: &str) -> PathB
 /// of them: the case that separates them.
 fn separating_case(mistakes: Mistakes) -> SuiteCase {
     for case in cases() {
-        let scene = whitted::scene::parse_str(&case.file, &case.xml).expect("scene");
+        let scene = whitted_core::scene::parse_str(&case.file, &case.xml).expect("scene");
         let r = Renderer::new(&scene, 640, 480, case.bounces).expect("renderer");
         let image = r.image(mistakes).expect("image");
         let fails = difference(&image, &r.reference().expect("reference"), 2).beyond_tolerance > 0;

@@ -156,7 +156,7 @@ pub fn read_exr(path: &Path) -> Exr {
         .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     assert_eq!(meta.headers.len(), 1, "one part");
     let file = std::fs::File::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let image = whitted::openexr::read_first_part(file)
+    let image = whitted_io::openexr::read_first_part(file)
         .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let layer = image.layer_data;
     Exr {
@@ -211,11 +211,11 @@ pub fn idiff_aov(a: &Path, b: &Path) -> Output {
 
 /// Renders `scene` with the library, as `spec` asks (a panic if the spec is refused).
 pub fn render_frame(
-    scene: &whitted::scene::Scene,
-    spec: &whitted::frame::FrameSpec,
-) -> (whitted::film::Film, whitted::render::RenderStats) {
-    let frame = whitted::frame::Frame::new(scene, spec).unwrap_or_else(|e| panic!("{e}"));
-    whitted::render::render(scene, &frame, &|_| {}).expect("render")
+    scene: &whitted_core::scene::Scene,
+    spec: &whitted_core::frame::FrameSpec,
+) -> (whitted_core::film::Film, whitted_core::render::RenderStats) {
+    let frame = whitted_core::frame::Frame::new(scene, spec).unwrap_or_else(|e| panic!("{e}"));
+    whitted_core::render::render(scene, &frame, &|_| {}).expect("render")
 }
 
 /// A small deterministic generator, so that generated scenes are the same on every run.

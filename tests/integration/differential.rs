@@ -6,11 +6,11 @@
 //! scenes per class instead (the longer run reported in issue notes).
 
 use crate::common::{render_frame, Lcg};
-use whitted::course::Course;
-use whitted::film::Film;
-use whitted::frame::{Acceleration, FrameSpec};
-use whitted::render::RenderStats;
-use whitted::scene::parse_str;
+use whitted_core::course::Course;
+use whitted_core::film::Film;
+use whitted_core::frame::{Acceleration, FrameSpec};
+use whitted_core::render::RenderStats;
+use whitted_core::scene::parse_str;
 
 /// The kinds of scene that stress the rules at their edges.
 #[derive(Debug, Clone, Copy)]

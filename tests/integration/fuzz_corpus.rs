@@ -7,7 +7,7 @@
 use std::path::PathBuf;
 
 use crate::common::render_frame;
-use whitted::frame::FrameSpec;
+use whitted_core::frame::FrameSpec;
 
 fn inputs() -> Vec<PathBuf> {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
@@ -36,7 +36,7 @@ fn every_corpus_input_loads_or_fails_cleanly() {
     let (mut loaded, mut refused) = (0, 0);
     for path in &files {
         let bytes = std::fs::read(path).expect("read");
-        match whitted::scene::parse_bytes("corpus.xml", &bytes) {
+        match whitted_core::scene::parse_bytes("corpus.xml", &bytes) {
             Ok(scene) => {
                 let spec = FrameSpec {
                     width: 8,
@@ -71,7 +71,7 @@ fn every_corpus_input_loads_or_fails_cleanly() {
 #[test]
 fn every_image_corpus_input_reads_or_fails_cleanly() {
     // As in the fuzz target: a budget the corpus's largest declared sizes exceed.
-    whitted::memory::limit_to(1 << 30);
+    whitted_core::memory::limit_to(1 << 30);
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let (mut read, mut refused) = (0, 0);
     for dir in ["fuzz/corpus/image_reader", "tests/bad_images"] {
@@ -81,7 +81,7 @@ fn every_image_corpus_input_reads_or_fails_cleanly() {
                 continue;
             }
             let bytes = std::fs::read(&path).expect("read");
-            match whitted::input::decode(&path, bytes) {
+            match whitted_io::input::decode(&path, bytes) {
                 Ok(parts) => {
                     for image in parts {
                         let pixels = image.width * image.height;

@@ -3,10 +3,10 @@
 
 use crate::common::render_frame;
 use proptest::prelude::*;
-use whitted::film::Film;
-use whitted::frame::FrameSpec;
-use whitted::render::RenderStats;
-use whitted::scene::parse_str;
+use whitted_core::film::Film;
+use whitted_core::frame::FrameSpec;
+use whitted_core::render::RenderStats;
+use whitted_core::scene::parse_str;
 
 #[derive(Debug, Clone)]
 enum Element {
@@ -167,14 +167,14 @@ proptest! {
         prop_assert_eq!(scene.objects.len(), elements.len() - lights);
         for (object, element) in scene.objects.iter().zip(elements.iter().filter(|e| !matches!(e, Element::Light { .. }))) {
             match (element, &object.shape) {
-                (Element::Sphere { at, radius, material, .. }, whitted::geometry::Shape::Sphere { centre, radius: r }) => {
+                (Element::Sphere { at, radius, material, .. }, whitted_core::geometry::Shape::Sphere { centre, radius: r }) => {
                     prop_assert_eq!(centre.to_array(), *at);
                     prop_assert_eq!(r, radius);
                     if let Some([kd, ks, n, refl]) = material {
                         prop_assert_eq!((object.material.kd, object.material.ks, object.material.n, object.material.reflectivity), (*kd, *ks, *n, *refl));
                     }
                 }
-                (Element::Plane { at, .. }, whitted::geometry::Shape::Plane { point, normal }) => {
+                (Element::Plane { at, .. }, whitted_core::geometry::Shape::Plane { point, normal }) => {
                     prop_assert_eq!(point.to_array(), *at);
                     prop_assert!((normal.length() - 1.0).abs() < 1e-12);
                 }
@@ -215,7 +215,7 @@ proptest! {
             let end = (start + remove).min(xml.len());
             xml.splice(start..end, insert.bytes());
         }
-        if let Err(e) = whitted::scene::parse_bytes("test.xml", &xml) {
+        if let Err(e) = whitted_core::scene::parse_bytes("test.xml", &xml) {
             let message = e.to_string();
             let mut parts = message.splitn(4, ':');
             prop_assert_eq!(parts.next(), Some("test.xml"));

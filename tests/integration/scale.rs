@@ -3,10 +3,10 @@
 //! exact tick image at one sample and unblended data layers at many.
 
 use crate::common::*;
-use whitted::film::Film;
-use whitted::frame::{Acceleration, FrameSpec};
-use whitted::render::RenderStats;
-use whitted::scene::{self, Scene};
+use whitted_core::film::Film;
+use whitted_core::frame::{Acceleration, FrameSpec};
+use whitted_core::render::RenderStats;
+use whitted_core::scene::{self, Scene};
 
 /// The benchmark scene of `n` spheres, from the one generator (tools/sphere_grid.py).
 fn sphere_grid(n: usize) -> String {

@@ -3,9 +3,9 @@
 
 use crate::common::render_frame;
 use glam::DVec3;
-use whitted::film::Film;
-use whitted::frame::FrameSpec;
-use whitted::scene;
+use whitted_core::film::Film;
+use whitted_core::frame::FrameSpec;
+use whitted_core::scene;
 
 fn render_scene(name: &str, width: u32, height: u32, bounces: u32, shadows: bool) -> Film {
     let scene = scene::load(&crate::common::scene(name)).unwrap_or_else(|e| panic!("{e}"));

@@ -1,0 +1,230 @@
+//! `whitted check`: the tester a student runs at home (docs/check.md). It renders the
+//! reference at the student's image size, compares every byte, and, where they differ, names
+//! the catalogue entries (mistakes and unfinished stages, up to three at once) that reproduce
+//! the student's images best (`check::diagnose`), or else the terms of the model
+//! (`check::terms`) or the wrong number (`check::numbers`) the difference lives in, and where
+//! the student is in the handout (`check::progress`). `--program` runs the student's own
+//! program over a suite of scenes and diagnoses every case at once.
+
+pub mod case;
+pub mod diagnose;
+pub mod difference;
+pub mod image_cache;
+pub mod json;
+pub mod numbers;
+pub mod orphans;
+pub mod program;
+pub mod progress;
+pub mod renderer;
+pub mod report;
+pub mod reproduce;
+pub mod score;
+pub mod student_png;
+pub mod suite;
+pub mod summary;
+pub mod terms;
+
+use crate::check::case::Case;
+use crate::check::diagnose::{CaseFinding, Diagnosis, Search};
+use crate::check::difference::{difference, Difference};
+use crate::check::numbers::NumberFit;
+use crate::check::progress::{Evidence, Progress};
+use crate::check::renderer::{Renderer, SharedScene};
+use crate::check::student_png::Rgb8;
+use crate::check::terms::{TermCase, TermFit};
+use crate::mistakes::Mistakes;
+use whitted_core::error::Result;
+use whitted_core::scene::Scene;
+
+/// Below this share of differing pixels explained, the best catalogued candidate is not a
+/// good explanation: the term and number fits run, and the report says so first.
+pub const GOOD_EXPLANATION: f64 = 0.9;
+
+/// The share the best entries must explain for a number to be fitted on top of them too.
+const PART_EXPLAINED: f64 = 0.3;
+
+/// What the diagnosis found over one or more cases.
+#[derive(Debug, Clone)]
+pub struct Findings {
+    /// Best first; empty when every image is identical or nothing explains them better than
+    /// the reference does.
+    pub diagnosis: Vec<Diagnosis>,
+    /// Per case, what the best explanation says of it.
+    pub per_case: Vec<CaseFinding>,
+    /// Where no candidate explains the images well: the model's terms they differ in.
+    pub terms: Vec<TermFit>,
+    /// Where no candidate explains the images well: the model's numbers that do.
+    pub parameters: Vec<NumberFit>,
+    pub progress: Progress,
+}
+
+impl Findings {
+    /// Whether no catalogued candidate explains `GOOD_EXPLANATION` of the differing pixels.
+    pub fn weak(&self) -> bool {
+        self.diagnosis
+            .first()
+            .is_none_or(|d| d.explained < GOOD_EXPLANATION)
+    }
+
+    /// Nothing found: no images, or every one identical.
+    fn nothing(cases: usize, evidence: Evidence) -> Findings {
+        Findings {
+            diagnosis: Vec::new(),
+            per_case: vec![CaseFinding::default(); cases],
+            terms: Vec::new(),
+            parameters: Vec::new(),
+            progress: Progress::of(&evidence),
+        }
+    }
+}
+
+/// Diagnoses `cases` together; `all_pass` says whether every case (of the suite, including
+/// those with no image) passed.
+pub fn find(cases: &[Case], all_pass: bool) -> Result<Findings> {
+    if cases.is_empty() {
+        return Ok(Findings::nothing(0, Evidence::Nothing));
+    }
+    if cases.iter().all(Case::identical) {
+        let evidence = if all_pass {
+            Evidence::AllCorrect
+        } else {
+            Evidence::Nothing
+        };
+        return Ok(Findings::nothing(cases.len(), evidence));
+    }
+    let search = Search::run(cases)?;
+    let diagnosis = search.diagnosis(cases);
+    let per_case = (0..cases.len())
+        .map(|i| match diagnosis.first() {
+            Some(top) => search.in_case(cases, top.mistakes, i),
+            None => CaseFinding::default(),
+        })
+        .collect();
+    let mut findings = Findings {
+        diagnosis,
+        per_case,
+        terms: Vec::new(),
+        parameters: Vec::new(),
+        progress: Progress::of(&Evidence::Nothing),
+    };
+    if findings.weak() {
+        findings.terms = fit_terms(cases)?;
+        // A number on top of the best entries too, where they explain a good part: a
+        // half-written program with one wrong number.
+        let mut bases = vec![Mistakes::NONE];
+        bases.extend(
+            findings
+                .diagnosis
+                .first()
+                .filter(|d| d.explained >= PART_EXPLAINED)
+                .map(|d| d.mistakes),
+        );
+        findings.parameters = numbers::fit(cases, &bases)?;
+    }
+    findings.progress = Progress::of(&evidence(&findings, all_pass));
+    Ok(findings)
+}
+
+/// The best explanation found, for the progress.
+fn evidence(findings: &Findings, all_pass: bool) -> Evidence {
+    let top = findings.diagnosis.first();
+    let number = findings.parameters.first();
+    let by_number = number.filter(|n| top.is_none_or(|d| n.explained > d.explained));
+    match (top, by_number) {
+        (_, Some(n)) => Evidence::Explained {
+            mistakes: n.with,
+            number: Some(n.parameter),
+            explained: n.explained,
+        },
+        (Some(d), None) => Evidence::Explained {
+            mistakes: d.mistakes,
+            number: None,
+            explained: d.explained,
+        },
+        (None, None) if all_pass => Evidence::AllCorrect,
+        (None, None) => Evidence::Unexplained,
+    }
+}
+
+/// The term fit over the sampled differing pixels of every case, a factor shared by all.
+fn fit_terms(cases: &[Case]) -> Result<Vec<TermFit>> {
+    let term_cases: Vec<TermCase> = cases
+        .iter()
+        .filter(|c| !c.identical())
+        .map(|c| {
+            let pixels = &c.sample.positions[..c.sample.wrong];
+            let samples = c.renderer.layers_at(pixels)?;
+            Ok(TermCase::new(
+                c.renderer.scene,
+                c.renderer.bounces(),
+                &samples,
+                pixels,
+                &c.student,
+            ))
+        })
+        .collect::<Result<_>>()?;
+    Ok(terms::fit(&term_cases))
+}
+
+/// Everything known about one student image of one scene.
+#[derive(Debug, Clone)]
+pub struct CaseReport {
+    pub scene_name: String,
+    pub bounces: u32,
+    pub tolerance: u8,
+    pub difference: Difference,
+    /// The diagnosis as it concerns this case: the whole ranking for one image; in a suite,
+    /// the part of the suite's explanation that shows here, if it explains this case.
+    pub diagnosis: Vec<Diagnosis>,
+    /// Entries this case passes with, yet renders exactly as they do: the same fix as the
+    /// failing cases'.
+    pub hidden_mistakes: Mistakes,
+    pub student: Rgb8,
+    pub reference: Rgb8,
+}
+
+/// One case ready to diagnose, and its report without a diagnosis yet. `shared` names the
+/// scene for the cache of whole images (`image_cache.rs`), when it is one many checks share.
+pub fn prepare<'a>(
+    scene: &'a Scene,
+    scene_name: &str,
+    bounces: u32,
+    tolerance: u8,
+    student: Rgb8,
+    cases: usize,
+    shared: Option<SharedScene>,
+) -> Result<(Case<'a>, CaseReport)> {
+    let renderer =
+        Renderer::new(scene, student.width, student.height, bounces)?.remembered_as(shared);
+    let case = Case::new(renderer, student, cases)?;
+    let report = CaseReport {
+        scene_name: scene_name.to_string(),
+        bounces,
+        tolerance,
+        difference: difference(&case.student, &case.reference, tolerance),
+        diagnosis: Vec::new(),
+        hidden_mistakes: Mistakes::NONE,
+        student: case.student.clone(),
+        reference: case.reference.clone(),
+    };
+    Ok((case, report))
+}
+
+/// Checks `student` against `scene` rendered at its size with `bounces` bounces.
+pub fn check_image(
+    scene: &Scene,
+    scene_name: &str,
+    bounces: u32,
+    tolerance: u8,
+    student: Rgb8,
+) -> Result<(CaseReport, Findings)> {
+    let (case, mut report) = prepare(scene, scene_name, bounces, tolerance, student, 1, None)?;
+    let passes = report.difference.verdict.passes();
+    let findings = find(std::slice::from_ref(&case), passes)?;
+    report.diagnosis = findings.diagnosis.clone();
+    report.hidden_mistakes = findings.per_case[0].hidden(passes);
+    Ok((report, findings))
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,325 @@
+//! Naming the mistakes: candidate programs (sets of up to three catalogue entries) are
+//! rendered as the course's model with those rules broken, and ranked by how well they
+//! reproduce the student's images over every case at once, so that an entry that explains
+//! every failing case ranks first and one that changes a case the student got right falls.
+//!
+//! Two stages keep a 640x480 check within a second on two cores. First every candidate
+//! renders only each case's sample (`check::case`): every single entry and every pair, then
+//! (unless the best of those reproduces every case exactly) a beam of the best pairs extended
+//! by one more entry where that lowers the cost. Then the best `FINALISTS` render every case
+//! whole, and their numbers are exact; after one that reproduces the student's images
+//! exactly, only those that could be its twins. On a tie of cost, fewer entries rank first,
+//! then catalogue order.
+
+use std::collections::HashMap;
+
+use rayon::prelude::*;
+
+use crate::check::case::Case;
+use crate::check::difference::pixel_difference;
+use crate::check::score::{cost, share, Scored};
+use crate::mistakes::{Bug, Mistakes, Variant};
+use whitted_core::error::Result;
+
+/// Candidates the second stage renders whole, at most: those whose sampled cost is within
+/// `CLOSE` of the best (plus a margin for the sample's noise), where the ranking could turn.
+pub const FINALISTS: usize = 4;
+const CLOSE: f64 = 2.0;
+
+/// Pairs extended to triples.
+const BEAM: usize = 6;
+
+/// Diagnoses listed at most.
+const LISTED: usize = 8;
+
+/// One diagnosis: a candidate and how well it reproduces the student's images.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Diagnosis {
+    pub mistakes: Mistakes,
+    /// Share of the differing pixels it reproduces within 1 LSB.
+    pub explained: f64,
+    pub unexplained_pixels: u64,
+    pub wrongly_changed_pixels: u64,
+    /// Candidates with as many entries that render every case identically.
+    pub indistinguishable_from: Vec<Mistakes>,
+    /// Whether the numbers were counted over whole images (else estimated from a sample).
+    pub exact: bool,
+}
+
+/// What the reference itself explains of `cases`: its cost, the cost of "no mistake".
+pub fn null_cost(case: &Case) -> f64 {
+    case.wrong
+        .iter()
+        .map(|&i| {
+            cost(pixel_difference(
+                &case.student.bytes,
+                &case.reference.bytes,
+                i,
+            ))
+        })
+        .sum()
+}
+
+/// Every candidate scored on the samples, the finalists on whole images, in no set order.
+pub struct Search {
+    scored: Vec<Scored>,
+}
+
+/// Scores `list` on the samples, on every core.
+fn score_all(cases: &[Case], list: &[Mistakes]) -> Result<Vec<Scored>> {
+    list.par_iter()
+        .map(|&m| Scored::on_samples(cases, Variant::from(m)))
+        .collect()
+}
+
+/// Every single entry and every pair that a program can have.
+fn singles_and_pairs() -> Vec<Mistakes> {
+    let singles = Bug::ALL.iter().map(|&b| Mistakes::of(&[b]));
+    let pairs = Bug::ALL.iter().enumerate().flat_map(|(i, &a)| {
+        Bug::ALL[i + 1..]
+            .iter()
+            .filter(move |&&b| !a.excludes(b))
+            .map(move |&b| Mistakes::of(&[a, b]))
+    });
+    singles.chain(pairs).collect()
+}
+
+impl Search {
+    /// Runs both stages over `cases` (at least one differs from its reference).
+    pub fn run(cases: &[Case]) -> Result<Self> {
+        let mut search = Search {
+            scored: score_all(cases, &singles_and_pairs())?,
+        };
+        if !search.exactly_explained(cases)? {
+            let triples = search.triples();
+            search.scored.extend(score_all(cases, &triples)?);
+        }
+        search.finalise(cases)?;
+        Ok(search)
+    }
+
+    /// Whether the best candidate so far reproduces every case exactly (it is then made
+    /// whole): no triple can do better, and on a tie the fewer entries rank first, so the
+    /// triples need not be scored.
+    fn exactly_explained(&mut self, cases: &[Case]) -> Result<bool> {
+        let mut order: Vec<&Scored> = self.useful().collect();
+        order.sort_by(ranking);
+        let Some(best) = order.first().filter(|s| s.cost() == 0.0) else {
+            return Ok(false);
+        };
+        let mistakes = best.variant.mistakes;
+        let Some(s) = self.get_mut(mistakes) else {
+            return Ok(false);
+        };
+        *s = s.made_whole(cases)?;
+        Ok(s.cost() == 0.0)
+    }
+
+    /// The candidate for exactly `mistakes` (no number), if it was scored.
+    pub fn get(&self, mistakes: Mistakes) -> Option<&Scored> {
+        self.scored.iter().find(|s| s.variant.mistakes == mistakes)
+    }
+
+    fn get_mut(&mut self, mistakes: Mistakes) -> Option<&mut Scored> {
+        self.scored
+            .iter_mut()
+            .find(|s| s.variant.mistakes == mistakes)
+    }
+
+    /// The best pairs, each extended by every entry it admits, where no triple of the same
+    /// entries is scored yet.
+    fn triples(&self) -> Vec<Mistakes> {
+        let mut pairs: Vec<&Scored> = self
+            .useful()
+            .filter(|s| s.variant.mistakes.len() == 2)
+            .collect();
+        pairs.sort_by(ranking);
+        let mut triples: Vec<Mistakes> = pairs
+            .iter()
+            .take(BEAM)
+            .flat_map(|pair| {
+                let set = pair.variant.mistakes;
+                Bug::ALL
+                    .into_iter()
+                    .filter(move |&b| set.admits(b))
+                    .map(move |b| set.with(b))
+            })
+            .collect();
+        triples.sort();
+        triples.dedup();
+        triples
+    }
+
+    /// The candidates worth ranking: they change something, and render differently from
+    /// every scored set one entry smaller (a single entry: from the reference), so each entry
+    /// adds something; a third entry counts only where it also lowers the cost (the beam
+    /// extends while the cost falls).
+    fn useful(&self) -> impl Iterator<Item = &Scored> {
+        let by_set: HashMap<Mistakes, &Scored> = self
+            .scored
+            .iter()
+            .map(|s| (s.variant.mistakes, s))
+            .collect();
+        self.scored.iter().filter(move |s| {
+            let set = s.variant.mistakes;
+            s.changes_any()
+                && set.one_smaller().iter().all(|smaller| {
+                    by_set.get(smaller).is_none_or(|t| {
+                        !s.renders_like(t) && (set.len() < 3 || s.cost() < t.cost())
+                    })
+                })
+        })
+    }
+
+    /// Renders whole the best candidates, where the ranking could turn.
+    fn finalise(&mut self, cases: &[Case]) -> Result<()> {
+        let differing: usize = cases.iter().map(|c| c.wrong.len()).sum();
+        let mut order: Vec<&Scored> = self.useful().collect();
+        order.sort_by(ranking);
+        let best = order.first().map_or(0.0, |s| s.cost());
+        let margin = 0.01 * differing as f64 + 1.0;
+        let finalists: Vec<Mistakes> = order
+            .iter()
+            .take(FINALISTS)
+            .take_while(|s| s.cost() <= best * CLOSE + margin)
+            .map(|s| s.variant.mistakes)
+            .collect();
+        let mut exact: Option<Mistakes> = None;
+        for mistakes in finalists {
+            if let Some(s) = self.get_mut(mistakes) {
+                // Once a finalist renders every case exactly as the student did, only its
+                // twins are listed (`rank`): one that already differs from the student on
+                // the sample is no twin, and its whole images would change nothing shown,
+                // unless it is the exact one less an entry (`in_case` compares those).
+                let needed = exact.is_none_or(|e| e.one_smaller().contains(&mistakes));
+                if !needed && s.differs_on_sample() {
+                    continue;
+                }
+                if !s.is_whole() {
+                    *s = s.made_whole(cases)?;
+                }
+                if exact.is_none() && s.cost() == 0.0 {
+                    exact = Some(mistakes);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The ranked diagnosis over every case.
+    pub fn diagnosis(&self, cases: &[Case]) -> Vec<Diagnosis> {
+        let null: f64 = cases.iter().map(null_cost).sum();
+        let differing: usize = cases.iter().map(|c| c.wrong.len()).sum();
+        let mut order: Vec<&Scored> = self.useful().filter(|s| s.cost() < null).collect();
+        order.sort_by(ranking);
+        rank(order, differing)
+    }
+
+    /// What the suite's best explanation `top` says of case `i`: the part of it that shows
+    /// there (an entry shows where leaving it out renders the case otherwise), with its
+    /// numbers on that case, and whether it renders the case exactly as the student did.
+    pub fn in_case(&self, cases: &[Case], top: Mistakes, i: usize) -> CaseFinding {
+        let Some(scored) = self.get(top) else {
+            return CaseFinding::default();
+        };
+        let here = &scored.cases[i];
+        let shows = Mistakes::of(
+            &top.bugs()
+                .into_iter()
+                .filter(|&m| {
+                    let without = top.one_smaller().into_iter().find(|s| !s.has(m));
+                    match without.filter(|w| !w.is_empty()).and_then(|w| self.get(w)) {
+                        Some(smaller) => !here.renders_like(&smaller.cases[i]),
+                        None => here.changes_image,
+                    }
+                })
+                .collect::<Vec<_>>(),
+        );
+        let wrong = cases[i].wrong.len();
+        let label = Diagnosis {
+            mistakes: shows,
+            explained: share(here.explained, wrong),
+            unexplained_pixels: (wrong as f64 - here.explained).max(0.0).round() as u64,
+            wrongly_changed_pixels: here.wrongly_changed.round() as u64,
+            indistinguishable_from: Vec::new(),
+            exact: here.is_whole(),
+        };
+        CaseFinding {
+            exactly: here.is_whole() && here.changes_image && here.cost == 0.0 && !shows.is_empty(),
+            label: (!shows.is_empty() && wrong > 0 && label.explained >= LABELLED).then_some(label),
+        }
+    }
+}
+
+/// What the suite's explanation says of one case.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct CaseFinding {
+    /// The part of the suite's explanation that shows in this case, where it explains at
+    /// least `LABELLED` of the case's differing pixels.
+    pub label: Option<Diagnosis>,
+    /// Whether the suite's explanation renders this case byte for byte as the student did.
+    pub exactly: bool,
+}
+
+impl CaseFinding {
+    /// The entries a case that `passes` hides: it renders exactly what they render.
+    pub fn hidden(&self, passes: bool) -> Mistakes {
+        match (&self.label, passes && self.exactly) {
+            (Some(label), true) => label.mistakes,
+            _ => Mistakes::NONE,
+        }
+    }
+}
+
+/// A case is labelled with the suite's explanation only where that explains this share of
+/// its differing pixels: below, the label would say little.
+const LABELLED: f64 = 0.5;
+
+/// Lower cost first; then fewer entries, then catalogue order.
+fn ranking(a: &&Scored, b: &&Scored) -> std::cmp::Ordering {
+    a.cost()
+        .total_cmp(&b.cost())
+        .then_with(|| simpler(a.variant.mistakes, b.variant.mistakes))
+}
+
+/// Fewer entries first, then catalogue order.
+fn simpler(a: Mistakes, b: Mistakes) -> std::cmp::Ordering {
+    let (a, b) = (a.bugs(), b.bugs());
+    a.len().cmp(&b.len()).then(a.cmp(&b))
+}
+
+/// The listed diagnoses from candidates in ranking order: twins fold into the first of them,
+/// and after an exact explanation of everything only its twins remain.
+fn rank(order: Vec<&Scored>, differing: usize) -> Vec<Diagnosis> {
+    let mut listed: Vec<(&Scored, Diagnosis)> = Vec::new();
+    for s in order {
+        let mistakes = s.variant.mistakes;
+        if let Some((_, entry)) = listed
+            .iter_mut()
+            .find(|(r, _)| r.renders_like(s) && r.compared_whole(s))
+        {
+            // A twin with more entries adds nothing: the simpler explanation stands.
+            if entry.mistakes.len() == mistakes.len() {
+                entry.indistinguishable_from.push(mistakes);
+            }
+            continue;
+        }
+        let complete = listed.first().is_some_and(|(_, d)| {
+            d.exact && d.unexplained_pixels == 0 && d.wrongly_changed_pixels == 0
+        });
+        if listed.len() == LISTED || complete {
+            continue;
+        }
+        let explained = s.explained();
+        let diagnosis = Diagnosis {
+            mistakes,
+            explained: share(explained, differing),
+            unexplained_pixels: (differing as f64 - explained).max(0.0).round() as u64,
+            wrongly_changed_pixels: s.wrongly_changed().round() as u64,
+            indistinguishable_from: Vec::new(),
+            exact: s.is_whole(),
+        };
+        listed.push((s, diagnosis));
+    }
+    listed.into_iter().map(|(_, d)| d).collect()
+}

@@ -1,0 +1,550 @@
+//! `whitted check --program 'CMD ARGS'`: runs a student's Tick 2 program over the suite and
+//! checks every image it writes. The program is untrusted input like any file: it runs in a
+//! process group of its own that is killed when its case ends (so nothing it starts outlives
+//! it), with a timeout, its standard output discarded and only a bounded tail of its standard
+//! error kept; the PNG it writes is checked before it is decoded. Two cases run at a time;
+//! Ctrl-C kills every program and removes every temporary directory within a few polls.
+
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, ExitStatus, Stdio};
+use std::sync::{Arc, Mutex};
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+
+use crate::check::orphans;
+use crate::check::renderer::SharedScene;
+use crate::check::student_png::{self, Rgb8};
+use crate::check::suite::{cases, SuiteCase};
+use crate::check::{find, prepare, CaseReport, Findings};
+use whitted_core::error::{Error, Result};
+use whitted_core::interrupt;
+use whitted_core::scene::{self, Scene};
+
+/// The image size the course's program always writes.
+pub const WIDTH: u32 = 640;
+pub const HEIGHT: u32 = 480;
+
+/// Cases running at once.
+const AT_ONCE: usize = 2;
+
+/// How often running programs are looked at (and Ctrl-C noticed).
+const POLL: Duration = Duration::from_millis(20);
+
+/// Bytes of a program's standard error kept: its end, where the exception is.
+const STDERR_TAIL: usize = 4096;
+
+/// How long the standard error reader may take to reach the pipe's end once the case's
+/// processes are killed: a descendant that left the process group can hold the pipe open
+/// for ever, and then the tail read so far is all there is.
+const STDERR_GRACE: Duration = Duration::from_millis(200);
+
+/// How one case ended.
+#[derive(Debug, Clone)]
+pub enum Status {
+    /// It wrote a 640x480 PNG, which was checked.
+    Ok(Box<CaseReport>),
+    /// It exited with a failure status or was killed by a signal.
+    Crashed(String),
+    /// It was still running after the timeout (in seconds).
+    Timeout(u64),
+    /// It exited successfully but wrote no readable PNG.
+    NoOutput(String),
+    /// It wrote a PNG of another size.
+    WrongSize { width: u32, height: u32 },
+    /// It ran out of the memory it may use (Java's OutOfMemoryError).
+    OutOfMemory(String),
+    /// It wrote more than a file may hold (the sandbox's file size limit).
+    OutputTooLarge(String),
+}
+
+impl Status {
+    pub fn name(&self) -> &'static str {
+        match self {
+            Status::Ok(_) => "ok",
+            Status::Crashed(_) => "crashed",
+            Status::Timeout(_) => "timeout",
+            Status::NoOutput(_) => "no-output",
+            Status::WrongSize { .. } => "wrong-size",
+            Status::OutOfMemory(_) => "out-of-memory",
+            Status::OutputTooLarge(_) => "output-too-large",
+        }
+    }
+
+    /// How a case that wrote no image to check ended, in a line (None for `Ok`).
+    pub fn failure_line(&self) -> Option<String> {
+        Some(match self {
+            Status::Ok(_) => return None,
+            Status::WrongSize { width, height } => {
+                format!("wrong-size: wrote {width}x{height}, expected {WIDTH}x{HEIGHT}")
+            }
+            Status::Crashed(message)
+            | Status::NoOutput(message)
+            | Status::OutOfMemory(message)
+            | Status::OutputTooLarge(message) => format!("{}: {message}", self.name()),
+            Status::Timeout(seconds) => format!("timeout: still running after {seconds} s"),
+        })
+    }
+}
+
+/// One case's result.
+#[derive(Debug, Clone)]
+pub struct CaseOutcome {
+    pub name: String,
+    /// The suite case it ran.
+    pub case: SuiteCase,
+    pub status: Status,
+    /// The last lines of what the program wrote to standard error.
+    pub stderr_tail: String,
+}
+
+impl CaseOutcome {
+    pub fn passed(&self) -> bool {
+        matches!(&self.status, Status::Ok(c) if c.difference.verdict.passes())
+    }
+}
+
+/// The whole suite's result.
+#[derive(Debug, Clone)]
+pub struct SuiteRun {
+    pub program: String,
+    pub cases: Vec<CaseOutcome>,
+    /// One diagnosis over every case that produced an image, all at once.
+    pub findings: Findings,
+}
+
+impl SuiteRun {
+    pub fn passed(&self) -> bool {
+        self.cases.iter().all(CaseOutcome::passed)
+    }
+}
+
+/// The program's words: split as a POSIX shell would, without running one.
+pub fn words(program: &str) -> Result<Vec<String>> {
+    match shlex::split(program) {
+        Some(words) if !words.is_empty() => Ok(words),
+        Some(_) => Err(Error::Usage("--program is empty".into())),
+        None => Err(Error::Usage(format!(
+            "--program `{program}` has an unmatched quote or a trailing backslash"
+        ))),
+    }
+}
+
+/// How a case's program is started: as the user gave it (`check --program`), or inside a
+/// sandbox (`whitted grade`). The case's arguments (`--input S --output O --bounces B`, with
+/// paths inside `dir`) are appended to the command it returns.
+pub trait Launch: Sync {
+    /// The command that runs the program, able to read and write `dir`.
+    fn command(&self, dir: &Path) -> Result<Command>;
+    /// Whether everything the program starts dies with the command (a sandbox's own process
+    /// namespace): then no orphan needs adopting, and none is looked for.
+    fn contains_descendants(&self) -> bool;
+    /// Called once the run in `dir` is over and its processes are gone: the limit of the
+    /// launcher's it hit, if any (a sandbox's cgroup, its capped writable area).
+    fn ended(&self, _dir: &Path) -> Option<LimitHit> {
+        None
+    }
+}
+
+/// A limit of a launcher's that a run hit, which only the launcher can see.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum LimitHit {
+    /// The kernel killed it at its memory limit.
+    Memory,
+    /// It filled its writable area (bytes or files): what the limit is.
+    WritableArea(String),
+}
+
+/// The program as given: its words, run directly.
+pub struct Plain(pub Vec<String>);
+
+impl Launch for Plain {
+    fn command(&self, _dir: &Path) -> Result<Command> {
+        let mut command = Command::new(&self.0[0]);
+        command.args(&self.0[1..]);
+        Ok(command)
+    }
+
+    fn contains_descendants(&self) -> bool {
+        false
+    }
+}
+
+/// Runs `program` over the suite and checks each image at `tolerance`.
+pub fn run_suite(program: &str, tolerance: u8, timeout: u64) -> Result<SuiteRun> {
+    let plain = Plain(words(program)?);
+    run_suite_with(&plain, program, &cases(), tolerance, timeout)
+}
+
+/// Runs the program `launch` starts (shown to the user as `program`) over `suite`, and checks
+/// each image at `tolerance`.
+pub fn run_suite_with(
+    launch: &dyn Launch,
+    program: &str,
+    suite: &[SuiteCase],
+    tolerance: u8,
+    timeout: u64,
+) -> Result<SuiteRun> {
+    let finished = run_programs(launch, suite, Duration::from_secs(timeout))?;
+    let mut statuses: Vec<Option<Status>> = Vec::new();
+    let mut tails = Vec::new();
+    let mut scenes: Vec<(usize, Scene)> = Vec::new();
+    let mut images: Vec<Rgb8> = Vec::new();
+    for (i, (case, (result, stderr_tail))) in suite.iter().zip(finished).enumerate() {
+        tails.push(stderr_tail);
+        match result {
+            Ran::Image(image) => {
+                scenes.push((i, scene::parse_str(&case.file, &case.xml)?));
+                images.push(image);
+                statuses.push(None);
+            }
+            Ran::Failed(status) => statuses.push(Some(status)),
+        }
+    }
+    let count = scenes.len();
+    let mut prepared = Vec::new();
+    let mut reports = Vec::new();
+    let keys: Vec<String> = scenes
+        .iter()
+        .map(|(i, _)| whitted_core::fingerprint::fingerprint(&[suite[*i].xml.as_bytes()]))
+        .collect();
+    let sizes: Vec<(u32, u32)> = images.iter().map(|m| (m.width, m.height)).collect();
+    for (k, ((i, scene), image)) in scenes.iter().zip(images).enumerate() {
+        let case = &suite[*i];
+        // The cases of this scene at this image's size: rendered whole together.
+        let bounce_family = (0..count)
+            .filter(|&j| keys[j] == keys[k] && sizes[j] == sizes[k])
+            .map(|j| suite[scenes[j].0].bounces)
+            .collect();
+        let shared = SharedScene {
+            key: keys[k].clone(),
+            bounce_family,
+        };
+        let (c, report) = prepare(
+            scene,
+            &case.file,
+            case.bounces,
+            tolerance,
+            image,
+            count,
+            Some(shared),
+        )?;
+        interrupt::check()?;
+        prepared.push(c);
+        reports.push(report);
+    }
+    let all_pass = statuses.iter().all(Option::is_none)
+        && reports.iter().all(|r| r.difference.verdict.passes());
+    let findings = find(&prepared, all_pass)?;
+    let mut reports = reports.into_iter().zip(&findings.per_case);
+    let outcomes = suite
+        .iter()
+        .zip(statuses)
+        .zip(tails)
+        .map(|((case, status), stderr_tail)| {
+            let status = status.unwrap_or_else(|| match reports.next() {
+                Some((mut report, finding)) => {
+                    report.diagnosis = finding.label.iter().cloned().collect();
+                    report.hidden_mistakes = finding.hidden(report.difference.verdict.passes());
+                    Status::Ok(Box::new(report))
+                }
+                None => Status::Crashed("not checked".into()),
+            });
+            CaseOutcome {
+                name: case.name(),
+                case: case.clone(),
+                status,
+                stderr_tail,
+            }
+        })
+        .collect();
+    Ok(SuiteRun {
+        program: program.to_string(),
+        cases: outcomes,
+        findings,
+    })
+}
+
+/// What running one case gave.
+enum Ran {
+    Image(Rgb8),
+    Failed(Status),
+}
+
+/// A case whose program is running.
+struct Running {
+    index: usize,
+    child: Child,
+    /// The reader of the program's standard error and the tail it has kept so far.
+    stderr: Option<JoinHandle<()>>,
+    stderr_tail: Arc<Mutex<Vec<u8>>>,
+    started: Instant,
+    /// Holds the scene and the output; removed when dropped.
+    dir: tempfile::TempDir,
+}
+
+/// Runs every case's program, `AT_ONCE` at a time, and returns each one's result and standard
+/// error tail in suite order.
+fn run_programs(
+    launch: &dyn Launch,
+    suite: &[SuiteCase],
+    timeout: Duration,
+) -> Result<Vec<(Ran, String)>> {
+    let mut results: Vec<Option<(Ran, String)>> = suite.iter().map(|_| None).collect();
+    let mut running: Vec<Running> = Vec::new();
+    let mut next = 0;
+    let orphans = !launch.contains_descendants();
+    let kill_orphans = || {
+        if orphans {
+            orphans::kill_adopted();
+        }
+    };
+    if orphans {
+        orphans::adopt();
+    }
+    loop {
+        if interrupt::requested() {
+            for mut r in running.drain(..) {
+                stop(&mut r);
+            }
+            kill_orphans();
+            interrupt::check()?;
+        }
+        while running.len() < AT_ONCE && next < suite.len() {
+            match start(launch, &suite[next], next) {
+                Ok(r) => running.push(r),
+                Err(e) => {
+                    for mut r in running.drain(..) {
+                        stop(&mut r);
+                    }
+                    kill_orphans();
+                    return Err(e);
+                }
+            }
+            next += 1;
+        }
+        if running.is_empty() {
+            kill_orphans();
+            break;
+        }
+        let mut still = Vec::new();
+        for mut r in running.drain(..) {
+            match r.child.try_wait() {
+                Ok(Some(status)) => {
+                    let index = r.index;
+                    results[index] = Some(finish(launch, r, Some(status), timeout));
+                }
+                Ok(None) if r.started.elapsed() > timeout => {
+                    let index = r.index;
+                    results[index] = Some(finish(launch, r, None, timeout));
+                }
+                Ok(None) => still.push(r),
+                Err(e) => {
+                    let index = r.index;
+                    let tail = stop(&mut r);
+                    let status = Status::Crashed(format!("cannot wait for the program: {e}"));
+                    results[index] = Some((Ran::Failed(status), tail));
+                }
+            }
+        }
+        running = still;
+        if !running.is_empty() {
+            std::thread::sleep(POLL);
+        }
+    }
+    Ok(results
+        .into_iter()
+        .map(|r| {
+            r.unwrap_or((
+                Ran::Failed(Status::Crashed("not run".into())),
+                String::new(),
+            ))
+        })
+        .collect())
+}
+
+/// Starts case `index`'s program in a fresh temporary directory and process group.
+fn start(launch: &dyn Launch, case: &SuiteCase, index: usize) -> Result<Running> {
+    let dir = tempfile::Builder::new()
+        .prefix("whitted-check-")
+        .tempdir()
+        .map_err(|e| {
+            Error::io(
+                std::env::temp_dir(),
+                "cannot create a temporary directory",
+                e,
+            )
+        })?;
+    let scene = dir.path().join(&*case.file);
+    std::fs::write(&scene, case.xml.as_bytes())
+        .map_err(|e| Error::io(&scene, "cannot write", e))?;
+    let output = output_path(dir.path());
+    let mut command = launch.command(dir.path())?;
+    command
+        .arg("--input")
+        .arg(&scene)
+        .arg("--output")
+        .arg(&output)
+        .arg("--bounces")
+        .arg(case.bounces.to_string())
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped());
+    #[cfg(unix)]
+    std::os::unix::process::CommandExt::process_group(&mut command, 0);
+    let program = command.get_program().to_string_lossy().into_owned();
+    let mut child = command
+        .spawn()
+        .map_err(|e| Error::Usage(format!("cannot start the program `{program}`: {e}")))?;
+    let stderr = child.stderr.take();
+    let stderr_tail = Arc::new(Mutex::new(Vec::new()));
+    let tail = Arc::clone(&stderr_tail);
+    let reader = std::thread::spawn(move || {
+        if let Some(pipe) = stderr {
+            keep_tail(pipe, &tail);
+        }
+    });
+    Ok(Running {
+        index,
+        child,
+        stderr: Some(reader),
+        stderr_tail,
+        started: Instant::now(),
+        dir,
+    })
+}
+
+fn output_path(dir: &Path) -> PathBuf {
+    dir.join("output.png")
+}
+
+/// Reads `pipe` to its end, keeping only the last `STDERR_TAIL` bytes in `tail`.
+fn keep_tail(mut pipe: impl Read, tail: &Mutex<Vec<u8>>) {
+    let mut buffer = [0u8; 8192];
+    loop {
+        match pipe.read(&mut buffer) {
+            Ok(0) | Err(_) => break,
+            Ok(n) => {
+                // A poisoned lock only means another reader panicked: the bytes are still
+                // worth keeping.
+                let mut tail = tail.lock().unwrap_or_else(|e| e.into_inner());
+                tail.extend_from_slice(&buffer[..n]);
+                if tail.len() > STDERR_TAIL {
+                    let excess = tail.len() - STDERR_TAIL;
+                    tail.drain(..excess);
+                }
+            }
+        }
+    }
+}
+
+/// The last lines of a standard error tail, as text.
+fn tail_text(bytes: &[u8]) -> String {
+    let text = String::from_utf8_lossy(bytes);
+    let lines: Vec<&str> = text.lines().collect();
+    lines[lines.len().saturating_sub(12)..].join("\n")
+}
+
+/// Kills the case's whole process group, reaps the program and returns its stderr tail. The
+/// temporary directory stays until `r` is dropped.
+fn stop(r: &mut Running) -> String {
+    kill_group(&r.child);
+    let _ = r.child.kill();
+    let _ = r.child.wait();
+    // The pipe ends once every process holding it is gone; one that left the group may
+    // hold it for ever, so the reader gets a moment, then is left to end on its own.
+    let deadline = Instant::now() + STDERR_GRACE;
+    if let Some(reader) = r.stderr.take() {
+        while !reader.is_finished() && Instant::now() < deadline {
+            std::thread::sleep(Duration::from_millis(5));
+        }
+        if reader.is_finished() {
+            let _ = reader.join();
+        }
+    }
+    let tail = r.stderr_tail.lock().unwrap_or_else(|e| e.into_inner());
+    tail_text(&tail)
+}
+
+/// Kills `child`'s process group (it was started as its leader).
+pub fn kill_group(child: &Child) {
+    #[cfg(unix)]
+    if let Some(pid) = rustix::process::Pid::from_child(child).into() {
+        // The group may be gone already (everything exited): nothing to do then.
+        let _ = rustix::process::kill_process_group(pid, rustix::process::Signal::KILL);
+    }
+}
+
+/// The result of a case whose program exited with `status` (`None`: timed out). Every
+/// process of the case is gone before its output is read.
+fn finish(
+    launch: &dyn Launch,
+    mut r: Running,
+    status: Option<ExitStatus>,
+    timeout: Duration,
+) -> (Ran, String) {
+    let tail = stop(&mut r);
+    let hit = launch.ended(r.dir.path());
+    let memory_limit = hit == Some(LimitHit::Memory);
+    let ran = match (status, hit) {
+        (None, _) => Ran::Failed(Status::Timeout(timeout.as_secs())),
+        (Some(_), Some(LimitHit::WritableArea(limit))) => Ran::Failed(Status::OutputTooLarge(
+            format!("filled its writable area ({limit})"),
+        )),
+        (Some(s), _) if !s.success() && memory_limit => Ran::Failed(Status::OutOfMemory(format!(
+            "{}: killed at its memory limit",
+            describe(s)
+        ))),
+        (Some(s), _) if !s.success() => Ran::Failed(failure(s, &tail)),
+        (Some(_), _) => match read_output(&output_path(r.dir.path())) {
+            Ok(Ok(image)) => Ran::Image(image),
+            Ok(Err((width, height))) => Ran::Failed(Status::WrongSize { width, height }),
+            Err(message) => Ran::Failed(Status::NoOutput(message)),
+        },
+    };
+    (ran, tail)
+}
+
+/// Why a program failed: a limit it hit, named (Java's OutOfMemoryError; a write past the file
+/// size limit, which kills with SIGXFSZ or, where the signal is ignored as the JVM does, fails
+/// with EFBIG, "File too large"), or a crash.
+fn failure(status: ExitStatus, tail: &str) -> Status {
+    const SIGXFSZ: i32 = 25;
+    #[cfg(unix)]
+    let signal = std::os::unix::process::ExitStatusExt::signal(&status);
+    #[cfg(not(unix))]
+    let signal: Option<i32> = None;
+    if tail.contains("OutOfMemoryError") {
+        Status::OutOfMemory(describe(status))
+    } else if signal == Some(SIGXFSZ) || tail.contains("File too large") {
+        Status::OutputTooLarge(describe(status))
+    } else {
+        Status::Crashed(describe(status))
+    }
+}
+
+/// How a program that failed ended.
+fn describe(status: ExitStatus) -> String {
+    #[cfg(unix)]
+    if let Some(signal) = std::os::unix::process::ExitStatusExt::signal(&status) {
+        return format!("killed by signal {signal}");
+    }
+    match status.code() {
+        Some(code) => format!("exited with status {code}"),
+        None => "ended abnormally".into(),
+    }
+}
+
+/// The program's PNG, checked as any image is, or its size when it is not the course's (read
+/// from its header, nothing decoded); the message says why there is none.
+fn read_output(path: &Path) -> Result<std::result::Result<Rgb8, (u32, u32)>, String> {
+    match std::fs::symlink_metadata(path) {
+        Err(_) => return Err("the program wrote no output file".into()),
+        Ok(m) if !m.is_file() => return Err("the output is not a regular file".into()),
+        Ok(_) => {}
+    }
+    student_png::read_expecting(path, WIDTH, HEIGHT).map_err(|e| match e {
+        Error::Raster { msg, .. } => format!("the output {msg}"),
+        other => other.to_string(),
+    })
+}

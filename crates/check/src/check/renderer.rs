@@ -1,0 +1,299 @@
+//! Rendering one scene at one size and bounce count under any candidate program ([`Variant`]):
+//! the reference, a few pixels, every pixel, and the reference's layers where the term fit
+//! needs them. Every whole image is checked against the memory budget before it is made: a
+//! student's PNG sets the size, and a small file can claim a huge one.
+
+use rayon::prelude::*;
+
+use crate::check::case::PixelSample;
+use crate::check::student_png::Rgb8;
+use crate::mistakes::{Mistakes, Variant};
+use whitted_core::accel::Accelerator;
+use whitted_core::error::Result;
+use whitted_core::frame::{Acceleration, Frame, FrameSpec};
+use whitted_core::interrupt;
+use whitted_core::memory;
+use whitted_core::model::Model;
+use whitted_core::render::{trace_pixels, trace_pixels_at_bounces};
+use whitted_core::sample::Sample;
+use whitted_core::scene::Scene;
+use whitted_io::output::png::tick_bytes;
+
+/// Rows rendered together on one core for a whole image.
+const ROWS_PER_TASK: u32 = 4;
+
+/// Bytes a check holds per pixel of the image at its peak: the student's image, the
+/// reference, one candidate's whole image and its heat map (3 bytes each), the wrong-pixel
+/// list (8), and a whole image's f64 beauty for the rows being traced, rounded up generously
+/// for the allocator.
+const BYTES_PER_PIXEL: u64 = 48;
+
+/// A scene many checks share (a class's suite), for the cache of whole images.
+#[derive(Debug, Clone)]
+pub struct SharedScene {
+    /// The scene's XML fingerprint.
+    pub key: String,
+    /// The bounce counts of the suite's cases of this scene at the student's size.
+    pub bounce_family: Vec<u32>,
+}
+
+/// Renders one scene at one size and bounce count under any candidate.
+pub struct Renderer<'a> {
+    pub scene: &'a Scene,
+    /// Names the scene for the image cache (`image_cache.rs`); None renders every time.
+    scene_key: Option<String>,
+    /// The bounce counts whose whole images are rendered together when one is asked for
+    /// (this case's, and the suite's other cases of the scene at this size), ascending.
+    bounce_family: Vec<u32>,
+    spec: FrameSpec,
+    bvh: Accelerator,
+    brute: Accelerator,
+}
+
+impl<'a> Renderer<'a> {
+    /// Refuses a size whose check would not fit in the memory this process may use.
+    pub fn new(scene: &'a Scene, width: u32, height: u32, bounces: u32) -> Result<Self> {
+        let pixels = u64::from(width) * u64::from(height);
+        memory::check(
+            pixels.saturating_mul(BYTES_PER_PIXEL),
+            memory::available_bytes(),
+            &format!("checking a {width}x{height} image"),
+        )?;
+        let spec = FrameSpec::tick(width, height, bounces, true);
+        Frame::new(scene, &spec)?;
+        Ok(Renderer {
+            scene,
+            scene_key: None,
+            bounce_family: vec![spec.bounces],
+            spec,
+            bvh: Accelerator::build(&scene.objects),
+            brute: Accelerator::brute_force(&scene.objects),
+        })
+    }
+
+    /// This renderer's whole images kept for any other renderer of the same shared scene: a
+    /// class's students share the suite's renders. A whole image at one of the scene's bounce
+    /// counts is rendered with the others, from one trace per pixel, where memory allows.
+    pub fn remembered_as(mut self, shared: Option<SharedScene>) -> Self {
+        let Some(shared) = shared else {
+            return self;
+        };
+        let mut family = shared.bounce_family;
+        family.push(self.spec.bounces);
+        family.sort_unstable();
+        family.dedup();
+        let pixels = u64::from(self.spec.width) * u64::from(self.spec.height);
+        let extra = pixels.saturating_mul(3 * (family.len() as u64 - 1));
+        let budget = pixels.saturating_mul(BYTES_PER_PIXEL).saturating_add(extra);
+        if memory::check(budget, memory::available_bytes(), "").is_ok() {
+            self.bounce_family = family;
+        }
+        self.scene_key = Some(shared.key);
+        self
+    }
+
+    pub fn width(&self) -> u32 {
+        self.spec.width
+    }
+
+    pub fn height(&self) -> u32 {
+        self.spec.height
+    }
+
+    pub fn bounces(&self) -> u32 {
+        self.spec.bounces
+    }
+
+    /// The frame a program with `mistakes` renders (its bounce count and shadow switch).
+    pub fn frame(&self, mistakes: Mistakes) -> Result<Frame> {
+        Frame::new(self.scene, &mistakes.frame_spec(&self.spec))
+    }
+
+    /// The hierarchy where it is exact for `variant`'s rules, else brute force.
+    fn accelerator(&self, frame: &Frame) -> &Accelerator {
+        // `Mistakes::frame_spec` asks for brute force where the model needs it.
+        match frame.acceleration() {
+            Acceleration::Bvh => &self.bvh,
+            Acceleration::BruteForce => &self.brute,
+        }
+    }
+
+    /// The tick bytes of `pixels` under `model` in `frame` (sequential: callers run many
+    /// candidates side by side); an error when the user stopped the run half-way.
+    pub fn bytes_at(
+        &self,
+        model: &impl Model,
+        frame: &Frame,
+        pixels: &[(u32, u32)],
+    ) -> Result<Vec<u8>> {
+        let accel = self.accelerator(frame);
+        let beauty =
+            trace_pixels::<false, _>(model, self.scene, accel, frame, pixels, |s| s.beauty);
+        interrupt::check()?;
+        Ok(tick_bytes(&beauty))
+    }
+
+    /// `variant`'s bytes at `sample`'s positions: the wrong pixels rendered, the right ones
+    /// picked from its lattice's bytes.
+    pub fn sample_bytes(
+        &self,
+        variant: &Variant,
+        frame: &Frame,
+        sample: &PixelSample,
+    ) -> Result<Vec<u8>> {
+        let Some(lattice) = self.lattice_bytes(variant, frame, &sample.lattice)? else {
+            return self.bytes_at(variant, frame, &sample.positions);
+        };
+        let mut bytes = self.bytes_at(variant, frame, &sample.positions[..sample.wrong])?;
+        for &k in &sample.right_in_lattice {
+            bytes.extend_from_slice(&lattice.bytes[3 * k..3 * k + 3]);
+        }
+        Ok(bytes)
+    }
+
+    /// `variant`'s bytes on the whole `lattice`, rendered once per class and kept with the
+    /// whole images; None where little would be shared: a single check, a fitted number, a
+    /// triple (each student's beam extends their own best pairs).
+    fn lattice_bytes(
+        &self,
+        variant: &Variant,
+        frame: &Frame,
+        lattice: &[(u32, u32)],
+    ) -> Result<Option<Rgb8>> {
+        let shared = variant.number.is_none() && variant.mistakes.len() <= 2;
+        let Some(scene) = self.scene_key.as_ref().filter(|_| shared) else {
+            return Ok(None);
+        };
+        let key = format!(
+            "{scene} {:?} {variant:?} lattice of {}",
+            self.spec,
+            lattice.len()
+        );
+        let render = || {
+            Ok(Rgb8 {
+                width: lattice.len() as u32,
+                height: 1,
+                bytes: self.bytes_at(variant, frame, lattice)?,
+            })
+        };
+        crate::check::image_cache::get_or_render(key, render).map(Some)
+    }
+
+    /// The whole images under `model` in `frame` at each of `bounces` (each at most the
+    /// frame's), from one trace per pixel, on every core.
+    fn images_with(&self, model: &impl Model, frame: &Frame, bounces: &[u32]) -> Result<Vec<Rgb8>> {
+        let (width, height) = (self.spec.width, self.spec.height);
+        let accel = self.accelerator(frame);
+        let starts: Vec<u32> = (0..height).step_by(ROWS_PER_TASK as usize).collect();
+        // Per strip, each bounce count's bytes.
+        let strips: Vec<Vec<Vec<u8>>> = starts
+            .par_iter()
+            .map(|&y0| {
+                let rows = y0..(y0 + ROWS_PER_TASK).min(height);
+                let pixels: Vec<(u32, u32)> =
+                    rows.flat_map(|y| (0..width).map(move |x| (x, y))).collect();
+                let beauty =
+                    trace_pixels_at_bounces(model, self.scene, accel, frame, &pixels, bounces);
+                interrupt::check()?;
+                let n = pixels.len();
+                Ok((0..bounces.len())
+                    .map(|i| tick_bytes(&beauty[i * n..(i + 1) * n]))
+                    .collect())
+            })
+            .collect::<Result<_>>()?;
+        Ok((0..bounces.len())
+            .map(|i| Rgb8 {
+                width,
+                height,
+                bytes: strips.iter().flat_map(|s| s[i].iter().copied()).collect(),
+            })
+            .collect())
+    }
+
+    /// The whole images of `variant` (None: the course's model) at each of `bounces` (as
+    /// asked of the program, ascending), from one trace per pixel.
+    fn images_at(&self, variant: Option<&Variant>, bounces: &[u32]) -> Result<Vec<Rgb8>> {
+        let mistakes = variant.map_or(Mistakes::NONE, |v| v.mistakes);
+        // What a program with `mistakes` traces when asked for `bounces`.
+        let asked = |bounces| {
+            mistakes.frame_spec(&FrameSpec {
+                bounces,
+                ..self.spec.clone()
+            })
+        };
+        let deepest = bounces.last().copied().unwrap_or(self.spec.bounces);
+        let frame = Frame::new(self.scene, &asked(deepest))?;
+        let traced: Vec<u32> = bounces.iter().map(|&b| asked(b).bounces).collect();
+        match variant {
+            None => self.images_with(&whitted_core::model::Tick, &frame, &traced),
+            Some(v) => self.images_with(v, &frame, &traced),
+        }
+    }
+
+    /// The whole image of `variant` (None: the course's model), from the cache when this
+    /// renderer's scene has a key, rendered with the rest of its bounce family.
+    fn remembered(&self, variant: Option<&Variant>) -> Result<Rgb8> {
+        let own = self
+            .bounce_family
+            .iter()
+            .position(|&b| b == self.spec.bounces);
+        let (Some(scene), Some(own)) = (&self.scene_key, own) else {
+            let mut images = self.images_at(variant, &[self.spec.bounces])?;
+            return Ok(images.swap_remove(0));
+        };
+        // Debug prints a number's exact value: equal keys are equal programs.
+        let key = |bounces| {
+            let spec = FrameSpec {
+                bounces,
+                ..self.spec.clone()
+            };
+            format!("{scene} {spec:?} {variant:?}")
+        };
+        crate::check::image_cache::get_or_render_family(key(self.spec.bounces), || {
+            // The others are worth their deeper trace only if the cache can keep them.
+            let family_bytes = (3 * self.bounce_family.len())
+                .saturating_mul(self.spec.width as usize)
+                .saturating_mul(self.spec.height as usize);
+            if !crate::check::image_cache::has_room(family_bytes) {
+                let mut images = self.images_at(variant, &[self.spec.bounces])?;
+                return Ok((images.swap_remove(0), Vec::new()));
+            }
+            let mut images = self.images_at(variant, &self.bounce_family)?;
+            let image = images.remove(own);
+            let mut others = self.bounce_family.clone();
+            others.remove(own);
+            Ok((image, others.into_iter().map(key).zip(images).collect()))
+        })
+    }
+
+    /// The reference: the course's model.
+    pub fn reference(&self) -> Result<Rgb8> {
+        self.remembered(None)
+    }
+
+    /// The whole image a program with `mistakes` renders.
+    pub fn image(&self, mistakes: Mistakes) -> Result<Rgb8> {
+        self.variant_image(&Variant::from(mistakes))
+    }
+
+    /// The whole image `variant` renders.
+    pub fn variant_image(&self, variant: &Variant) -> Result<Rgb8> {
+        self.remembered(Some(variant))
+    }
+
+    /// The reference's every layer at `pixels` (for the term fit).
+    pub fn layers_at(&self, pixels: &[(u32, u32)]) -> Result<Vec<Sample>> {
+        let frame = self.frame(Mistakes::NONE)?;
+        let accel = self.accelerator(&frame);
+        let samples = trace_pixels::<true, _>(
+            &whitted_core::model::Tick,
+            self.scene,
+            accel,
+            &frame,
+            pixels,
+            Sample::clone,
+        );
+        interrupt::check()?;
+        Ok(samples)
+    }
+}

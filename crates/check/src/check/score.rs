@@ -1,0 +1,219 @@
+//! How well one candidate program reproduces the student's images: per case, a cost (how far
+//! its bytes are from the student's), the differing pixels it reproduces and the right pixels
+//! it changes, first estimated from the case's sample, then counted over the whole image.
+//!
+//! A pixel's cost is nothing when the bytes are equal, a little at 1 LSB (a student's own
+//! `pow` or `sqrt` may round differently), a whole pixel beyond.
+
+use std::collections::hash_map::DefaultHasher;
+use std::hash::{Hash, Hasher};
+
+use crate::check::case::Case;
+use crate::check::difference::pixel_difference;
+use crate::check::student_png::Rgb8;
+use crate::mistakes::Variant;
+use whitted_core::error::Result;
+
+/// A pixel's cost for a candidate `difference` LSB away from the student's pixel.
+pub fn cost(difference: u8) -> f64 {
+    match difference {
+        0 => 0.0,
+        1 => 0.25,
+        _ => 1.0,
+    }
+}
+
+/// `explained` differing pixels as a share of `differing` (0 when nothing differs).
+pub fn share(explained: f64, differing: usize) -> f64 {
+    if differing == 0 {
+        0.0
+    } else {
+        (explained / differing as f64).min(1.0)
+    }
+}
+
+/// A hash of rendered bytes: two candidates with the same one render alike.
+fn fingerprint(bytes: &[u8]) -> u64 {
+    let mut hasher = DefaultHasher::new();
+    bytes.hash(&mut hasher);
+    hasher.finish()
+}
+
+/// One candidate's showing on one case.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CaseScore {
+    /// Summed pixel costs.
+    pub cost: f64,
+    /// Differing pixels it reproduces within 1 LSB.
+    pub explained: f64,
+    /// Pixels the student got right that it changes by more than 1 LSB.
+    pub wrongly_changed: f64,
+    /// Whether it renders the case differently from the reference anywhere it was looked at.
+    pub changes_image: bool,
+    /// The fingerprint of what it rendered on the sample.
+    pub sample_fingerprint: u64,
+    /// Whether it rendered a sampled pixel otherwise than the student (kept when the case
+    /// is counted whole: the sample's pixels are the whole image's too).
+    pub differs_on_sample: bool,
+    /// The fingerprint of the whole image, once it was rendered whole (the numbers are then
+    /// counts, not estimates).
+    pub image_fingerprint: Option<u64>,
+}
+
+impl CaseScore {
+    fn empty(sample_fingerprint: u64) -> Self {
+        CaseScore {
+            cost: 0.0,
+            explained: 0.0,
+            wrongly_changed: 0.0,
+            changes_image: false,
+            sample_fingerprint,
+            differs_on_sample: false,
+            image_fingerprint: None,
+        }
+    }
+
+    /// Counts one pixel standing for `weight` pixels, which the student got wrong or not, and
+    /// which the candidate renders `d` LSB away from the student's.
+    fn tally(&mut self, weight: f64, was_wrong: bool, d: u8) {
+        self.cost += weight * cost(d);
+        match (was_wrong, d <= 1) {
+            (true, true) => self.explained += weight,
+            (false, false) => self.wrongly_changed += weight,
+            _ => {}
+        }
+    }
+
+    /// The estimate from `bytes` rendered at `case`'s sample.
+    pub fn on_sample(case: &Case, bytes: &[u8]) -> Self {
+        let sample = &case.sample;
+        let mut s = CaseScore::empty(fingerprint(bytes));
+        s.changes_image = bytes != sample.reference.as_slice();
+        s.differs_on_sample = bytes != sample.student.as_slice();
+        for j in 0..sample.positions.len() {
+            let (weight, was_wrong) = sample.kind(j);
+            s.tally(
+                weight,
+                was_wrong,
+                pixel_difference(bytes, &sample.student, j),
+            );
+        }
+        s
+    }
+
+    /// The counts over the whole `image`, keeping the sample's fingerprint of `estimate`.
+    pub fn on_image(case: &Case, image: &Rgb8, estimate: &CaseScore) -> Self {
+        let mut s = CaseScore::empty(estimate.sample_fingerprint);
+        s.differs_on_sample = estimate.differs_on_sample;
+        s.changes_image = image.bytes != case.reference.bytes;
+        s.image_fingerprint = Some(fingerprint(&image.bytes));
+        let mut wrong = case.wrong.iter().peekable();
+        for i in 0..image.bytes.len() / 3 {
+            let was_wrong = wrong.next_if_eq(&&i).is_some();
+            s.tally(
+                1.0,
+                was_wrong,
+                pixel_difference(&image.bytes, &case.student.bytes, i),
+            );
+        }
+        s
+    }
+
+    pub fn is_whole(&self) -> bool {
+        self.image_fingerprint.is_some()
+    }
+
+    /// Whether two candidates render this case alike, as far as both were looked at.
+    pub fn renders_like(&self, other: &CaseScore) -> bool {
+        match (self.image_fingerprint, other.image_fingerprint) {
+            (Some(a), Some(b)) => a == b,
+            _ => self.sample_fingerprint == other.sample_fingerprint,
+        }
+    }
+}
+
+/// One candidate's showing on every case.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scored {
+    pub variant: Variant,
+    /// In the order of the cases.
+    pub cases: Vec<CaseScore>,
+}
+
+impl Scored {
+    /// Scores `variant` on every case's sample.
+    pub fn on_samples(cases: &[Case], variant: Variant) -> Result<Self> {
+        let scores = cases
+            .iter()
+            .map(|case| {
+                let frame = case.renderer.frame(variant.mistakes)?;
+                let bytes = case.renderer.sample_bytes(&variant, &frame, &case.sample)?;
+                Ok(CaseScore::on_sample(case, &bytes))
+            })
+            .collect::<Result<_>>()?;
+        Ok(Scored {
+            variant,
+            cases: scores,
+        })
+    }
+
+    /// This candidate counted over every case's whole image.
+    pub fn made_whole(&self, cases: &[Case]) -> Result<Self> {
+        let scores = cases
+            .iter()
+            .zip(&self.cases)
+            .map(|(case, estimate)| {
+                let image = case.renderer.variant_image(&self.variant)?;
+                Ok(CaseScore::on_image(case, &image, estimate))
+            })
+            .collect::<Result<_>>()?;
+        Ok(Scored {
+            variant: self.variant,
+            cases: scores,
+        })
+    }
+
+    pub fn cost(&self) -> f64 {
+        self.cases.iter().map(|c| c.cost).sum()
+    }
+
+    pub fn explained(&self) -> f64 {
+        self.cases.iter().map(|c| c.explained).sum()
+    }
+
+    pub fn wrongly_changed(&self) -> f64 {
+        self.cases.iter().map(|c| c.wrongly_changed).sum()
+    }
+
+    pub fn changes_any(&self) -> bool {
+        self.cases.iter().any(|c| c.changes_image)
+    }
+
+    /// Whether some sampled pixel of some case differs from the student's: then its whole
+    /// images do too, and it cannot reproduce them exactly.
+    pub fn differs_on_sample(&self) -> bool {
+        self.cases.iter().any(|c| c.differs_on_sample)
+    }
+
+    /// Whether every case was counted over its whole image.
+    pub fn is_whole(&self) -> bool {
+        self.cases.iter().all(CaseScore::is_whole)
+    }
+
+    /// Whether the two render every case alike, as far as both were looked at.
+    pub fn renders_like(&self, other: &Scored) -> bool {
+        self.cases
+            .iter()
+            .zip(&other.cases)
+            .all(|(a, b)| a.renders_like(b))
+    }
+
+    /// Whether the two were compared over a whole image at least once: a sample alone can
+    /// agree by chance.
+    pub fn compared_whole(&self, other: &Scored) -> bool {
+        self.cases
+            .iter()
+            .zip(&other.cases)
+            .any(|(a, b)| a.is_whole() && b.is_whole())
+    }
+}

@@ -1,0 +1,207 @@
+//! The scenes `whitted check --program` runs a student's program on (`scenes/check/`,
+//! compiled in so that an installed binary has them). Only what the course's loader reads:
+//! spheres, planes, point and ambient lights with their attributes, no materials or names,
+//! so that a correct program renders every one. Our own scenes separate the mistakes that the
+//! course's two scenes cannot: lights behind and beyond objects, overlapping spheres, mirrors
+//! facing each other, a plane close under the camera (see docs/check.md).
+
+use std::borrow::Cow;
+use std::path::Path;
+
+use whitted_core::error::{Error, Result};
+
+/// What a case is for, which decides what counts towards a grade and what a student may see.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Role {
+    /// One of the course's own scenes (`tick2.xml`, `specular_test.xml`): the image the
+    /// course's tester wants.
+    Course,
+    /// One of whitted's scenes that separate the mistakes (`shadows.xml`, `mirrors.xml`): it
+    /// informs the diagnosis and the report, and scores nothing unless asked.
+    Diagnostic,
+    /// A scene the people running the course keep from students (`grade --scenes`): reported
+    /// to them by name and verdict only.
+    Hidden,
+}
+
+impl Role {
+    pub fn name(self) -> &'static str {
+        match self {
+            Role::Course => "course",
+            Role::Diagnostic => "diagnostic",
+            Role::Hidden => "hidden",
+        }
+    }
+}
+
+/// One case: a scene at a bounce count.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SuiteCase {
+    /// The scene's file name: in `scenes/check/`, or of a scene `grade --scenes` adds.
+    pub file: Cow<'static, str>,
+    pub xml: Cow<'static, str>,
+    pub bounces: u32,
+    pub role: Role,
+}
+
+impl SuiteCase {
+    /// `tick2.xml -b 2`.
+    pub fn name(&self) -> String {
+        format!("{} -b {}", self.file, self.bounces)
+    }
+
+    /// The name of the PNG a rerun of this case writes: `shadows_b1.png`.
+    pub fn output_name(&self) -> String {
+        format!(
+            "{}_b{}.png",
+            self.file.trim_end_matches(".xml"),
+            self.bounces
+        )
+    }
+}
+
+/// Writes every scene of the suite into `dir` (made if missing), so that a student can rerun
+/// and explain each case from their own directory. A file of the same name and content is
+/// left as it is; one with other content is refused, never replaced.
+pub fn write_scenes(dir: &Path) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, "cannot create the directory", e))?;
+    let mut files: Vec<SuiteCase> = cases();
+    files.dedup_by(|a, b| a.file == b.file);
+    for case in &files {
+        let path = dir.join(&*case.file);
+        match std::fs::read(&path) {
+            Ok(bytes) if bytes == case.xml.as_bytes() => continue,
+            Ok(_) => {
+                return Err(Error::Usage(format!(
+                    "{} exists with other content; not replaced (choose another --suite-dir)",
+                    path.display()
+                )))
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+            Err(e) => return Err(Error::io(&path, "cannot read", e)),
+        }
+        let mut file = tempfile::NamedTempFile::new_in(dir)
+            .map_err(|e| Error::io(dir, "cannot write into", e))?;
+        std::io::Write::write_all(&mut file, case.xml.as_bytes())
+            .map_err(|e| Error::io(&path, "cannot write", e))?;
+        file.persist_noclobber(&path)
+            .map_err(|e| Error::io(&path, "cannot write", e.error))?;
+    }
+    Ok(())
+}
+
+const TICK2: &str = include_str!("../../scenes/check/tick2.xml");
+const SPECULAR_TEST: &str = include_str!("../../scenes/check/specular_test.xml");
+const SHADOWS: &str = include_str!("../../scenes/check/shadows.xml");
+const MIRRORS: &str = include_str!("../../scenes/check/mirrors.xml");
+
+/// The suite, in the order it runs and is reported.
+pub fn cases() -> Vec<SuiteCase> {
+    let case = |file, xml, bounces, role| SuiteCase {
+        file: Cow::Borrowed(file),
+        xml: Cow::Borrowed(xml),
+        bounces,
+        role,
+    };
+    vec![
+        case("tick2.xml", TICK2, 0, Role::Course),
+        case("tick2.xml", TICK2, 1, Role::Course),
+        case("tick2.xml", TICK2, 2, Role::Course),
+        case("tick2.xml", TICK2, 3, Role::Course),
+        case("specular_test.xml", SPECULAR_TEST, 2, Role::Course),
+        case("shadows.xml", SHADOWS, 1, Role::Diagnostic),
+        case("mirrors.xml", MIRRORS, 3, Role::Diagnostic),
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::check::difference::difference;
+    use crate::check::renderer::Renderer;
+    use crate::check::student_png::Rgb8;
+    use crate::mistakes::{Bug, Mistakes};
+
+    /// Every case's reference and every mistake's image, at the course's size.
+    fn images() -> Vec<(Rgb8, Vec<Rgb8>)> {
+        cases()
+            .iter()
+            .map(|case| {
+                let scene = whitted_core::scene::parse_str(&case.file, &case.xml).expect("scene");
+                let r = Renderer::new(&scene, 640, 480, case.bounces).expect("renderer");
+                let each = Bug::ALL
+                    .iter()
+                    .map(|&b| r.image(Mistakes::of(&[b])).expect("image"))
+                    .collect();
+                (r.reference().expect("reference"), each)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_suite_separates_every_mistake() {
+        let images = images();
+        for (i, bug) in Bug::ALL.iter().enumerate() {
+            let fails = images
+                .iter()
+                .any(|(reference, each)| !difference(&each[i], reference, 2).verdict.passes());
+            assert!(fails, "{} passes every case of the suite", bug.id());
+            for (j, other) in Bug::ALL.iter().enumerate().skip(i + 1) {
+                let apart = images.iter().any(|(_, each)| each[i] != each[j]);
+                assert!(
+                    apart,
+                    "{} and {} render the suite alike",
+                    bug.id(),
+                    other.id()
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn the_suite_uses_only_what_the_course_loader_reads() {
+        let allowed = [
+            ("sphere", &["x", "y", "z", "radius", "colour"][..]),
+            ("plane", &["x", "y", "z", "nx", "ny", "nz", "colour"][..]),
+            ("point-light", &["x", "y", "z", "colour", "intensity"][..]),
+            ("ambient-light", &["colour"][..]),
+        ];
+        for case in cases() {
+            for line in case.xml.lines().map(str::trim) {
+                let Some(tag) = line.strip_prefix('<').filter(|l| !l.starts_with('/')) else {
+                    continue;
+                };
+                let name = tag
+                    .split_whitespace()
+                    .next()
+                    .unwrap_or("")
+                    .trim_end_matches(['>', '/']);
+                if name == "scene" {
+                    continue;
+                }
+                let attributes = allowed
+                    .iter()
+                    .find(|(element, _)| *element == name)
+                    .unwrap_or_else(|| panic!("{}: <{name}>", case.file))
+                    .1;
+                for word in tag.split_whitespace().skip(1) {
+                    let attribute = word.split('=').next().unwrap_or("");
+                    assert!(
+                        attributes.contains(&attribute),
+                        "{}: {name} {attribute}",
+                        case.file
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_course_scenes_are_the_course_s() {
+        assert_eq!(TICK2, whitted_core::scene::EMBEDDED_TICK2);
+        assert_eq!(
+            SPECULAR_TEST,
+            include_str!("../../scenes/specular_test.xml")
+        );
+    }
+}

@@ -1,0 +1,108 @@
+//! The opening lines of every report of a check (text, `--report`, `--view`): where the
+//! student is, and, when no catalogued candidate explains the images well, that fact and what
+//! does explain most, before any weak candidate.
+
+use super::diagnose::Diagnosis;
+use super::difference::Difference;
+use super::{Findings, GOOD_EXPLANATION};
+use whitted_core::numbers::plain;
+
+/// The explanations beyond the catalogue (numbers and terms), best first, each as "what:
+/// reproduces N% of the differing pixels".
+pub fn fits(findings: &Findings) -> Vec<String> {
+    let mut fits: Vec<(f64, String)> = findings
+        .parameters
+        .iter()
+        .map(|p| (p.explained, p.sentence()))
+        .chain(findings.terms.iter().map(|t| (t.explained, t.sentence())))
+        .collect();
+    fits.sort_by(|a, b| b.0.total_cmp(&a.0));
+    fits.into_iter()
+        .map(|(explained, sentence)| {
+            format!(
+                "{sentence}: reproduces {}% of the differing pixels",
+                plain(100.0 * explained)
+            )
+        })
+        .collect()
+}
+
+/// The progress line, then, when the catalogue explains little, what explains most.
+pub fn opening(findings: &Findings) -> Vec<String> {
+    let mut lines = vec![findings.progress.sentence()];
+    if !findings.weak() {
+        return lines;
+    }
+    let good = plain(100.0 * GOOD_EXPLANATION);
+    let fits = fits(findings);
+    match fits.first() {
+        Some(_) => {
+            lines.push(format!(
+                "no catalogued mistake explains {good}% of the differing pixels; what explains most:"
+            ));
+            lines.extend(fits.iter().take(3).map(|fit| format!("  {fit}")));
+        }
+        None if !findings.diagnosis.is_empty() => lines.push(format!(
+            "no catalogued mistake explains {good}% of the differing pixels, and no term or number of the model does"
+        )),
+        None => {}
+    }
+    lines
+}
+
+/// The heading of the candidate list: plain when the best is good, marked weak otherwise.
+pub fn candidates_heading(findings: &Findings) -> String {
+    if findings.weak() {
+        format!(
+            "weak candidates (each explains less than {}%), best first:",
+            plain(100.0 * GOOD_EXPLANATION)
+        )
+    } else {
+        "diagnosis, best first:".to_string()
+    }
+}
+
+/// How far a channel is off, in the student's terms.
+pub fn largest(d: &Difference) -> String {
+    format!("by up to {} of 255 in a channel", d.max_difference)
+}
+
+/// How the image differs, in one sentence.
+pub fn difference_sentence(d: &Difference) -> String {
+    let total = u64::from(d.width) * u64::from(d.height);
+    format!(
+        "{} of {total} pixels differ ({} by more than the tolerance), {}",
+        d.differing_pixels,
+        d.beyond_tolerance,
+        largest(d)
+    )
+}
+
+/// One diagnosis in words: each entry, where and how to fix it, and what it explains.
+pub fn diagnosis_lines(d: &Diagnosis) -> Vec<String> {
+    let mut lines = Vec::new();
+    for (i, bug) in d.mistakes.bugs().into_iter().enumerate() {
+        let and = if i == 0 { "" } else { "and " };
+        lines.push(format!("{and}{}: {}", bug.id(), bug.description()));
+        lines.extend(bug.advice().map(|line| format!("  {line}")));
+    }
+    lines.push(format!(
+        "explains {}% of the differing pixels ({} not explained; changes {} pixels you had right){}",
+        plain(100.0 * d.explained),
+        d.unexplained_pixels,
+        d.wrongly_changed_pixels,
+        if d.exact {
+            ""
+        } else {
+            "; figures estimated from a sample of the pixels, not counted over the whole image"
+        }
+    ));
+    if !d.indistinguishable_from.is_empty() {
+        let twins: Vec<String> = d.indistinguishable_from.iter().map(|m| m.name()).collect();
+        lines.push(format!(
+            "renders these images exactly as: {}",
+            twins.join(", ")
+        ));
+    }
+    lines
+}

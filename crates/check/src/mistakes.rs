@@ -1,0 +1,334 @@
+//! The catalogue of docs/check.md: the classic Tick 2 mistakes and the unfinished stages of
+//! the handout, each one rule of the model done wrong (or not yet done), with a stable id.
+//! [`Mistakes`] is a set of them; [`Variant`] is the model a program with such a set (and
+//! perhaps one wrong number) renders. Sets, not one type per mistake, because students often
+//! have two or three at once and the diagnosis ranks combinations: one monomorphised model
+//! whose rules test a bit, instead of a type per combination.
+
+mod catalogue;
+mod variant;
+
+pub use variant::{Number, Parameter, Variant};
+
+use whitted_core::frame::limits::MAX_BOUNCES;
+use whitted_core::frame::{Acceleration, FrameSpec};
+
+/// One catalogue entry: a mistake in written code or a stage not written yet. The order is
+/// the catalogue's (`whitted check --list-bugs`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Bug {
+    ReflectUnclamped,
+    SpecularGated,
+    ViewFromRayOrigin,
+    ViewFlipped,
+    LightUnnormalised,
+    NoFalloff,
+    NoAmbient,
+    DiffuseNoColour,
+    SpecularObjectColour,
+    FirstLightOnly,
+    LastLightWins,
+    NoShadows,
+    NoShadowBias,
+    ShadowAnyHit,
+    NoReflectionBias,
+    ReflectionWrongSign,
+    ReflectionUnweighted,
+    BouncesPlusOne,
+    BouncesMinusOne,
+    PlaneBehind,
+    SphereFarRoot,
+    PlanesMissing,
+    LightsMissing,
+    ReflectionMissing,
+    ReflectionIgnored,
+}
+
+/// A stage of the handout: the code a student writes, in the order they write it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Stage {
+    /// `Plane.intersectionWith` (and the intersection rules a student can break).
+    Planes,
+    /// `Renderer.illuminate`: ambient, diffuse and specular per light.
+    Lights,
+    /// The shadow test inside `illuminate`.
+    Shadows,
+    /// `Renderer.trace`: reflected rays and the bounce count.
+    Reflection,
+}
+
+impl Stage {
+    pub const ALL: [Stage; 4] = [
+        Stage::Planes,
+        Stage::Lights,
+        Stage::Shadows,
+        Stage::Reflection,
+    ];
+
+    /// The key of the `progress` object (docs/check.md).
+    pub fn key(self) -> &'static str {
+        match self {
+            Stage::Planes => "planes",
+            Stage::Lights => "lights",
+            Stage::Shadows => "shadows",
+            Stage::Reflection => "reflection",
+        }
+    }
+}
+
+impl Bug {
+    /// Every entry, in catalogue order: the mistakes, then the unfinished stages.
+    pub const ALL: [Bug; 25] = [
+        Bug::ReflectUnclamped,
+        Bug::SpecularGated,
+        Bug::ViewFromRayOrigin,
+        Bug::ViewFlipped,
+        Bug::LightUnnormalised,
+        Bug::NoFalloff,
+        Bug::NoAmbient,
+        Bug::DiffuseNoColour,
+        Bug::SpecularObjectColour,
+        Bug::FirstLightOnly,
+        Bug::LastLightWins,
+        Bug::NoShadows,
+        Bug::NoShadowBias,
+        Bug::ShadowAnyHit,
+        Bug::NoReflectionBias,
+        Bug::ReflectionWrongSign,
+        Bug::ReflectionUnweighted,
+        Bug::BouncesPlusOne,
+        Bug::BouncesMinusOne,
+        Bug::PlaneBehind,
+        Bug::SphereFarRoot,
+        Bug::PlanesMissing,
+        Bug::LightsMissing,
+        Bug::ReflectionMissing,
+        Bug::ReflectionIgnored,
+    ];
+
+    /// The stable id of docs/check.md.
+    pub fn id(self) -> &'static str {
+        catalogue::entry(self).id
+    }
+
+    /// The entry in one line, stated against docs/rendering.md.
+    pub fn description(self) -> &'static str {
+        catalogue::entry(self).description
+    }
+
+    /// The stage of the handout whose code this entry is in.
+    pub fn stage(self) -> Stage {
+        catalogue::entry(self).stage
+    }
+
+    /// The class and method of the course's code the entry is in.
+    pub fn place(self) -> &'static str {
+        catalogue::entry(self).place
+    }
+
+    /// What the wrong code typically looks like; for a stage, what is not written yet.
+    pub fn looks_like(self) -> &'static str {
+        catalogue::entry(self).looks_like
+    }
+
+    /// The course's formula and the line that computes it.
+    pub fn fix(self) -> &'static str {
+        catalogue::entry(self).fix
+    }
+
+    /// Where and how to fix it, as two lines of a report: where (and what the wrong code
+    /// looks like, or which TODO is open), then the fix.
+    pub fn advice(self) -> [String; 2] {
+        let place = if self.is_unfinished() {
+            format!(
+                "where: {}, not written yet: {}",
+                self.place(),
+                self.looks_like()
+            )
+        } else {
+            format!("where: {}, often `{}`", self.place(), self.looks_like())
+        };
+        [place, format!("fix: {}", self.fix())]
+    }
+
+    /// Whether this entry is a stage not written yet rather than a mistake in written code.
+    pub fn is_unfinished(self) -> bool {
+        catalogue::entry(self).unfinished
+    }
+
+    /// The entry with this id.
+    pub fn from_id(id: &str) -> Option<Bug> {
+        Bug::ALL.into_iter().find(|b| b.id() == id)
+    }
+
+    /// Whether a program cannot have both: an unfinished stage has none of the code its
+    /// mistakes are made in, and the bounce count is off one way or the other.
+    pub fn excludes(self, other: Bug) -> bool {
+        let one_way = |a: Bug, b: Bug| match a {
+            Bug::PlanesMissing => b == Bug::PlaneBehind,
+            // No light is shaded, so no shadow ray is cast either.
+            Bug::LightsMissing => matches!(b.stage(), Stage::Lights | Stage::Shadows) && b != a,
+            Bug::NoShadows => b.stage() == Stage::Shadows && b != a,
+            // The skeleton's trace still weights direct by 1 - r and stops at the bounce
+            // count: only the reflected ray's own code is missing.
+            Bug::ReflectionMissing => matches!(
+                b,
+                Bug::NoReflectionBias | Bug::ReflectionWrongSign | Bug::ReflectionUnweighted
+            ),
+            Bug::ReflectionIgnored => b.stage() == Stage::Reflection && b != a,
+            Bug::BouncesPlusOne => b == Bug::BouncesMinusOne,
+            _ => false,
+        };
+        one_way(self, other) || one_way(other, self)
+    }
+
+    fn bit(self) -> u32 {
+        1 << self as u32
+    }
+}
+
+// Every entry is one bit of `Mistakes`.
+const _: () = assert!(Bug::ALL.len() <= u32::BITS as usize);
+
+/// A set of catalogue entries. The empty set is the course's program.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, PartialOrd, Ord)]
+pub struct Mistakes(u32);
+
+impl Mistakes {
+    pub const NONE: Mistakes = Mistakes(0);
+
+    pub fn of(bugs: &[Bug]) -> Self {
+        Mistakes(bugs.iter().fold(0, |set, b| set | b.bit()))
+    }
+
+    pub fn has(self, bug: Bug) -> bool {
+        self.0 & bug.bit() != 0
+    }
+
+    pub fn is_empty(self) -> bool {
+        self.0 == 0
+    }
+
+    /// How many entries the set holds.
+    pub fn len(self) -> usize {
+        self.0.count_ones() as usize
+    }
+
+    /// The set with `bug` added.
+    pub fn with(self, bug: Bug) -> Self {
+        Mistakes(self.0 | bug.bit())
+    }
+
+    /// Every set with one entry of this one left out.
+    pub fn one_smaller(self) -> Vec<Mistakes> {
+        self.bugs()
+            .into_iter()
+            .map(|b| Mistakes(self.0 & !b.bit()))
+            .collect()
+    }
+
+    /// Whether `bug` can join the set: not in it, and excluded by none of its members.
+    pub fn admits(self, bug: Bug) -> bool {
+        !self.has(bug) && self.bugs().iter().all(|&m| !m.excludes(bug))
+    }
+
+    /// The entries in catalogue order.
+    pub fn bugs(self) -> Vec<Bug> {
+        Bug::ALL.into_iter().filter(|&b| self.has(b)).collect()
+    }
+
+    /// The ids, in catalogue order.
+    pub fn ids(self) -> Vec<&'static str> {
+        self.bugs().into_iter().map(Bug::id).collect()
+    }
+
+    /// `a+b` for a pair.
+    pub fn name(self) -> String {
+        self.ids().join("+")
+    }
+
+    /// Whether the hierarchy's exactness argument covers these rules (`Model::hierarchy_exact`).
+    pub fn hierarchy_exact(self) -> bool {
+        !self.has(Bug::PlaneBehind) && !self.has(Bug::SphereFarRoot)
+    }
+
+    /// The frame a program with these mistakes renders when asked for `spec`: the
+    /// option-shaped mistakes change it (bounces, shadows), and a model the hierarchy is not
+    /// exact for is traced by brute force.
+    pub fn frame_spec(self, spec: &FrameSpec) -> FrameSpec {
+        let mut bounces = spec.bounces;
+        if self.has(Bug::BouncesPlusOne) {
+            // At the limit a program cannot be asked for more: there it is the same as asked.
+            bounces = (bounces + 1).min(MAX_BOUNCES);
+        }
+        if self.has(Bug::BouncesMinusOne) {
+            bounces = bounces.saturating_sub(1);
+        }
+        if self.has(Bug::ReflectionIgnored) {
+            bounces = 0;
+        }
+        FrameSpec {
+            bounces,
+            shadows: spec.shadows && !self.has(Bug::NoShadows) && !self.has(Bug::LightsMissing),
+            acceleration: if self.hierarchy_exact() {
+                spec.acceleration
+            } else {
+                Acceleration::BruteForce
+            },
+            ..spec.clone()
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ids_are_unique_and_round_trip() {
+        let mut ids: Vec<&str> = Bug::ALL.iter().map(|b| b.id()).collect();
+        for (i, bug) in Bug::ALL.iter().enumerate() {
+            assert_eq!(Bug::from_id(bug.id()), Some(*bug));
+            assert_eq!(*bug as usize, i, "ALL is in declaration order");
+        }
+        ids.sort_unstable();
+        ids.dedup();
+        assert_eq!(ids.len(), Bug::ALL.len());
+    }
+
+    #[test]
+    fn sets_hold_their_bugs_in_catalogue_order() {
+        let set = Mistakes::of(&[Bug::SphereFarRoot, Bug::NoAmbient]);
+        assert_eq!(set.bugs(), vec![Bug::NoAmbient, Bug::SphereFarRoot]);
+        assert!(!set.hierarchy_exact());
+        assert!(Mistakes::NONE.is_empty() && Mistakes::NONE.hierarchy_exact());
+        assert_eq!(set.len(), 2);
+        assert_eq!(set.name(), "no-ambient+sphere-far-root");
+        assert_eq!(
+            set.one_smaller(),
+            vec![
+                Mistakes::of(&[Bug::SphereFarRoot]),
+                Mistakes::of(&[Bug::NoAmbient])
+            ]
+        );
+    }
+
+    #[test]
+    fn option_shaped_mistakes_change_the_frame() {
+        let spec = FrameSpec::default();
+        let plus = Mistakes::of(&[Bug::BouncesPlusOne, Bug::NoShadows]).frame_spec(&spec);
+        assert_eq!((plus.bounces, plus.shadows), (3, false));
+        let zero = FrameSpec {
+            bounces: 0,
+            ..FrameSpec::default()
+        };
+        assert_eq!(
+            Mistakes::of(&[Bug::BouncesMinusOne])
+                .frame_spec(&zero)
+                .bounces,
+            0
+        );
+        let far = Mistakes::of(&[Bug::SphereFarRoot]).frame_spec(&spec);
+        assert_eq!(far.acceleration, Acceleration::BruteForce);
+    }
+}

@@ -1,0 +1,408 @@
+//! The model a student's program renders: the course's rules with a set of catalogue entries
+//! broken ([`Mistakes`]) and at most one of the model's numbers changed ([`Number`]). One
+//! implementation of [`Model`] for every candidate the diagnosis tries, so a variant is a
+//! parameter of the course's shading, never a copy of it.
+
+use glam::DVec3;
+
+use super::{Bug, Mistakes};
+use whitted_core::geometry::{normalise, sphere_near_else_far_hit, Ray, SphereTerms, EPSILON};
+use whitted_core::model::{mirror_direction, Model, Tick};
+use whitted_core::scene::PointLight;
+
+/// A number of the model a student can get wrong (docs/check.md, "The model's numbers").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Parameter {
+    /// The specular exponent n on spheres (the planes' 0 stays).
+    SpecularExponent,
+    /// The offset of shadow and reflected rays.
+    Epsilon,
+    /// p in `I / (4 pi d^p)`.
+    FalloffPower,
+    /// A factor on every object's reflectivity.
+    Reflectivity,
+    /// A factor on the ambient term.
+    Ambient,
+}
+
+impl Parameter {
+    pub const ALL: [Parameter; 5] = [
+        Parameter::SpecularExponent,
+        Parameter::Epsilon,
+        Parameter::FalloffPower,
+        Parameter::Reflectivity,
+        Parameter::Ambient,
+    ];
+
+    /// The stable name of docs/check.md.
+    pub fn name(self) -> &'static str {
+        match self {
+            Parameter::SpecularExponent => "specular-exponent",
+            Parameter::Epsilon => "epsilon",
+            Parameter::FalloffPower => "falloff-power",
+            Parameter::Reflectivity => "reflectivity",
+            Parameter::Ambient => "ambient",
+        }
+    }
+
+    /// What the number is, in words for the report.
+    pub fn words(self) -> &'static str {
+        match self {
+            Parameter::SpecularExponent => "the specular exponent",
+            Parameter::Epsilon => "EPSILON (the offset of shadow and reflected rays)",
+            Parameter::FalloffPower => "the power of d in the light's falloff 1/(4 pi d^p)",
+            Parameter::Reflectivity => "a factor on the reflectivity",
+            Parameter::Ambient => "a factor on the ambient term",
+        }
+    }
+
+    /// Which constant of the course's code to look at.
+    pub fn place(self) -> &'static str {
+        match self {
+            Parameter::SpecularExponent => "the exponent n in Renderer.illuminate's Math.pow(Math.max(0, R.dot(V)), n): object.getPhong_n(), 10 on spheres",
+            Parameter::Epsilon => "Renderer.EPSILON (the course's 0.0001), where shadow and reflected rays start",
+            Parameter::FalloffPower => "the light's falloff in Renderer.illuminate: use light.getIlluminationAt(d), c k / (4 pi d^2)",
+            Parameter::Reflectivity => "the reflectivity r in Renderer.trace: object.getReflectivity() as it is",
+            Parameter::Ambient => "the ambient term in Renderer.illuminate: scene.getAmbientLighting().scale(object.getColour()) as it is",
+        }
+    }
+
+    /// The course's value.
+    pub fn course(self) -> f64 {
+        match self {
+            Parameter::SpecularExponent => 10.0,
+            Parameter::Epsilon => EPSILON,
+            Parameter::FalloffPower => 2.0,
+            Parameter::Reflectivity | Parameter::Ambient => 1.0,
+        }
+    }
+
+    /// The values a first search tries, over what a student could plausibly have written.
+    pub fn grid(self) -> Vec<f64> {
+        match self {
+            Parameter::SpecularExponent => {
+                (0..=16).map(|i| 2f64.powf(f64::from(i) / 2.0)).collect()
+            }
+            Parameter::Epsilon => (0..=16)
+                .map(|i| 10f64.powf(-9.0 + f64::from(i) / 2.0))
+                .collect(),
+            Parameter::FalloffPower => (0..=16).map(|i| f64::from(i) / 4.0).collect(),
+            Parameter::Reflectivity | Parameter::Ambient => {
+                (0..=16).map(|i| f64::from(i) / 4.0).collect()
+            }
+        }
+    }
+
+    /// Whether the grid is geometric (refined by factors) rather than arithmetic.
+    pub fn geometric(self) -> bool {
+        matches!(self, Parameter::SpecularExponent | Parameter::Epsilon)
+    }
+
+    /// The catalogue stage whose code holds this number (for `progress`).
+    pub fn stage(self) -> super::Stage {
+        match self {
+            Parameter::SpecularExponent | Parameter::FalloffPower | Parameter::Ambient => {
+                super::Stage::Lights
+            }
+            Parameter::Epsilon => super::Stage::Shadows,
+            Parameter::Reflectivity => super::Stage::Reflection,
+        }
+    }
+}
+
+/// One of the model's numbers set to `value`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Number {
+    pub parameter: Parameter,
+    pub value: f64,
+}
+
+/// A candidate program: the course's model with `mistakes` and perhaps one number changed.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Variant {
+    pub mistakes: Mistakes,
+    pub number: Option<Number>,
+}
+
+impl From<Mistakes> for Variant {
+    fn from(mistakes: Mistakes) -> Self {
+        Variant {
+            mistakes,
+            number: None,
+        }
+    }
+}
+
+impl Variant {
+    fn has(&self, bug: Bug) -> bool {
+        self.mistakes.has(bug)
+    }
+
+    /// The changed value of `parameter`, if this variant changes it.
+    fn value(&self, parameter: Parameter) -> Option<f64> {
+        self.number
+            .filter(|n| n.parameter == parameter)
+            .map(|n| n.value)
+    }
+
+    /// Whether two variants are the same candidate (numbers compared bit for bit).
+    pub fn same(&self, other: &Variant) -> bool {
+        let bits = |v: &Variant| v.number.map(|n| (n.parameter, n.value.to_bits()));
+        self.mistakes == other.mistakes && bits(self) == bits(other)
+    }
+}
+
+impl Model for Variant {
+    fn hierarchy_exact(&self) -> bool {
+        self.mistakes.hierarchy_exact()
+    }
+
+    fn sphere_root(
+        &self,
+        ray: &Ray,
+        terms: &SphereTerms,
+        centre: DVec3,
+        radius_squared: f64,
+    ) -> Option<f64> {
+        // The handout read literally: the near root if positive, else the far one.
+        if self.has(Bug::SphereFarRoot) {
+            sphere_near_else_far_hit(ray, terms, centre, radius_squared)
+        } else {
+            Tick.sphere_root(ray, terms, centre, radius_squared)
+        }
+    }
+
+    fn plane_accepts(&self, s: f64) -> bool {
+        if self.has(Bug::PlanesMissing) {
+            false
+        } else if self.has(Bug::PlaneBehind) {
+            s.is_finite()
+        } else {
+            Tick.plane_accepts(s)
+        }
+    }
+
+    fn lights<'a>(&self, lights: &'a [PointLight]) -> &'a [PointLight] {
+        if self.has(Bug::LightsMissing) {
+            &[]
+        } else if self.has(Bug::FirstLightOnly) {
+            &lights[..lights.len().min(1)]
+        } else {
+            lights
+        }
+    }
+
+    fn illumination(&self, light: &PointLight, d: f64) -> DVec3 {
+        if self.has(Bug::NoFalloff) {
+            light.colour * light.intensity
+        } else if let Some(p) = self.value(Parameter::FalloffPower) {
+            light.colour * (light.intensity / (std::f64::consts::PI * 4.0 * d.powf(p)))
+        } else {
+            Tick.illumination(light, d)
+        }
+    }
+
+    fn to_light(&self, to_light: DVec3, d: f64) -> DVec3 {
+        if self.has(Bug::LightUnnormalised) {
+            to_light
+        } else {
+            Tick.to_light(to_light, d)
+        }
+    }
+
+    fn view(&self, p: DVec3, ray_origin: DVec3) -> DVec3 {
+        if self.has(Bug::ViewFlipped) {
+            normalise(p)
+        } else if self.has(Bug::ViewFromRayOrigin) {
+            normalise(ray_origin - p)
+        } else {
+            Tick.view(p, ray_origin)
+        }
+    }
+
+    fn specular_mirror(&self, n: DVec3, l: DVec3, n_dot_l: f64) -> DVec3 {
+        if self.has(Bug::ReflectUnclamped) {
+            n * (2.0 * n.dot(l)) - l
+        } else {
+            Tick.specular_mirror(n, l, n_dot_l)
+        }
+    }
+
+    fn epsilon(&self) -> f64 {
+        self.value(Parameter::Epsilon).unwrap_or(EPSILON)
+    }
+
+    fn specular_exponent(&self, n: f64) -> f64 {
+        match self.value(Parameter::SpecularExponent) {
+            // Only the spheres' exponent: the planes' 0 makes no highlight to change.
+            Some(fitted) if n != 0.0 => fitted,
+            _ => n,
+        }
+    }
+
+    fn reflectivity(&self, r: f64) -> f64 {
+        self.value(Parameter::Reflectivity).map_or(r, |f| r * f)
+    }
+
+    fn ambient(&self, ambient_light: DVec3, colour: DVec3) -> DVec3 {
+        if self.has(Bug::NoAmbient) {
+            DVec3::ZERO
+        } else {
+            let ambient = Tick.ambient(ambient_light, colour);
+            self.value(Parameter::Ambient)
+                .map_or(ambient, |f| ambient * f)
+        }
+    }
+
+    fn diffuse(&self, colour: DVec3, illumination: DVec3, kd: f64, n_dot_l: f64) -> DVec3 {
+        if self.has(Bug::DiffuseNoColour) {
+            (illumination * kd) * n_dot_l
+        } else {
+            Tick.diffuse(colour, illumination, kd, n_dot_l)
+        }
+    }
+
+    fn specular(
+        &self,
+        light: &PointLight,
+        illumination: DVec3,
+        ks: f64,
+        phong: f64,
+        colour: DVec3,
+        n_dot_l: f64,
+    ) -> DVec3 {
+        // The clamped N.L is 0 where the raw one is <= 0; a NaN one adds no specular either.
+        let lit = n_dot_l.partial_cmp(&0.0) == Some(std::cmp::Ordering::Greater);
+        let gated = self.has(Bug::SpecularGated) && !lit;
+        let specular = if gated {
+            DVec3::ZERO
+        } else {
+            Tick.specular(light, illumination, ks, phong, colour, n_dot_l)
+        };
+        if self.has(Bug::SpecularObjectColour) {
+            specular * colour
+        } else {
+            specular
+        }
+    }
+
+    fn shadow_ray(&self, p: DVec3, l: DVec3, _n: DVec3) -> Ray {
+        if self.has(Bug::NoShadowBias) {
+            Ray::new(p, l)
+        } else {
+            Ray::offset_by(p, l, self.epsilon())
+        }
+    }
+
+    fn shadow_reach(&self, d: f64) -> f64 {
+        if self.has(Bug::ShadowAnyHit) {
+            f64::INFINITY
+        } else {
+            Tick.shadow_reach(d)
+        }
+    }
+
+    fn add_light(&self, colour: DVec3, ambient: DVec3, diffuse: DVec3, specular: DVec3) -> DVec3 {
+        let base = if self.has(Bug::LastLightWins) {
+            ambient
+        } else {
+            colour
+        };
+        Tick.add_light(base, ambient, diffuse, specular)
+    }
+
+    fn mirror_ray(&self, p: DVec3, d: DVec3, n: DVec3) -> Ray {
+        let direction = if self.has(Bug::ReflectionWrongSign) {
+            normalise(n * (2.0 * n.dot(d)) - d)
+        } else {
+            mirror_direction(d, n)
+        };
+        if self.has(Bug::NoReflectionBias) {
+            Ray::new(p, direction)
+        } else {
+            Ray::offset_by(p, direction, self.epsilon())
+        }
+    }
+
+    fn blend(&self, direct: DVec3, reflected: DVec3, r: f64) -> DVec3 {
+        if self.has(Bug::ReflectionMissing) {
+            // The skeleton's reflectedIllumination, never assigned: black.
+            Tick.blend(direct, DVec3::ZERO, r)
+        } else if self.has(Bug::ReflectionUnweighted) {
+            direct + reflected * r
+        } else {
+            Tick.blend(direct, reflected, r)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_far_root_is_taken_from_inside() {
+        let ray = Ray::new(DVec3::new(0.0, 0.0, 5.0), DVec3::Z);
+        let terms = SphereTerms::of(&ray);
+        let centre = DVec3::new(0.0, 0.0, 5.0);
+        assert_eq!(Tick.sphere_root(&ray, &terms, centre, 1.0), None);
+        let far = Variant::from(Mistakes::of(&[Bug::SphereFarRoot]));
+        assert_eq!(far.sphere_root(&ray, &terms, centre, 1.0), Some(1.0));
+    }
+
+    #[test]
+    fn the_course_s_numbers_render_the_course_s_terms() {
+        let light = PointLight {
+            position: DVec3::ZERO,
+            colour: DVec3::ONE,
+            intensity: 100.0,
+            name: String::new(),
+        };
+        for parameter in Parameter::ALL {
+            let course = Variant {
+                mistakes: Mistakes::NONE,
+                number: Some(Number {
+                    parameter,
+                    value: parameter.course(),
+                }),
+            };
+            assert_eq!(
+                course.illumination(&light, 3.0),
+                Tick.illumination(&light, 3.0)
+            );
+            assert_eq!(course.epsilon(), Tick.epsilon());
+            assert_eq!(course.specular_exponent(10.0), 10.0);
+            assert_eq!(course.reflectivity(0.3), 0.3);
+            assert_eq!(
+                course.ambient(DVec3::ONE, DVec3::splat(0.5)),
+                DVec3::splat(0.5)
+            );
+            assert!(parameter.grid().len() > 10);
+        }
+        let linear = Variant {
+            mistakes: Mistakes::NONE,
+            number: Some(Number {
+                parameter: Parameter::FalloffPower,
+                value: 1.0,
+            }),
+        };
+        let expected = 100.0 / (std::f64::consts::PI * 4.0 * 3.0);
+        assert_eq!(linear.illumination(&light, 3.0), DVec3::splat(expected));
+    }
+
+    #[test]
+    fn unfinished_stages_render_what_the_skeleton_does() {
+        let lights = [PointLight {
+            position: DVec3::ZERO,
+            colour: DVec3::ONE,
+            intensity: 1.0,
+            name: String::new(),
+        }];
+        let no_lights = Variant::from(Mistakes::of(&[Bug::LightsMissing]));
+        assert!(no_lights.lights(&lights).is_empty());
+        assert!(!Variant::from(Mistakes::of(&[Bug::PlanesMissing])).plane_accepts(1.0));
+        let black = Variant::from(Mistakes::of(&[Bug::ReflectionMissing]));
+        let direct = DVec3::new(0.5, 0.25, 1.0);
+        assert_eq!(black.blend(direct, DVec3::ONE, 0.3), direct * (1.0 - 0.3));
+    }
+}

@@ -1,0 +1,340 @@
+//! The class, read from what `SUBMISSIONS` is (docs/grade.md, "Inputs"): Moodle's zip of every
+//! submission, a folder with a folder per student, or one student's project. Each student's
+//! `Plane.java` and `Renderer.java` are taken, wherever they are in what they handed in;
+//! nothing else of a submission is used.
+
+use std::collections::BTreeMap;
+use std::fs::File;
+use std::path::Path;
+
+use super::archive::{self, Holdings, WANTED};
+use super::moodle;
+use whitted_core::error::{Error, Result};
+
+/// A student as the class lists them.
+#[derive(Debug, Clone)]
+pub struct Submission {
+    /// What grades go back by: Moodle's id, or the folder's name. Safe as a file name.
+    pub id: String,
+    /// The name Moodle gives (a full name, `Participant`, a group), or the folder's name.
+    pub name: String,
+    /// The folder it came in (Moodle's `Full Name_<id>_assignsubmission_file`), which Moodle's
+    /// feedback upload reads the participant from.
+    pub folder: String,
+    /// The two files, or why they cannot be had.
+    pub files: std::result::Result<Files, Refusal>,
+    /// What was ignored on the way (links, a second copy, a file too large, a folder that is
+    /// not a file submission), for the report.
+    pub notes: Vec<String>,
+    /// What was taken though it is not what the handout asks (a near-miss file name), for the
+    /// report: the course's own tester may not take it.
+    pub warnings: Vec<String>,
+}
+
+/// A submission's two files.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Files {
+    pub plane: Vec<u8>,
+    pub renderer: Vec<u8>,
+}
+
+/// Why a student cannot be graded: the status of docs/grade.md and a sentence.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Refusal {
+    /// `no-files` or `error`.
+    pub status: &'static str,
+    pub message: String,
+}
+
+/// Every student of `submissions`, sorted by id.
+pub fn read(submissions: &Path) -> Result<Vec<Submission>> {
+    let metadata = std::fs::metadata(submissions)
+        .map_err(|e| Error::io(submissions, "cannot read the submissions", e))?;
+    let students = if metadata.is_file() {
+        from_zip(submissions)?
+    } else if metadata.is_dir() && is_project(submissions) {
+        let name = folder_name(submissions);
+        let mut holdings = Holdings {
+            folder: name.clone(),
+            ..Holdings::default()
+        };
+        archive::search_dir(submissions, &mut holdings);
+        vec![(name.clone(), name, holdings)]
+    } else if metadata.is_dir() {
+        from_folders(submissions)?
+    } else {
+        return Err(Error::Usage(format!(
+            "{}: give Moodle's zip of the submissions, a folder of students' folders, or one \
+             project folder",
+            submissions.display()
+        )));
+    };
+    if students.is_empty() {
+        return Err(Error::Usage(format!(
+            "{}: no students there (give Moodle's zip of the submissions, a folder of \
+             students' folders, or one project folder)",
+            submissions.display()
+        )));
+    }
+    Ok(settle(students))
+}
+
+/// One project: the sources at `gfx/tick2/` or `src/gfx/tick2/`.
+fn is_project(dir: &Path) -> bool {
+    ["gfx/tick2", "src/gfx/tick2"]
+        .iter()
+        .any(|sub| WANTED.iter().any(|f| dir.join(sub).join(f).is_file()))
+}
+
+fn folder_name(dir: &Path) -> String {
+    dir.canonicalize()
+        .ok()
+        .and_then(|d| d.file_name().map(|n| n.to_string_lossy().into_owned()))
+        .unwrap_or_else(|| "student".into())
+}
+
+/// (id, name) of a student's folder: Moodle's when the name has its shape, else the name.
+fn student_of(folder: &str) -> (String, String) {
+    match moodle::parse(folder) {
+        Some(f) => (f.id, f.name),
+        None => (folder.to_string(), folder.to_string()),
+    }
+}
+
+/// A Moodle folder that holds no files (`_onlinetext_`, `_comments_`): its student and a note.
+fn not_files(folder: &str) -> Option<(String, String, String)> {
+    let parsed = moodle::parse(folder).filter(|f| !f.is_files())?;
+    let note = format!(
+        "Moodle's folder {folder} holds the {} plugin's submission, not files: ignored",
+        parsed.plugin
+    );
+    Some((parsed.id, parsed.name, note))
+}
+
+/// The students of the folders: the file folders, with each ignored folder's note given to
+/// its student (a student with no file folder at all is still listed, with nothing to grade).
+fn with_ignored(
+    mut students: Vec<(String, String, Holdings)>,
+    ignored: Vec<(String, String, String)>,
+) -> Vec<(String, String, Holdings)> {
+    for (id, name, note) in ignored {
+        match students.iter_mut().find(|(i, ..)| *i == id) {
+            Some((_, _, holdings)) => holdings.notes.push(note),
+            None => {
+                let holdings = Holdings {
+                    notes: vec![note],
+                    ..Holdings::default()
+                };
+                // No file folder: feedback goes back to Moodle's usual name for one.
+                let holdings = Holdings {
+                    folder: format!("{name}_{id}_assignsubmission_file_"),
+                    ..holdings
+                };
+                students.push((id, name, holdings));
+            }
+        }
+    }
+    students
+}
+
+/// Moodle's zip: a folder per student at the top (files at the top make one student).
+fn from_zip(path: &Path) -> Result<Vec<(String, String, Holdings)>> {
+    let file = File::open(path).map_err(|e| Error::io(path, "cannot read", e))?;
+    let mut zip = zip::ZipArchive::new(std::io::BufReader::new(file)).map_err(|e| {
+        Error::Usage(format!(
+            "{}: not a zip that can be read ({e})",
+            path.display()
+        ))
+    })?;
+    let mut folders: BTreeMap<String, Vec<(String, usize)>> = BTreeMap::new();
+    let mut loose = Vec::new();
+    for (folder, rest, i) in archive::top_folders(&mut zip) {
+        if folder.is_empty() {
+            loose.push((rest, i));
+        } else {
+            folders.entry(folder).or_default().push((rest, i));
+        }
+    }
+    let mut students = Vec::new();
+    if !loose.is_empty() && folders.is_empty() {
+        let stem = folder_name(path);
+        let (id, name) = student_of(stem.trim_end_matches(".zip"));
+        let mut holdings = Holdings {
+            folder: stem.trim_end_matches(".zip").to_string(),
+            ..Holdings::default()
+        };
+        archive::search_zip(&mut zip, &loose, &mut holdings, false);
+        students.push((id, name, holdings));
+        return Ok(students);
+    }
+    let mut ignored = Vec::new();
+    for (folder, entries) in folders {
+        if let Some(not) = not_files(&folder) {
+            ignored.push(not);
+            continue;
+        }
+        let (id, name) = student_of(&folder);
+        let mut holdings = Holdings {
+            folder: folder.clone(),
+            ..Holdings::default()
+        };
+        archive::search_zip(&mut zip, &entries, &mut holdings, false);
+        students.push((id, name, holdings));
+    }
+    Ok(with_ignored(students, ignored))
+}
+
+/// A folder with a folder per student (links and files beside them are not students).
+fn from_folders(dir: &Path) -> Result<Vec<(String, String, Holdings)>> {
+    let entries =
+        std::fs::read_dir(dir).map_err(|e| Error::io(dir, "cannot read the submissions", e))?;
+    let mut students = Vec::new();
+    let mut ignored = Vec::new();
+    for entry in entries.flatten() {
+        if !entry.file_type().is_ok_and(|t| t.is_dir()) {
+            continue;
+        }
+        let folder = entry.file_name().to_string_lossy().into_owned();
+        if let Some(not) = not_files(&folder) {
+            ignored.push(not);
+            continue;
+        }
+        let (id, name) = student_of(&folder);
+        let mut holdings = Holdings {
+            folder: folder.clone(),
+            ..Holdings::default()
+        };
+        archive::search_dir(&entry.path(), &mut holdings);
+        students.push((id, name, holdings));
+    }
+    Ok(with_ignored(students, ignored))
+}
+
+/// The id as a file name: letters, digits, `-`, `_`, `.` kept, anything else `_`, never `.` or
+/// `..` or empty.
+pub fn safe_id(id: &str) -> String {
+    let safe: String = id
+        .chars()
+        .map(|c| match c {
+            'a'..='z' | 'A'..='Z' | '0'..='9' | '-' | '_' | '.' => c,
+            _ => '_',
+        })
+        .take(100)
+        .collect();
+    match safe.trim_matches('.') {
+        "" => "_".repeat(safe.len().max(1)),
+        _ => safe,
+    }
+}
+
+/// Each student's two files chosen, ids made safe, and two students of one id refused both.
+fn settle(students: Vec<(String, String, Holdings)>) -> Vec<Submission> {
+    let mut count: BTreeMap<String, usize> = BTreeMap::new();
+    for (id, ..) in &students {
+        *count.entry(safe_id(id)).or_default() += 1;
+    }
+    let mut settled: Vec<Submission> = students
+        .into_iter()
+        .map(|(id, name, holdings)| {
+            let safe = safe_id(&id);
+            let mut notes = holdings.notes.clone();
+            let mut warnings = Vec::new();
+            let files = if count[&safe] > 1 {
+                Err(Refusal {
+                    status: "error",
+                    message: format!(
+                        "{} submissions have the id {id}: none is graded until one is left",
+                        count[&safe]
+                    ),
+                })
+            } else {
+                choose(&holdings, &mut notes, &mut warnings)
+            };
+            Submission {
+                id: safe,
+                name,
+                folder: holdings.folder.clone(),
+                files,
+                notes,
+                warnings,
+            }
+        })
+        .collect();
+    settled.sort_by(|a, b| a.id.cmp(&b.id).then(a.name.cmp(&b.name)));
+    settled
+}
+
+/// The copy of each wanted file to grade: one of that exact name before a near miss
+/// (`Renderer (1).java`, taken with a warning), the one under `gfx/tick2/` first, else the one
+/// nearest the top; the others are noted.
+fn choose(
+    holdings: &Holdings,
+    notes: &mut Vec<String>,
+    warnings: &mut Vec<String>,
+) -> std::result::Result<Files, Refusal> {
+    let mut chosen = Vec::new();
+    let name_of = |f: &archive::Found| archive::wanted(f.path.rsplit(['/', '\\']).next()?);
+    for wanted in WANTED {
+        let mut copies: Vec<&archive::Found> = holdings
+            .found
+            .iter()
+            .filter(|f| name_of(f).is_some_and(|(w, _)| w == wanted))
+            .collect();
+        copies.sort_by_key(|f| {
+            let in_package = f.path.replace('\\', "/").contains("gfx/tick2/");
+            let exact = name_of(f).is_some_and(|(_, exact)| exact);
+            (
+                !exact,
+                !in_package,
+                f.path.matches(['/', '\\']).count(),
+                f.path.clone(),
+            )
+        });
+        let Some(first) = copies.first() else {
+            return Err(Refusal {
+                status: "no-files",
+                message: format!("no {wanted} in the submission"),
+            });
+        };
+        if name_of(first).is_some_and(|(_, exact)| !exact) {
+            warnings.push(format!(
+                "{} was taken as {wanted}: name it {wanted} (the course's tester looks for that \
+                 name and may not find this one)",
+                first.path
+            ));
+        }
+        for other in &copies[1..] {
+            notes.push(format!(
+                "{} also found at {}; {} graded",
+                wanted, other.path, first.path
+            ));
+        }
+        match &first.bytes {
+            Ok(bytes) => chosen.push(bytes.clone()),
+            Err(e) => {
+                return Err(Refusal {
+                    status: "no-files",
+                    message: e.clone(),
+                })
+            }
+        }
+    }
+    let renderer = chosen.pop().unwrap_or_default();
+    let plane = chosen.pop().unwrap_or_default();
+    Ok(Files { plane, renderer })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ids_are_safe_file_names() {
+        assert_eq!(safe_id("1234"), "1234");
+        assert_eq!(safe_id("../etc"), ".._etc");
+        assert_eq!(safe_id(".."), "__");
+        assert_eq!(safe_id("a/b c"), "a_b_c");
+        assert_eq!(safe_id(""), "_");
+        assert_eq!(safe_id("é"), "_");
+    }
+}

@@ -1,0 +1,622 @@
+//! whitted-grade: a class at once. Reads Moodle's zip of a class's submissions, compiles and runs
+//! every student's untrusted program in a sandbox (bubblewrap, seccomp, a memory cgroup), checks
+//! each image with whitted-check, and writes the reports, the class page and Moodle's worksheet
+//! and feedback files (`docs/grade.md`).
+//!
+//! # What it may depend on
+//! whitted-core, whitted-io, whitted-check, and zip for Moodle's archives. Never clap: the
+//! command line builds this crate's `Options` and passes them down.
+//!
+//! `whitted grade SUBMISSIONS -o OUTDIR`: a whole class at once (docs/grade.md). Every
+//! student's `Plane.java` and `Renderer.java` are compiled against the skeleton and run over
+//! the suite in a sandbox, checked as `check --program` checks one student, and written up:
+//! a `result.json` (Gradescope's shape), a report to send, and the class's own pages.
+//!
+//! Runs survive faults: each student's files are written atomically, `result.json` last,
+//! keyed by a hash of what decides the result (their two files, the skeleton, the scenes,
+//! whitted's version and the settings), so a rerun skips whoever is finished and Ctrl-C keeps
+//! them; the class files are made from the `result.json`s alone.
+
+mod archive;
+mod class;
+mod compile;
+mod feedback_zip;
+mod html;
+mod intake;
+mod memory_cgroup;
+mod moodle;
+mod policy;
+mod report;
+mod result;
+mod sandbox;
+mod scenes;
+mod seccomp;
+mod similar;
+mod skeleton;
+mod student;
+mod warm_javac;
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
+
+use serde_json::Value;
+
+pub use policy::{Grading, Policy};
+pub use sandbox::Limits;
+
+use intake::Submission;
+use sandbox::Sandbox;
+use skeleton::Skeleton;
+use student::{Outcome, Setup};
+use warm_javac::WarmJavac;
+use whitted_check::check::suite::{cases, SuiteCase};
+use whitted_core::error::{Error, Result};
+use whitted_core::fingerprint::fingerprint;
+use whitted_io::output::atomic::AtomicFile;
+
+/// Which finished students a run grades again.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Rerun {
+    /// Only those whose result ended in an error or a timeout.
+    Failed,
+    /// Everyone.
+    All,
+}
+
+/// What `whitted grade` was asked.
+#[derive(Debug, Clone)]
+pub struct Options {
+    pub submissions: PathBuf,
+    pub outdir: PathBuf,
+    pub skeleton: Option<PathBuf>,
+    /// The course's hidden scenes, added to the suite.
+    pub scenes: Option<PathBuf>,
+    pub jobs: usize,
+    pub limits: Limits,
+    pub rerun: Option<Rerun>,
+    pub no_sandbox: bool,
+    pub grading: Grading,
+    pub tolerance: u8,
+    /// Whether whitted's diagnostic scenes count towards the grade.
+    pub count_diagnostic: bool,
+    /// A rubric file weighing the cases (docs/grade.md, "What counts").
+    pub rubric: Option<PathBuf>,
+    /// Only these students (ids as the class lists them), graded again whatever OUTDIR holds.
+    pub only: Vec<String>,
+    /// Whether hidden scenes are shown to students in full (their XML, their reference).
+    pub show_hidden: bool,
+    /// Only the `k`-th of `n` shares of the class (a Slurm array task); the class files are
+    /// then left to the run that aggregates.
+    pub part: Option<(usize, usize)>,
+    pub quiet: bool,
+}
+
+/// What a run did, for the closing lines.
+#[derive(Debug, Clone, Default)]
+pub struct Summary {
+    pub students: usize,
+    pub graded_now: usize,
+    pub skipped: usize,
+    /// Students per status, over the whole class.
+    pub statuses: Vec<(String, usize)>,
+    /// The class page, when this run wrote it.
+    pub index: Option<PathBuf>,
+}
+
+/// Grades the class of `options`.
+pub fn run(options: &Options) -> Result<Summary> {
+    refuse_outdir_inside(&options.submissions, &options.outdir)?;
+    let submissions = intake::read(&options.submissions)?;
+    let (skeleton, suite, policy) = course(options)?;
+    let only = only(options, &submissions)?;
+    let java = jdk_tool("java")?;
+    let javac = jdk_tool("javac")?;
+    let sandbox = match options.no_sandbox {
+        true => Sandbox::None,
+        false => Sandbox::bubblewrap(&java)?,
+    };
+    let students_dir = options.outdir.join("students");
+    std::fs::create_dir_all(&students_dir)
+        .map_err(|e| Error::io(&students_dir, "cannot create", e))?;
+    let work = tempfile::Builder::new()
+        .prefix("whitted-grade-")
+        .tempdir()
+        .map_err(|e| Error::io(std::env::temp_dir(), "cannot create a folder", e))?;
+    let setup = Setup {
+        sandbox,
+        java,
+        javac,
+        skeleton,
+        suite,
+        limits: options.limits,
+        tolerance: options.tolerance,
+        work: work.path().to_path_buf(),
+    };
+    let mine: Vec<&Submission> = submissions
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| options.part.is_none_or(|(k, n)| i % n == k - 1))
+        .map(|(_, s)| s)
+        .filter(|s| only.is_empty() || only.contains(&s.id))
+        .collect();
+    let todo: Vec<(&Submission, String)> = mine
+        .iter()
+        .map(|s| (*s, key(&setup.skeleton, &setup.suite, &policy, options, s)))
+        .filter(|(s, key)| !only.is_empty() || needs_grading(&students_dir, s, key, options.rerun))
+        .collect();
+    let skipped = mine.len() - todo.len();
+    // Without a sandbox, orphans of a program are found as this process's children, which
+    // would be the other students' programs too: one student at a time then.
+    let jobs = if setup.sandbox.is_none() {
+        1
+    } else {
+        options.jobs.max(1)
+    };
+    grade_all(&setup, &policy, options, &students_dir, &todo, jobs)?;
+    let rows = read_rows(&students_dir, &submissions);
+    let mut summary = Summary {
+        students: submissions.len(),
+        graded_now: todo.len(),
+        skipped,
+        statuses: count_statuses(&rows),
+        index: None,
+    };
+    if options.part.is_none() {
+        let settings = [
+            format!("Skeleton: {}.", setup.skeleton.source),
+            format!("Grading: {}.", policy.describe()),
+            match setup.sandbox.is_none() {
+                true => "Run with --no-sandbox: the programs ran unconfined.".to_string(),
+                false => "Every program ran in the sandbox (docs/grade.md).".to_string(),
+            },
+        ];
+        summary.index = Some(write_class(&options.outdir, &rows, &settings)?);
+    }
+    Ok(summary)
+}
+
+/// The students `--only` names, as the class lists them; an id the class does not have is
+/// refused before anyone is graded.
+fn only(options: &Options, submissions: &[Submission]) -> Result<Vec<String>> {
+    let mut ids = Vec::new();
+    for id in &options.only {
+        let safe = intake::safe_id(id);
+        if !submissions.iter().any(|s| s.id == safe) {
+            return Err(Error::Usage(format!(
+                "--only {id}: no student of that id in {}",
+                options.submissions.display()
+            )));
+        }
+        ids.push(safe);
+    }
+    Ok(ids)
+}
+
+/// Every student in class order, and whether OUTDIR holds their finished result: what a farm
+/// needs to share the class out and to resume it. Needs neither a JDK nor a sandbox.
+pub fn list(options: &Options) -> Result<Vec<(String, bool)>> {
+    let submissions = intake::read(&options.submissions)?;
+    let (skeleton, suite, policy) = course(options)?;
+    let students_dir = options.outdir.join("students");
+    Ok(submissions
+        .iter()
+        .map(|s| {
+            let key = key(&skeleton, &suite, &policy, options, s);
+            let done = !needs_grading(&students_dir, s, &key, options.rerun);
+            (s.id.clone(), done)
+        })
+        .collect())
+}
+
+/// What every student is graded against: the skeleton, the suite (with `--scenes`) and the
+/// grading policy.
+fn course(options: &Options) -> Result<(Skeleton, Vec<SuiteCase>, Policy)> {
+    let skeleton = match &options.skeleton {
+        Some(dir) => Skeleton::from_dir(dir)?,
+        None => Skeleton::clean_room(),
+    };
+    let mut suite = cases();
+    if let Some(dir) = &options.scenes {
+        for case in scenes::read(dir)? {
+            if suite.iter().any(|c| c.name() == case.name()) {
+                return Err(Error::Usage(format!(
+                    "--scenes {}: {} has the name of a case of the suite; rename it",
+                    dir.display(),
+                    case.file
+                )));
+            }
+            suite.push(case);
+        }
+    }
+    let policy = Policy::new(
+        &suite,
+        options.grading,
+        options.tolerance,
+        options.count_diagnostic,
+        options.rubric.as_deref(),
+    )?;
+    Ok((skeleton, suite, policy))
+}
+
+/// OUTDIR inside the submissions folder would be read as a student next time.
+fn refuse_outdir_inside(submissions: &Path, outdir: &Path) -> Result<()> {
+    let (Ok(inputs), Some(parent)) = (submissions.canonicalize(), absolute_parent(outdir)) else {
+        return Ok(());
+    };
+    if inputs.is_dir() && parent.starts_with(&inputs) {
+        return Err(Error::Usage(format!(
+            "-o {} is inside the submissions {}: give a folder outside them",
+            outdir.display(),
+            submissions.display()
+        )));
+    }
+    Ok(())
+}
+
+/// `path` made absolute through its nearest existing ancestor.
+fn absolute_parent(path: &Path) -> Option<PathBuf> {
+    let absolute = std::path::absolute(path).ok()?;
+    let mut existing = absolute.as_path();
+    let mut rest = Vec::new();
+    while !existing.exists() {
+        rest.push(existing.file_name()?.to_os_string());
+        existing = existing.parent()?;
+    }
+    let mut resolved = existing.canonicalize().ok()?;
+    for part in rest.iter().rev() {
+        resolved.push(part);
+    }
+    Some(resolved)
+}
+
+/// `java` or `javac`, from PATH.
+fn jdk_tool(name: &str) -> Result<PathBuf> {
+    sandbox::find_in_path(name).ok_or_else(|| {
+        Error::Environment(format!(
+            "whitted grade compiles and runs the students' Java: `{name}` is not on PATH \
+             (`apt install default-jdk-headless`)"
+        ))
+    })
+}
+
+/// What decides a student's result, hashed: their two files, the skeleton, the suite,
+/// whitted's version and the settings that change a verdict or a grade. The limits are not in
+/// it: they change only the results that hit one, which `--rerun failed` grades again.
+fn key(
+    skeleton: &Skeleton,
+    suite: &[SuiteCase],
+    policy: &Policy,
+    options: &Options,
+    submission: &Submission,
+) -> String {
+    let mut parts: Vec<Vec<u8>> = vec![env!("CARGO_PKG_VERSION").as_bytes().to_vec()];
+    match &submission.files {
+        Ok(files) => {
+            parts.push(files.plane.clone());
+            parts.push(files.renderer.clone());
+        }
+        Err(refusal) => parts.push(refusal.message.as_bytes().to_vec()),
+    }
+    for (name, bytes) in &skeleton.files {
+        parts.push(name.as_bytes().to_vec());
+        parts.push(bytes.clone());
+    }
+    for case in suite {
+        parts.push(case.xml.as_bytes().to_vec());
+        parts.push(case.bounces.to_le_bytes().to_vec());
+    }
+    parts.push(policy.key_bytes());
+    parts.push(vec![
+        u8::from(options.no_sandbox),
+        u8::from(options.show_hidden),
+    ]);
+    // Each part's length first, so that moving bytes from one part to the next changes it.
+    let framed: Vec<Vec<u8>> = parts
+        .iter()
+        .flat_map(|p| [(p.len() as u64).to_le_bytes().to_vec(), p.clone()])
+        .collect();
+    let slices: Vec<&[u8]> = framed.iter().map(Vec::as_slice).collect();
+    fingerprint(&slices)
+}
+
+/// The result.json a student has, if it can be read.
+fn read_result(students_dir: &Path, id: &str) -> Option<Value> {
+    let path = students_dir.join(id).join("result.json");
+    let bytes = std::fs::read(path).ok()?;
+    serde_json::from_slice(&bytes).ok()
+}
+
+/// Whether `submission` is graded on this run: no result under this key, or `--rerun` says so.
+fn needs_grading(
+    students_dir: &Path,
+    submission: &Submission,
+    key: &str,
+    rerun: Option<Rerun>,
+) -> bool {
+    let Some(row) = read_result(students_dir, &submission.id).and_then(|r| result::row(&r)) else {
+        return true;
+    };
+    match rerun {
+        Some(Rerun::All) => true,
+        Some(Rerun::Failed) => row.failed || row.key != key,
+        None => row.key != key,
+    }
+}
+
+/// Workers that share one warm compiler (`warm_javac.rs`): a compilation is a small part of a
+/// student's time, and each compiler's JVM costs seconds of CPU to start and warm up (on the
+/// bench class with `-j 2`, two compilers took 5.7 s of CPU for 24 students).
+const WORKERS_PER_COMPILER: usize = 4;
+
+/// Grades `todo`, `jobs` students at a time, each written as soon as it is done.
+fn grade_all(
+    setup: &Setup,
+    policy: &Policy,
+    options: &Options,
+    students_dir: &Path,
+    todo: &[(&Submission, String)],
+    jobs: usize,
+) -> Result<()> {
+    let progress = whitted_core::progress::Progress::counting(
+        todo.len() as u64,
+        options.quiet,
+        "grading",
+        "students",
+    );
+    let next = AtomicUsize::new(0);
+    let failure: Mutex<Option<Error>> = Mutex::new(None);
+    let workers = jobs.min(todo.len());
+    let root = setup.work.join("javac");
+    let compilers: Vec<Mutex<WarmJavac>> = (0..workers.div_ceil(WORKERS_PER_COMPILER))
+        .map(|c| {
+            let javac = WarmJavac::new(&setup.sandbox, &setup.java, &root, c, setup.limits);
+            Mutex::new(javac)
+        })
+        .collect();
+    std::thread::scope(|scope| {
+        for slot in 0..workers {
+            let (next, failure, progress) = (&next, &failure, &progress);
+            let javac = &compilers[slot / WORKERS_PER_COMPILER];
+            scope.spawn(move || loop {
+                let stop = failure.lock().map(|f| f.is_some()).unwrap_or(true);
+                let i = next.fetch_add(1, Ordering::SeqCst);
+                if stop || i >= todo.len() || whitted_core::interrupt::requested() {
+                    return;
+                }
+                let (submission, key) = &todo[i];
+                let graded = grade_one(
+                    setup,
+                    policy,
+                    options,
+                    students_dir,
+                    submission,
+                    key,
+                    slot,
+                    javac,
+                );
+                match graded {
+                    Ok(()) => progress.advance(1),
+                    Err(e) => {
+                        if let Ok(mut f) = failure.lock() {
+                            f.get_or_insert(e);
+                        }
+                        return;
+                    }
+                }
+            });
+        }
+    });
+    progress.finish();
+    whitted_core::interrupt::check()?;
+    match failure.into_inner().ok().flatten() {
+        Some(e) => Err(e),
+        None => Ok(()),
+    }
+}
+
+/// Grades one student and writes their folder: report.png, report.html, then result.json.
+#[allow(clippy::too_many_arguments)]
+fn grade_one(
+    setup: &Setup,
+    policy: &Policy,
+    options: &Options,
+    students_dir: &Path,
+    submission: &Submission,
+    key: &str,
+    slot: usize,
+    javac: &Mutex<WarmJavac>,
+) -> Result<()> {
+    let outcome = match student::grade(setup, submission, slot, javac) {
+        Ok(outcome) => outcome,
+        Err(e @ Error::Interrupted { .. }) => return Err(e),
+        // Anything else that stops this student (the program could not be started, a
+        // folder not written) is their status, not the class's end.
+        Err(e) => Outcome::Refused {
+            status: "error",
+            message: e.to_string(),
+        },
+    };
+    let sandboxed = !setup.sandbox.is_none();
+    let skeleton = &setup.skeleton.source;
+    let result = result::build(
+        submission,
+        &outcome,
+        key,
+        policy,
+        sandboxed,
+        skeleton,
+        options.show_hidden,
+    );
+    let feedback = result["extra_data"]["feedback"]
+        .as_str()
+        .unwrap_or("")
+        .to_string();
+    let dir = students_dir.join(&submission.id);
+    std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, "cannot create", e))?;
+    let mut png = Vec::new();
+    let shown = report::Shown {
+        hidden: options.show_hidden,
+        policy,
+    };
+    whitted_io::output::png::write_png(&mut png, &report::sheet(&outcome, &feedback, &shown))
+        .map_err(|e| Error::Environment(format!("cannot encode a report: {e}")))?;
+    write_atomic(&dir.join("report.png"), &png)?;
+    let page = report::page(submission, &outcome, &feedback, sandboxed, &shown);
+    write_atomic(&dir.join("report.html"), page.as_bytes())?;
+    let json = serde_json::to_string_pretty(&result).unwrap_or_default();
+    write_atomic(&dir.join("result.json"), json.as_bytes())
+}
+
+/// Writes `bytes` to `path` whole or not at all (`output::atomic`).
+fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    use std::io::Write;
+    let mut file = AtomicFile::create(path)?;
+    file.file()
+        .write_all(bytes)
+        .map_err(|e| Error::io(path, "cannot write output", e))?;
+    file.commit()
+}
+
+/// Every student's row, from their result.json; one without is an `error` row. Students
+/// OUTDIR holds from earlier runs on other inputs (a late submission graded alone, `--only`)
+/// keep their rows: grading into an existing output merges, never drops anyone.
+fn read_rows(students_dir: &Path, submissions: &[Submission]) -> Vec<result::Row> {
+    let mut rows: Vec<result::Row> = submissions
+        .iter()
+        .map(|s| {
+            read_result(students_dir, &s.id)
+                .and_then(|r| result::row(&r))
+                .unwrap_or_else(|| result::Row {
+                    id: s.id.clone(),
+                    name: s.name.clone(),
+                    folder: s.folder.clone(),
+                    fingerprint: String::new(),
+                    status: "error".into(),
+                    passed: 0,
+                    cases: 0,
+                    case_passes: Vec::new(),
+                    diagnosis: Vec::new(),
+                    grade: 0.0,
+                    feedback: "not graded yet".into(),
+                    failed: true,
+                    key: String::new(),
+                })
+        })
+        .collect();
+    if let Ok(entries) = std::fs::read_dir(students_dir) {
+        let mut others: Vec<result::Row> = entries
+            .flatten()
+            .filter(|e| e.file_type().is_ok_and(|t| t.is_dir()))
+            .filter_map(|e| read_result(students_dir, &e.file_name().to_string_lossy()))
+            .filter_map(|r| result::row(&r))
+            .filter(|r| !submissions.iter().any(|s| s.id == r.id))
+            .collect();
+        rows.append(&mut others);
+    }
+    rows.sort_by(|a, b| a.id.cmp(&b.id));
+    rows
+}
+
+fn count_statuses(rows: &[result::Row]) -> Vec<(String, usize)> {
+    let mut counts: std::collections::BTreeMap<String, usize> = Default::default();
+    for r in rows {
+        *counts.entry(r.status.clone()).or_default() += 1;
+    }
+    counts.into_iter().collect()
+}
+
+/// The class files; returns the path of index.html.
+fn write_class(outdir: &Path, rows: &[result::Row], settings: &[String]) -> Result<PathBuf> {
+    let now = modified_now();
+    write_atomic(&outdir.join("class.csv"), class::class_csv(rows).as_bytes())?;
+    write_atomic(
+        &outdir.join("mistakes.csv"),
+        class::mistakes_csv(rows).as_bytes(),
+    )?;
+    write_atomic(
+        &outdir.join("moodle.csv"),
+        class::moodle_csv(rows, &now).as_bytes(),
+    )?;
+    let (zip, students) = (outdir.join("feedback.zip"), outdir.join("students"));
+    if !feedback_zip::is_current(&zip, &students, rows) {
+        write_atomic(&zip, &feedback_zip::build(&students, rows)?)?;
+    }
+    let index = outdir.join("index.html");
+    write_atomic(
+        &index,
+        class::index_html(rows, "Tick 2: the class", settings).as_bytes(),
+    )?;
+    Ok(index)
+}
+
+/// "Last modified (grade)" as Moodle writes it in its worksheets: `Wednesday, 2 December 2026,
+/// 9:15 AM`, in UTC.
+fn modified_now() -> String {
+    let seconds = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_secs())
+        .unwrap_or(0);
+    moodle_date(seconds)
+}
+
+/// `seconds` since 1970 (UTC) in Moodle's worksheet format.
+fn moodle_date(seconds: u64) -> String {
+    const DAYS: [&str; 7] = [
+        "Thursday",
+        "Friday",
+        "Saturday",
+        "Sunday",
+        "Monday",
+        "Tuesday",
+        "Wednesday",
+    ];
+    const MONTHS: [&str; 12] = [
+        "January",
+        "February",
+        "March",
+        "April",
+        "May",
+        "June",
+        "July",
+        "August",
+        "September",
+        "October",
+        "November",
+        "December",
+    ];
+    let days = (seconds / 86_400) as i64;
+    let (hour, minute) = ((seconds % 86_400) / 3600, (seconds % 3600) / 60);
+    let (year, month, day) = whitted_core::calendar::civil_from_days(days);
+    let (h12, half) = match hour {
+        0 => (12, "AM"),
+        1..=11 => (hour, "AM"),
+        12 => (12, "PM"),
+        _ => (hour - 12, "PM"),
+    };
+    format!(
+        "{}, {day} {} {year}, {h12}:{minute:02} {half}",
+        DAYS[days.rem_euclid(7) as usize],
+        MONTHS[(month - 1) as usize]
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn moodle_dates_are_civil_dates() {
+        assert_eq!(moodle_date(0), "Thursday, 1 January 1970, 12:00 AM");
+        // 2026-12-02 09:15 UTC.
+        assert_eq!(
+            moodle_date(1_796_202_900),
+            "Wednesday, 2 December 2026, 9:15 AM"
+        );
+        // 2024-02-29 13:05 UTC, a leap day.
+        assert_eq!(
+            moodle_date(1_709_211_900),
+            "Thursday, 29 February 2024, 1:05 PM"
+        );
+    }
+}

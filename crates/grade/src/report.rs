@@ -1,0 +1,213 @@
+//! What a student is sent: `report.html` (one file, images inline) and `report.png` (the
+//! contact sheet `check --report` draws): their image, the reference and where they differ
+//! for each failing case, the mistake in words with where and how to fix it, and how far
+//! through the handout they are.
+
+use super::compile::SHOWN_LINES;
+use super::html::{escape, image, shared_image, STYLE};
+use super::intake::Submission;
+use super::policy::Policy;
+use super::student::Outcome;
+use whitted_check::check::program::CaseOutcome;
+use whitted_check::check::program::{Status, SuiteRun};
+use whitted_check::check::report::{contact_sheet, failing_rows, heat_map, ReportRow};
+use whitted_check::check::suite::Role;
+use whitted_check::check::summary;
+use whitted_io::canvas::Canvas;
+use whitted_io::output::png::{PngImage, PngPixels};
+
+/// What a report shows beyond the student's own findings: the policy it was graded under, and
+/// whether hidden cases are shown in full.
+pub struct Shown<'a> {
+    pub hidden: bool,
+    pub policy: &'a Policy,
+}
+
+impl Shown<'_> {
+    /// Whether `case` is shown by name and verdict only (a hidden scene, not `--show-hidden`).
+    fn withheld(&self, case: &CaseOutcome) -> bool {
+        case.case.role == Role::Hidden && !self.hidden
+    }
+}
+
+/// The report page of `submission`, whose result says `feedback`.
+pub fn page(
+    submission: &Submission,
+    outcome: &Outcome,
+    feedback: &str,
+    sandboxed: bool,
+    shown: &Shown,
+) -> String {
+    let mut body = format!(
+        "<h1>Tick 2: {}</h1>\n<p class=\"feedback\">{}</p>\n",
+        escape(&submission.name),
+        escape(feedback)
+    );
+    if !submission.warnings.is_empty() {
+        body += "<h2>Warnings</h2>\n<ul class=\"warnings\">\n";
+        for warning in &submission.warnings {
+            body += &format!("<li>{}</li>\n", escape(warning));
+        }
+        body += "</ul>\n";
+    }
+    if !sandboxed {
+        body += "<p><strong>Graded with --no-sandbox:</strong> the program ran unconfined.</p>\n";
+    }
+    match outcome {
+        Outcome::Refused { message, .. } => {
+            body += &format!("<p>{}</p>\n", escape(message));
+        }
+        Outcome::CompileError(messages) => {
+            body += &format!(
+                "<h2>javac's first messages (up to {SHOWN_LINES} lines)</h2>\n<pre>{}</pre>\n",
+                escape(messages)
+            );
+        }
+        Outcome::CompileTimeout => body += "<p>javac did not finish within the time limit.</p>\n",
+        Outcome::Ran(run) => body += &ran(run, shown, feedback),
+    }
+    body += &format!(
+        "<p class=\"policy\">Graded {}.</p>\n",
+        escape(&shown.policy.describe())
+    );
+    if !submission.notes.is_empty() {
+        body += "<h2>Notes on the submission</h2>\n<ul>\n";
+        for note in &submission.notes {
+            body += &format!("<li>{}</li>\n", escape(note));
+        }
+        body += "</ul>\n";
+    }
+    format!(
+        "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
+         <meta name=\"viewport\" content=\"width=device-width\">\
+         <title>Tick 2 report: {}</title><style>{STYLE}</style></head><body>\n{body}</body></html>\n",
+        escape(&submission.name)
+    )
+}
+
+/// The cases, the diagnosis with its fixes, and the progress.
+/// The progress is said once: the feedback above holds it when no mistake explains the images.
+fn ran(run: &SuiteRun, shown: &Shown, feedback: &str) -> String {
+    let findings = &run.findings;
+    let mut out = String::new();
+    let progress = findings.progress.sentence();
+    if !feedback.contains(&progress) {
+        out += &format!("<p>{}</p>\n", escape(&progress));
+    }
+    if !findings.diagnosis.is_empty() {
+        out += &format!(
+            "<h2>{}</h2>\n<ol>\n",
+            escape(&summary::candidates_heading(findings))
+        );
+        for d in &findings.diagnosis {
+            let lines = summary::diagnosis_lines(d);
+            out += &format!(
+                "<li>{}</li>\n",
+                lines
+                    .iter()
+                    .map(|l| escape(l))
+                    .collect::<Vec<_>>()
+                    .join("<br>")
+            );
+        }
+        out += "</ol>\n";
+    }
+    for line in summary::opening(findings).iter().skip(1) {
+        out += &format!("<p>{}</p>\n", escape(line));
+    }
+    out += "<h2>The cases</h2>\n<table><tr><th>case</th><th>result</th><th>counts</th></tr>\n";
+    for (i, case) in run.cases.iter().enumerate() {
+        let class = if case.passed() { "pass" } else { "fail" };
+        let counts = match shown.policy.counts(i) {
+            true => "graded",
+            false => "informs only",
+        };
+        let what = match &case.status {
+            _ if shown.withheld(case) => super::result::verdict(case),
+            Status::Ok(r) if case.passed() => r.difference.verdict.name().to_string(),
+            Status::Ok(r) => format!(
+                "{}: {}",
+                r.difference.verdict.name(),
+                summary::difference_sentence(&r.difference)
+            ),
+            other => other.name().to_string(),
+        };
+        out += &format!(
+            "<tr><td>{}</td><td class=\"{class}\">{}</td><td>{counts}</td></tr>\n",
+            escape(&case.name),
+            escape(&what)
+        );
+    }
+    out += "</table>\n";
+    for case in run.cases.iter().filter(|c| !shown.withheld(c)) {
+        match &case.status {
+            Status::Ok(r) if !case.passed() => {
+                let (w, h) = (r.student.width, r.student.height);
+                let heat = heat_map(&r.student, &r.reference, r.tolerance);
+                let PngPixels::Eight(heat) = heat.pixels else {
+                    continue;
+                };
+                out += &format!("<h2>{}</h2>\n", escape(&case.name));
+                for (alt, html) in [
+                    (
+                        "your image",
+                        image(w, h, r.student.bytes.clone(), "your image"),
+                    ),
+                    (
+                        "the reference",
+                        shared_image(w, h, &r.reference.bytes, "the reference"),
+                    ),
+                    ("where they differ", image(w, h, heat, "where they differ")),
+                ] {
+                    out += &format!("<figure>{html}<figcaption>{alt}</figcaption></figure>\n");
+                }
+            }
+            Status::Ok(_) => {}
+            _ if !case.stderr_tail.is_empty() => {
+                out += &format!(
+                    "<h2>{}: {}</h2>\n<pre>{}</pre>\n",
+                    escape(&case.name),
+                    case.status.name(),
+                    escape(&case.stderr_tail)
+                );
+            }
+            _ => {}
+        }
+    }
+    out
+}
+
+/// The contact sheet of the failing cases; of the first case when every one passes; of the
+/// feedback alone when nothing ran.
+pub fn sheet(outcome: &Outcome, feedback: &str, shown: &Shown) -> PngImage {
+    let Outcome::Ran(run) = outcome else {
+        let mut caption = vec![feedback.to_string()];
+        if let Outcome::CompileError(messages) = outcome {
+            caption.extend(messages.lines().take(8).map(str::to_string));
+        }
+        return caption_only(caption);
+    };
+    // The hidden cases withheld: the rows of the others alone.
+    let mut rows = failing_rows(run, |c| !shown.withheld(c));
+    if rows.is_empty() {
+        rows.extend(run.cases.iter().filter(|c| !shown.withheld(c)).find_map(
+            |c| match &c.status {
+                Status::Ok(case) => Some(ReportRow::of(&c.name, case, &run.findings)),
+                _ => None,
+            },
+        ));
+    }
+    match rows.is_empty() {
+        true => caption_only(vec![feedback.to_string()]),
+        false => contact_sheet(&rows),
+    }
+}
+
+/// A sheet of one row of blank tiles above `caption`: for a student with no image.
+fn caption_only(caption: Vec<String>) -> PngImage {
+    let blank = || Canvas::new(160, 120, [0; 3]);
+    contact_sheet(&[ReportRow {
+        caption,
+        tiles: [blank(), blank(), blank()],
+    }])
+}

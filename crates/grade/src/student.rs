@@ -1,0 +1,261 @@
+//! One student graded: their two files beside the skeleton's in a work folder, compiled and
+//! run over the suite in the sandbox, checked as `check --program` checks.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::{Mutex, MutexGuard, TryLockError};
+
+use super::compile::{compile, Compiled};
+use super::intake::{Files, Submission};
+use super::sandbox::{Area, Limits, RunGuard, Sandbox, AREA_BYTES, AREA_FILES, AREA_FULL};
+use super::skeleton::Skeleton;
+use super::warm_javac::WarmJavac;
+use whitted_check::check::program::{run_suite_with, Launch, LimitHit, SuiteRun};
+use whitted_check::check::suite::SuiteCase;
+use whitted_core::error::{Error, Result};
+
+/// What a class is graded with: the same for every student.
+pub struct Setup {
+    pub sandbox: Sandbox,
+    pub java: PathBuf,
+    pub javac: PathBuf,
+    pub skeleton: Skeleton,
+    pub suite: Vec<SuiteCase>,
+    pub limits: Limits,
+    pub tolerance: u8,
+    /// Where the students' work folders are made (removed at the end).
+    pub work: PathBuf,
+}
+
+/// How far a student got.
+pub enum Outcome {
+    /// The files could not be had: `no-files` or `error`, and why.
+    Refused {
+        status: &'static str,
+        message: String,
+    },
+    /// javac refused them: its first messages.
+    CompileError(String),
+    /// javac did not finish in time.
+    CompileTimeout,
+    /// Run over the suite and checked.
+    Ran(Box<SuiteRun>),
+}
+
+/// Grades `submission` in slot `slot` of the class's workers, compiled by the warm `javac` the
+/// slot shares.
+pub fn grade(
+    setup: &Setup,
+    submission: &Submission,
+    slot: usize,
+    javac: &Mutex<WarmJavac>,
+) -> Result<Outcome> {
+    let files = match &submission.files {
+        Ok(files) => files,
+        Err(refusal) => {
+            return Ok(Outcome::Refused {
+                status: refusal.status,
+                message: refusal.message.clone(),
+            })
+        }
+    };
+    let work = setup.work.join("students").join(&submission.id);
+    let _cleanup = WorkFolder(work.clone());
+    let sources = sources(setup, files);
+    let classes = work.join("classes");
+    // The lock is held for the warm compilation only, not a fallback's; a compiler another
+    // student holds for longer than `PATIENCE` (a source that makes javac slow) is left to
+    // them, and this student is compiled by a javac of their own.
+    let warm = match lock_within(javac, PATIENCE) {
+        Some(mut warm) => warm.compile(&sources, &classes)?,
+        None => None,
+    };
+    let compiled = match warm {
+        Some(compiled) => compiled,
+        None => {
+            let paths = lay_out(&sources, &work)?;
+            compile(
+                &setup.sandbox,
+                &setup.javac,
+                &work,
+                &paths,
+                slot,
+                setup.limits,
+            )?
+        }
+    };
+    match compiled {
+        Compiled::Ok => {}
+        Compiled::Errors(messages) => return Ok(Outcome::CompileError(messages)),
+        Compiled::Timeout => return Ok(Outcome::CompileTimeout),
+    }
+    let launch = SandboxedJava {
+        setup,
+        classes,
+        slot,
+        runs: Mutex::default(),
+    };
+    let run = run_suite_with(
+        &launch,
+        "java gfx.tick2.Tick2",
+        &setup.suite,
+        setup.tolerance,
+        setup.limits.seconds,
+    )?;
+    let mut run = run;
+    offer_only_their_files(&mut run);
+    Ok(Outcome::Ran(Box::new(run)))
+}
+
+/// The candidates after the first keep only mistakes in the files a student hands in: one in
+/// the skeleton's classes (`Sphere.intersectionWith`) cannot be theirs, since grade compiles
+/// the skeleton's own. The first stays whatever it is: the per-case labels are its.
+fn offer_only_their_files(run: &mut SuiteRun) {
+    let theirs = |bug: whitted_check::mistakes::Bug| {
+        let class = bug.place().split('.').next().unwrap_or("");
+        super::archive::WANTED
+            .iter()
+            .any(|file| file.strip_suffix(".java") == Some(class))
+    };
+    let mut first = true;
+    run.findings.diagnosis.retain(|d| {
+        let keep = first || d.mistakes.bugs().into_iter().all(theirs);
+        first = false;
+        keep
+    });
+}
+
+/// How long a student waits for the warm compiler its slot shares before compiling with a
+/// javac of its own: a warm compilation takes a tenth of a second, so a wait this long means
+/// the compiler is busy with a slow source, and one slow compile must not hold the others.
+const PATIENCE: std::time::Duration = std::time::Duration::from_secs(2);
+
+/// `mutex` locked, if it can be within `patience` (a poisoned lock still guards a usable
+/// compiler: the one who panicked held it between students).
+fn lock_within<T>(mutex: &Mutex<T>, patience: std::time::Duration) -> Option<MutexGuard<'_, T>> {
+    let started = std::time::Instant::now();
+    loop {
+        match mutex.try_lock() {
+            Ok(guard) => return Some(guard),
+            Err(TryLockError::Poisoned(e)) => return Some(e.into_inner()),
+            Err(TryLockError::WouldBlock) if started.elapsed() < patience => {
+                std::thread::sleep(std::time::Duration::from_millis(10));
+            }
+            Err(TryLockError::WouldBlock) => return None,
+        }
+    }
+}
+
+/// The work folder, removed when the student is done (or the grading stops).
+struct WorkFolder(PathBuf);
+
+impl Drop for WorkFolder {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+/// What is compiled: the skeleton's files and the student's two, by name.
+fn sources<'a>(setup: &'a Setup, files: &'a Files) -> Vec<(&'a str, &'a [u8])> {
+    let ours = setup
+        .skeleton
+        .files
+        .iter()
+        .map(|(name, bytes)| (name.as_str(), bytes.as_slice()));
+    let theirs = [
+        ("Plane.java", files.plane.as_slice()),
+        ("Renderer.java", files.renderer.as_slice()),
+    ];
+    ours.chain(theirs)
+        .map(|(name, bytes)| (name, without_bom(bytes)))
+        .collect()
+}
+
+/// `source` without a leading UTF-8 byte order mark, which Windows editors write and IDEs
+/// accept but javac rejects as an illegal character (JDK-4508058).
+fn without_bom(source: &[u8]) -> &[u8] {
+    source.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(source)
+}
+
+/// `work/src/gfx/tick2/` with `sources` and an empty `work/classes`; returns the sources'
+/// paths.
+fn lay_out(sources: &[(&str, &[u8])], work: &Path) -> Result<Vec<String>> {
+    let _ = std::fs::remove_dir_all(work);
+    let package = work.join("src/gfx/tick2");
+    let classes = work.join("classes");
+    for dir in [&package, &classes] {
+        std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, "cannot create", e))?;
+    }
+    let mut paths = Vec::new();
+    for (name, bytes) in sources {
+        let path = package.join(name);
+        std::fs::write(&path, bytes).map_err(|e| Error::io(&path, "cannot write", e))?;
+        paths.push(path.display().to_string());
+    }
+    Ok(paths)
+}
+
+/// The student's compiled program, run in the sandbox: `java gfx.tick2.Tick2` with the case's
+/// arguments appended.
+struct SandboxedJava<'a> {
+    setup: &'a Setup,
+    classes: PathBuf,
+    slot: usize,
+    /// Each running case's guard (its cgroup, its filter), by its folder (removed when dropped).
+    runs: Mutex<HashMap<PathBuf, RunGuard>>,
+}
+
+impl Launch for SandboxedJava<'_> {
+    fn command(&self, dir: &Path) -> Result<Command> {
+        let limits = self.setup.limits;
+        let program = vec![
+            self.setup.java.display().to_string(),
+            format!("-Xmx{}m", (limits.memory_mib / 2).max(32)),
+            // A case runs for under a second: C2's compiler threads would cost more CPU than
+            // they save (4 cases of tick2: 2.5 s of CPU instead of 4.3, the same wall time
+            // alone). Java's arithmetic is the same at every tier (strict since Java 17; the
+            // interpreter and both compilers share Math.pow's stub): the bytes do not change.
+            "-XX:TieredStopAtLevel=1".into(),
+            "-XX:+UseSerialGC".into(),
+            "-XX:-UsePerfData".into(),
+            "-Djava.awt.headless=true".into(),
+            "-cp".into(),
+            self.classes.display().to_string(),
+            "gfx.tick2.Tick2".into(),
+        ];
+        let classes = self.classes.as_path();
+        let (command, run) = self.setup.sandbox.command(
+            &program,
+            &[classes],
+            dir,
+            Area::Capped,
+            self.slot,
+            limits,
+        )?;
+        self.runs
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .insert(dir.to_path_buf(), run);
+        Ok(command)
+    }
+
+    fn contains_descendants(&self) -> bool {
+        !self.setup.sandbox.is_none()
+    }
+
+    fn ended(&self, dir: &Path) -> Option<LimitHit> {
+        let run = self
+            .runs
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .remove(dir);
+        if run.is_some_and(|r| r.oom_killed()) {
+            return Some(LimitHit::Memory);
+        }
+        let full = dir.join(AREA_FULL).exists() && !self.setup.sandbox.is_none();
+        full.then(|| {
+            LimitHit::WritableArea(format!("{} MiB or {} files", AREA_BYTES >> 20, AREA_FILES))
+        })
+    }
+}
