@@ -49,7 +49,7 @@ pub struct GradeArgs {
 
     /// Grade finished students again: `failed` (errors and timeouts) or `all`
     #[arg(long, value_name = "WHICH", value_enum)]
-    pub rerun: Option<Rerun>,
+    pub rerun: Option<RerunArg>,
 
     /// Run the students' code without a sandbox: only for code you trust (every report says so)
     #[arg(long)]
@@ -92,6 +92,24 @@ pub struct GradeArgs {
     /// No progress bar
     #[arg(short, long)]
     pub quiet: bool,
+}
+
+/// `--rerun`: clap's names for [`Rerun`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum RerunArg {
+    /// Only those whose result ended in an error or a timeout
+    Failed,
+    /// Everyone
+    All,
+}
+
+impl From<RerunArg> for Rerun {
+    fn from(which: RerunArg) -> Rerun {
+        match which {
+            RerunArg::Failed => Rerun::Failed,
+            RerunArg::All => Rerun::All,
+        }
+    }
 }
 
 /// `--grade`: clap's names for [`Grading`].

@@ -19,7 +19,7 @@ pub fn run(args: &GradeArgs) -> Result<()> {
             memory_mib: args.memory,
             seconds: args.timeout,
         },
-        rerun: args.rerun,
+        rerun: args.rerun.map(Into::into),
         no_sandbox: args.no_sandbox,
         grading: args.grade.into(),
         tolerance: args.tolerance,

@@ -12,7 +12,6 @@ pub mod difference;
 pub mod image_cache;
 pub mod json;
 pub mod numbers;
-pub mod orphans;
 pub mod program;
 pub mod progress;
 pub mod renderer;

@@ -176,52 +176,50 @@ fn search_inner_zip(path: &str, bytes: Vec<u8>, holdings: &mut Holdings) {
     }
 }
 
-/// Looks in folder `dir` (and zips in it) for the wanted files. Links are not followed and
-/// nothing but regular files is opened (a FIFO would wait for ever).
+/// Looks in folder `dir` (and zips in it) for the wanted files, in file-name order (walkdir).
+/// Links are not followed and nothing but regular files is opened (a FIFO would wait for ever).
 pub fn search_dir(dir: &Path, holdings: &mut Holdings) {
-    let mut stack = vec![(dir.to_path_buf(), 0usize)];
-    let mut seen = 0usize;
-    while let Some((at, depth)) = stack.pop() {
-        let Ok(entries) = std::fs::read_dir(&at) else {
+    let walk = walkdir::WalkDir::new(dir)
+        .min_depth(1)
+        .max_depth(MAX_DEPTH + 1)
+        .follow_links(false)
+        .sort_by_file_name();
+    for (seen, entry) in walk.into_iter().enumerate() {
+        if seen >= MAX_ENTRIES {
             holdings
                 .notes
-                .push(format!("{}: cannot be read", shown(dir, &at)));
-            continue;
-        };
-        for entry in entries.flatten() {
-            seen += 1;
-            if seen > MAX_ENTRIES {
+                .push("more files than are looked at; the rest ignored".into());
+            return;
+        }
+        let entry = match entry {
+            Ok(entry) => entry,
+            Err(e) => {
+                let at = e.path().unwrap_or(dir);
                 holdings
                     .notes
-                    .push("more files than are looked at; the rest ignored".into());
-                return;
-            }
-            let path = entry.path();
-            let Ok(kind) = entry.file_type() else {
+                    .push(format!("{}: cannot be read", shown(dir, at)));
                 continue;
-            };
-            let name = entry.file_name().to_string_lossy().into_owned();
-            if kind.is_dir() && depth < MAX_DEPTH {
-                stack.push((path, depth + 1));
-            } else if kind.is_file() && (wanted(&name).is_some() || is_zip_name(&name)) {
-                let label = shown(dir, &path);
-                let cap = if is_zip_name(&name) {
-                    MAX_INNER_ZIP
-                } else {
-                    MAX_SOURCE
-                };
-                let bytes = read_regular(&path, cap, &label);
-                match (is_zip_name(&name), bytes) {
-                    (true, Ok(bytes)) => search_inner_zip(&label, bytes, holdings),
-                    (true, Err(e)) => holdings.notes.push(e),
-                    (false, bytes) => holdings.add(label, bytes),
-                }
-            } else if !kind.is_dir() && wanted(&name).is_some() {
-                holdings.notes.push(format!(
-                    "{}: not a regular file, ignored",
-                    shown(dir, &path)
-                ));
             }
+        };
+        let (path, kind) = (entry.path(), entry.file_type());
+        let name = entry.file_name().to_string_lossy().into_owned();
+        if kind.is_file() && (wanted(&name).is_some() || is_zip_name(&name)) {
+            let label = shown(dir, path);
+            let cap = if is_zip_name(&name) {
+                MAX_INNER_ZIP
+            } else {
+                MAX_SOURCE
+            };
+            let bytes = read_regular(path, cap, &label);
+            match (is_zip_name(&name), bytes) {
+                (true, Ok(bytes)) => search_inner_zip(&label, bytes, holdings),
+                (true, Err(e)) => holdings.notes.push(e),
+                (false, bytes) => holdings.add(label, bytes),
+            }
+        } else if !kind.is_dir() && wanted(&name).is_some() {
+            holdings
+                .notes
+                .push(format!("{}: not a regular file, ignored", shown(dir, path)));
         }
     }
 }

@@ -7,32 +7,29 @@
 use std::collections::BTreeMap;
 
 use super::html::{escape, STYLE};
-use super::result::Row;
+use super::result::{StudentResult, StudentStatus};
 use whitted_check::mistakes::Bug;
 
-/// A CSV field: quoted when it holds a comma, a quote or a line break; and a field that a
-/// spreadsheet would run as a formula (`=`, `+`, `-`, `@` first) is prefixed with `'`, since
-/// names and messages come from submissions (OWASP's CSV injection advice).
-fn field(text: &str) -> String {
-    let text = match text.chars().next() {
+/// A field that a spreadsheet would run as a formula (`=`, `+`, `-`, `@`, a tab or a carriage
+/// return first) gets a `'` before it, since names and messages come from submissions (OWASP's
+/// CSV injection advice). The csv crate does the quoting.
+fn formula_guarded(text: &str) -> String {
+    match text.chars().next() {
         Some('=' | '+' | '-' | '@' | '\t' | '\r') => format!("'{text}"),
         _ => text.to_string(),
-    };
-    if text.contains([',', '"', '\n', '\r']) {
-        format!("\"{}\"", text.replace('"', "\"\""))
-    } else {
-        text
     }
 }
 
+/// One record, CRLF-terminated as spreadsheets write it; a field is quoted when it holds a
+/// comma, a quote or a line break.
 fn line(fields: &[String]) -> String {
-    let mut out = fields
-        .iter()
-        .map(|f| field(f))
-        .collect::<Vec<_>>()
-        .join(",");
-    out.push_str("\r\n");
-    out
+    let mut writer = csv::WriterBuilder::new()
+        .terminator(csv::Terminator::CRLF)
+        .from_writer(Vec::new());
+    // Writing to memory cannot fail.
+    let _ = writer.write_record(fields.iter().map(|f| formula_guarded(f)));
+    let bytes = writer.into_inner().unwrap_or_default();
+    String::from_utf8_lossy(&bytes).into_owned()
 }
 
 /// A grade as Moodle reads it: no needless decimals.
@@ -40,7 +37,7 @@ fn grade_text(grade: f64) -> String {
     whitted_core::numbers::plain(grade)
 }
 
-pub fn class_csv(rows: &[Row]) -> String {
+pub fn class_csv(rows: &[StudentResult]) -> String {
     let mut out = line(
         &[
             "id",
@@ -55,13 +52,13 @@ pub fn class_csv(rows: &[Row]) -> String {
     );
     for r in rows {
         out += &line(&[
-            r.id.clone(),
-            r.name.clone(),
-            r.status.clone(),
-            r.passed.to_string(),
-            r.cases.to_string(),
-            r.diagnosis.join("+"),
-            grade_text(r.grade),
+            r.extra.id.clone(),
+            r.extra.name.clone(),
+            r.extra.status.name().to_string(),
+            r.extra.passed.to_string(),
+            r.extra.cases.to_string(),
+            r.extra.diagnosis.join("+"),
+            grade_text(r.extra.grade),
         ]);
     }
     out
@@ -69,10 +66,10 @@ pub fn class_csv(rows: &[Row]) -> String {
 
 /// How many students have each entry (their top diagnosis holds it), the most common first
 /// (what to teach again), ties in catalogue order; the entries no one has left out.
-pub fn counts(rows: &[Row]) -> Vec<(Bug, usize)> {
+pub fn counts(rows: &[StudentResult]) -> Vec<(Bug, usize)> {
     let has = |b: Bug| {
         rows.iter()
-            .filter(|r| r.diagnosis.iter().any(|d| d == b.id()))
+            .filter(|r| r.extra.diagnosis.iter().any(|d| d == b.id()))
             .count()
     };
     let mut counts: Vec<(Bug, usize)> = Bug::ALL
@@ -85,8 +82,11 @@ pub fn counts(rows: &[Row]) -> Vec<(Bug, usize)> {
     counts
 }
 
-pub fn mistakes_csv(rows: &[Row]) -> String {
-    let graded = rows.iter().filter(|r| r.status == "graded").count();
+pub fn mistakes_csv(rows: &[StudentResult]) -> String {
+    let graded = rows
+        .iter()
+        .filter(|r| r.extra.status == StudentStatus::Graded)
+        .count();
     let mut out =
         line(&["id", "kind", "stage", "students", "share", "description"].map(String::from));
     for (bug, n) in counts(rows) {
@@ -117,7 +117,7 @@ fn share(n: usize, of: usize) -> String {
 /// Moodle's offline grading worksheet, the columns its import reads: `Identifier` is
 /// `Participant <id>`; the grade and the feedback always together (importing feedback alone
 /// would overwrite grades with nothing).
-pub fn moodle_csv(rows: &[Row], modified: &str) -> String {
+pub fn moodle_csv(rows: &[StudentResult], modified: &str) -> String {
     let mut out = line(
         &[
             "Identifier",
@@ -133,26 +133,26 @@ pub fn moodle_csv(rows: &[Row], modified: &str) -> String {
     );
     for r in rows {
         out += &line(&[
-            format!("Participant {}", r.id),
-            r.name.clone(),
-            r.status.clone(),
-            grade_text(r.grade),
+            format!("Participant {}", r.extra.id),
+            r.extra.name.clone(),
+            r.extra.status.name().to_string(),
+            grade_text(r.extra.grade),
             "100".into(),
             "Yes".into(),
             modified.to_string(),
-            r.feedback.clone(),
+            r.extra.feedback.clone(),
         ]);
     }
     out
 }
 
 /// Each case's name and how many students pass it, of those who were run.
-fn pass_rates(rows: &[Row]) -> Vec<(String, usize, usize)> {
+fn pass_rates(rows: &[StudentResult]) -> Vec<(String, usize, usize)> {
     let mut rates: BTreeMap<String, (usize, usize, usize)> = BTreeMap::new();
     for r in rows {
-        for (order, (name, passed)) in r.case_passes.iter().enumerate() {
-            let e = rates.entry(name.clone()).or_insert((order, 0, 0));
-            e.1 += usize::from(*passed);
+        for (order, (name, passed)) in r.case_passes().enumerate() {
+            let e = rates.entry(name.to_string()).or_insert((order, 0, 0));
+            e.1 += usize::from(passed);
             e.2 += 1;
         }
     }
@@ -192,15 +192,18 @@ fn bars(items: &[(String, usize, usize, &str)]) -> String {
     svg + "</svg>"
 }
 
-pub fn index_html(rows: &[Row], title: &str, settings: &[String]) -> String {
-    let graded = rows.iter().filter(|r| r.status == "graded").count();
+pub fn index_html(rows: &[StudentResult], title: &str, settings: &[String]) -> String {
+    let graded = rows
+        .iter()
+        .filter(|r| r.extra.status == StudentStatus::Graded)
+        .count();
     let passing = rows
         .iter()
-        .filter(|r| r.cases > 0 && r.passed == r.cases)
+        .filter(|r| r.extra.cases > 0 && r.extra.passed == r.extra.cases)
         .count();
     let mut by_status: BTreeMap<&str, usize> = BTreeMap::new();
     for r in rows {
-        *by_status.entry(r.status.as_str()).or_default() += 1;
+        *by_status.entry(r.extra.status.name()).or_default() += 1;
     }
     let statuses: Vec<String> = by_status.iter().map(|(s, n)| format!("{n} {s}")).collect();
     let mut body = format!(
@@ -245,8 +248,8 @@ pub fn index_html(rows: &[Row], title: &str, settings: &[String]) -> String {
                 .map(|r| {
                     format!(
                         "<a href=\"students/{0}/report.html\">{0}</a> ({1})",
-                        escape(&r.id),
-                        escape(&r.name)
+                        escape(&r.extra.id),
+                        escape(&r.extra.name)
                     )
                 })
                 .collect();
@@ -260,13 +263,13 @@ pub fn index_html(rows: &[Row], title: &str, settings: &[String]) -> String {
         body += &format!(
             "<tr><td><a href=\"students/{0}/report.html\">{0}</a></td><td>{1}</td><td>{2}</td>\
              <td>{3} of {4}</td><td>{5}</td><td>{6}</td></tr>\n",
-            escape(&r.id),
-            escape(&r.name),
-            escape(&r.status),
-            r.passed,
-            r.cases,
-            escape(&r.diagnosis.join(" + ")),
-            grade_text(r.grade)
+            escape(&r.extra.id),
+            escape(&r.extra.name),
+            escape(r.extra.status.name()),
+            r.extra.passed,
+            r.extra.cases,
+            escape(&r.extra.diagnosis.join(" + ")),
+            grade_text(r.extra.grade)
         );
     }
     body += "</table>\n";
@@ -279,13 +282,16 @@ pub fn index_html(rows: &[Row], title: &str, settings: &[String]) -> String {
 }
 
 /// The groups of two or more students who share a fingerprint, in class order.
-fn identical(rows: &[Row]) -> Vec<Vec<&Row>> {
-    let mut by_print: BTreeMap<&str, Vec<&Row>> = BTreeMap::new();
-    for r in rows.iter().filter(|r| !r.fingerprint.is_empty()) {
-        by_print.entry(r.fingerprint.as_str()).or_default().push(r);
+fn identical(rows: &[StudentResult]) -> Vec<Vec<&StudentResult>> {
+    let mut by_print: BTreeMap<&str, Vec<&StudentResult>> = BTreeMap::new();
+    for r in rows {
+        if let Some(print) = &r.extra.fingerprint {
+            by_print.entry(print.as_str()).or_default().push(r);
+        }
     }
-    let mut groups: Vec<Vec<&Row>> = by_print.into_values().filter(|g| g.len() > 1).collect();
-    groups.sort_by(|a, b| a[0].id.cmp(&b[0].id));
+    let mut groups: Vec<Vec<&StudentResult>> =
+        by_print.into_values().filter(|g| g.len() > 1).collect();
+    groups.sort_by(|a, b| a[0].extra.id.cmp(&b[0].extra.id));
     groups
 }
 
@@ -295,10 +301,20 @@ mod tests {
 
     #[test]
     fn csv_fields_are_quoted_and_never_formulas() {
-        assert_eq!(field("plain"), "plain");
-        assert_eq!(field("a,b"), "\"a,b\"");
-        assert_eq!(field("say \"hi\""), "\"say \"\"hi\"\"\"");
-        assert_eq!(field("=HYPERLINK(1)"), "'=HYPERLINK(1)");
-        assert_eq!(field("-1"), "'-1");
+        let fields = [
+            "plain",
+            "a,b",
+            "say \"hi\"",
+            "=HYPERLINK(1)",
+            "-1",
+            "two\nlines",
+            "",
+            "\t=1",
+        ]
+        .map(String::from);
+        assert_eq!(
+            line(&fields),
+            "plain,\"a,b\",\"say \"\"hi\"\"\",'=HYPERLINK(1),'-1,\"two\nlines\",,'\t=1\r\n"
+        );
     }
 }

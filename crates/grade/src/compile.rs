@@ -3,20 +3,17 @@
 //! student: what the warm compiler (`warm_javac.rs`) falls back to, and what names the end of
 //! a compilation that killed it.
 
-use std::io::Read;
 use std::path::Path;
 use std::process::Stdio;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
+use super::jvm;
 use super::sandbox::{Area, Limits, Sandbox};
-use whitted_check::check::program::kill_group;
 use whitted_core::error::{Error, Result};
+use whitted_process::{Capture, Ended, Process};
 
 /// Bytes of javac's messages kept (the first ones: the first error is the one to fix).
-pub const MESSAGES: u64 = 64 << 10;
-/// javac's own time limit, at least: `--timeout` is a case's, and a busy machine can take
-/// seconds to start a JVM; a source that keeps javac busy for a minute is a timeout all the same.
-pub const COMPILE_SECONDS: u64 = 60;
+pub const MESSAGES: usize = 64 << 10;
 /// Lines of them shown in a report.
 pub const SHOWN_LINES: usize = 30;
 
@@ -40,77 +37,42 @@ pub fn compile(
     slot: usize,
     limits: Limits,
 ) -> Result<Compiled> {
-    // Its own deadline, whatever --timeout says, and the CPU backstop that goes with it.
-    let limits = Limits {
-        seconds: limits.seconds.max(COMPILE_SECONDS),
-        ..limits
-    };
-    let mut program = vec![
-        javac.display().to_string(),
-        format!("-J-Xmx{}m", (limits.memory_mib / 2).max(32)),
-        // javac runs for about a second: the C2 compiler would cost more CPU than it saves.
-        "-J-XX:TieredStopAtLevel=1".into(),
-        "-J-XX:+UseSerialGC".into(),
-        "-J-XX:-UsePerfData".into(),
-    ];
+    // Its own deadline, whatever --timeout says.
+    let limits = jvm::compiling(limits);
+    let mut program = vec![javac.display().to_string()];
+    program.extend(jvm::javac_options(limits));
     program.extend(javac_options(&work.join("classes")));
     program.extend(sources.iter().cloned());
     let (src, classes) = (work.join("src"), work.join("classes"));
     let (mut command, run) =
         sandbox.command(&program, &[&src], &classes, Area::Folder, slot, limits)?;
-    command
-        .stdin(Stdio::null())
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped());
-    std::os::unix::process::CommandExt::process_group(&mut command, 0);
-    let mut child = command
-        .spawn()
+    command.stdin(Stdio::null()).stdout(Stdio::null());
+    let mut javac = Process::spawn(command, Capture::Head(MESSAGES))
         .map_err(|e| Error::Environment(format!("cannot run javac: {e}")))?;
-    let stderr = child.stderr.take();
-    let reader = std::thread::spawn(move || {
-        let mut kept = Vec::new();
-        if let Some(pipe) = stderr {
-            let mut pipe = pipe.take(MESSAGES);
-            let _ = pipe.read_to_end(&mut kept);
-            // Drained to the end, so that javac never blocks on a full pipe.
-            let _ = std::io::copy(&mut pipe.into_inner(), &mut std::io::sink());
-        }
-        kept
-    });
-    let started = Instant::now();
-    let timeout = Duration::from_secs(limits.seconds);
-    let status = loop {
-        if whitted_core::interrupt::requested() || started.elapsed() > timeout {
-            kill_group(&child);
-            let _ = child.wait();
-            whitted_core::interrupt::check()?;
-            break None;
-        }
-        match child.try_wait() {
-            Ok(Some(status)) => break Some(status),
-            Ok(None) => std::thread::sleep(Duration::from_millis(20)),
-            Err(e) => {
-                kill_group(&child);
-                return Err(Error::Environment(format!("cannot wait for javac: {e}")));
-            }
-        }
-    };
-    let messages = reader.join().unwrap_or_default();
-    Ok(match status {
-        None => Compiled::Timeout,
-        Some(s) if s.success() => Compiled::Ok,
-        Some(_) if run.oom_killed() => Compiled::Errors(format!(
+    let ended = javac
+        .wait(
+            Duration::from_secs(limits.seconds),
+            Duration::from_millis(20),
+            whitted_core::interrupt::requested,
+        )
+        .map_err(|e| Error::Environment(format!("cannot wait for javac: {e}")))?;
+    whitted_core::interrupt::check()?;
+    let messages = javac.finish();
+    Ok(match ended {
+        Ended::TimedOut | Ended::Stopped => Compiled::Timeout,
+        Ended::Exited(s) if s.success() => Compiled::Ok,
+        Ended::Exited(_) if run.oom_killed() => Compiled::Errors(format!(
             "javac was killed at its memory limit (--memory {} MiB)",
             limits.memory_mib
         )),
         // Stopped at its CPU time limit (SIGXCPU): as out of time as a timeout.
-        Some(s) if std::os::unix::process::ExitStatusExt::signal(&s) == Some(SIGXCPU) => {
+        Ended::Exited(s) if std::os::unix::process::ExitStatusExt::signal(&s) == Some(SIGXCPU) => {
             Compiled::Timeout
         }
-        Some(s) if messages.is_empty() => {
+        Ended::Exited(s) if messages.is_empty() => {
             Compiled::Errors(format!("javac failed without a message ({s})"))
         }
-        Some(_) => Compiled::Errors(first_lines(&messages, &src)),
+        Ended::Exited(_) => Compiled::Errors(first_lines(&messages, &src)),
     })
 }
 

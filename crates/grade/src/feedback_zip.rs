@@ -6,11 +6,11 @@
 use std::io::Write;
 use std::path::Path;
 
-use super::result::Row;
+use super::result::StudentResult;
 use whitted_core::error::{Error, Result};
 
 /// The zip's bytes: every student whose report exists, in class order.
-pub fn build(students_dir: &Path, rows: &[Row]) -> Result<Vec<u8>> {
+pub fn build(students_dir: &Path, rows: &[StudentResult]) -> Result<Vec<u8>> {
     let mut zip = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
     // Deflate's default level: a report is mostly base64 of PNGs, which it shrinks by 40%
     // (its fastest level by 20%), and Moodle's uploads have a size limit.
@@ -25,7 +25,7 @@ pub fn build(students_dir: &Path, rows: &[Row]) -> Result<Vec<u8>> {
         if !written.insert(folder(row)) {
             continue;
         }
-        let report = students_dir.join(&row.id).join("report.html");
+        let report = students_dir.join(&row.extra.id).join("report.html");
         let Ok(page) = std::fs::read(&report) else {
             continue;
         };
@@ -39,13 +39,13 @@ pub fn build(students_dir: &Path, rows: &[Row]) -> Result<Vec<u8>> {
 
 /// Whether `zip` holds every report of `rows` as they are now: it exists, and no report is
 /// newer (a rerun that graded no one does not deflate every report again).
-pub fn is_current(zip: &Path, students_dir: &Path, rows: &[Row]) -> bool {
+pub fn is_current(zip: &Path, students_dir: &Path, rows: &[StudentResult]) -> bool {
     let modified = |p: &Path| std::fs::metadata(p).and_then(|m| m.modified()).ok();
     let Some(made) = modified(zip) else {
         return false;
     };
     rows.iter().all(|row| {
-        let report = students_dir.join(&row.id).join("report.html");
+        let report = students_dir.join(&row.extra.id).join("report.html");
         modified(&report).is_none_or(|m| m < made)
     })
 }
@@ -53,11 +53,11 @@ pub fn is_current(zip: &Path, students_dir: &Path, rows: &[Row]) -> bool {
 /// The participant's folder: Moodle's own name when the submission came in one, else the name
 /// Moodle would give (`<name>_<id>_assignsubmission_file_`); never a path of its own (`/` and
 /// `\` are replaced).
-fn folder(row: &Row) -> String {
-    let moodle = super::moodle::parse(&row.folder).is_some();
+fn folder(row: &StudentResult) -> String {
+    let moodle = super::moodle::parse(&row.extra.folder).is_some();
     let name = match moodle {
-        true => row.folder.clone(),
-        false => format!("{}_{}_assignsubmission_file_", row.name, row.id),
+        true => row.extra.folder.clone(),
+        false => format!("{}_{}_assignsubmission_file_", row.extra.name, row.extra.id),
     };
     name.replace(['/', '\\'], "_")
 }

@@ -9,6 +9,7 @@ use std::path::Path;
 
 use super::archive::{self, Holdings, WANTED};
 use super::moodle;
+use super::result::StudentStatus;
 use whitted_core::error::{Error, Result};
 
 /// A student as the class lists them.
@@ -41,8 +42,8 @@ pub struct Files {
 /// Why a student cannot be graded: the status of docs/grade.md and a sentence.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Refusal {
-    /// `no-files` or `error`.
-    pub status: &'static str,
+    /// `NoFiles` or `Error`.
+    pub status: StudentStatus,
     pub message: String,
 }
 
@@ -241,7 +242,7 @@ fn settle(students: Vec<(String, String, Holdings)>) -> Vec<Submission> {
             let mut warnings = Vec::new();
             let files = if count[&safe] > 1 {
                 Err(Refusal {
-                    status: "error",
+                    status: StudentStatus::Error,
                     message: format!(
                         "{} submissions have the id {id}: none is graded until one is left",
                         count[&safe]
@@ -292,7 +293,7 @@ fn choose(
         });
         let Some(first) = copies.first() else {
             return Err(Refusal {
-                status: "no-files",
+                status: StudentStatus::NoFiles,
                 message: format!("no {wanted} in the submission"),
             });
         };
@@ -313,7 +314,7 @@ fn choose(
             Ok(bytes) => chosen.push(bytes.clone()),
             Err(e) => {
                 return Err(Refusal {
-                    status: "no-files",
+                    status: StudentStatus::NoFiles,
                     message: e.clone(),
                 })
             }

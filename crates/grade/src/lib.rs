@@ -23,6 +23,7 @@ mod compile;
 mod feedback_zip;
 mod html;
 mod intake;
+mod jvm;
 mod memory_cgroup;
 mod moodle;
 mod policy;
@@ -40,12 +41,11 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
-use serde_json::Value;
-
 pub use policy::{Grading, Policy};
 pub use sandbox::Limits;
 
 use intake::Submission;
+use result::{StudentResult, StudentStatus};
 use sandbox::Sandbox;
 use skeleton::Skeleton;
 use student::{Outcome, Setup};
@@ -56,7 +56,7 @@ use whitted_core::fingerprint::fingerprint;
 use whitted_io::output::atomic::AtomicFile;
 
 /// Which finished students a run grades again.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Rerun {
     /// Only those whose result ended in an error or a timeout.
     Failed,
@@ -321,10 +321,9 @@ fn key(
 }
 
 /// The result.json a student has, if it can be read.
-fn read_result(students_dir: &Path, id: &str) -> Option<Value> {
+fn read_result(students_dir: &Path, id: &str) -> Option<StudentResult> {
     let path = students_dir.join(id).join("result.json");
-    let bytes = std::fs::read(path).ok()?;
-    serde_json::from_slice(&bytes).ok()
+    StudentResult::parse(&std::fs::read(path).ok()?)
 }
 
 /// Whether `submission` is graded on this run: no result under this key, or `--rerun` says so.
@@ -334,13 +333,14 @@ fn needs_grading(
     key: &str,
     rerun: Option<Rerun>,
 ) -> bool {
-    let Some(row) = read_result(students_dir, &submission.id).and_then(|r| result::row(&r)) else {
+    let Some(result) = read_result(students_dir, &submission.id) else {
         return true;
     };
+    let extra = &result.extra;
     match rerun {
         Some(Rerun::All) => true,
-        Some(Rerun::Failed) => row.failed || row.key != key,
-        None => row.key != key,
+        Some(Rerun::Failed) => extra.failed || extra.key != key,
+        None => extra.key != key,
     }
 }
 
@@ -433,7 +433,7 @@ fn grade_one(
         // Anything else that stops this student (the program could not be started, a
         // folder not written) is their status, not the class's end.
         Err(e) => Outcome::Refused {
-            status: "error",
+            status: StudentStatus::Error,
             message: e.to_string(),
         },
     };
@@ -448,10 +448,7 @@ fn grade_one(
         skeleton,
         options.show_hidden,
     );
-    let feedback = result["extra_data"]["feedback"]
-        .as_str()
-        .unwrap_or("")
-        .to_string();
+    let feedback = &result.extra.feedback;
     let dir = students_dir.join(&submission.id);
     std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, "cannot create", e))?;
     let mut png = Vec::new();
@@ -459,13 +456,12 @@ fn grade_one(
         hidden: options.show_hidden,
         policy,
     };
-    whitted_io::output::png::write_png(&mut png, &report::sheet(&outcome, &feedback, &shown))
+    whitted_io::output::png::write_png(&mut png, &report::sheet(&outcome, feedback, &shown))
         .map_err(|e| Error::Environment(format!("cannot encode a report: {e}")))?;
     write_atomic(&dir.join("report.png"), &png)?;
-    let page = report::page(submission, &outcome, &feedback, sandboxed, &shown);
+    let page = report::page(submission, &outcome, feedback, sandboxed, &shown);
     write_atomic(&dir.join("report.html"), page.as_bytes())?;
-    let json = serde_json::to_string_pretty(&result).unwrap_or_default();
-    write_atomic(&dir.join("result.json"), json.as_bytes())
+    write_atomic(&dir.join("result.json"), result.to_json().as_bytes())
 }
 
 /// Writes `bytes` to `path` whole or not at all (`output::atomic`).
@@ -481,53 +477,37 @@ fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
 /// Every student's row, from their result.json; one without is an `error` row. Students
 /// OUTDIR holds from earlier runs on other inputs (a late submission graded alone, `--only`)
 /// keep their rows: grading into an existing output merges, never drops anyone.
-fn read_rows(students_dir: &Path, submissions: &[Submission]) -> Vec<result::Row> {
-    let mut rows: Vec<result::Row> = submissions
+fn read_rows(students_dir: &Path, submissions: &[Submission]) -> Vec<StudentResult> {
+    let mut rows: Vec<StudentResult> = submissions
         .iter()
-        .map(|s| {
-            read_result(students_dir, &s.id)
-                .and_then(|r| result::row(&r))
-                .unwrap_or_else(|| result::Row {
-                    id: s.id.clone(),
-                    name: s.name.clone(),
-                    folder: s.folder.clone(),
-                    fingerprint: String::new(),
-                    status: "error".into(),
-                    passed: 0,
-                    cases: 0,
-                    case_passes: Vec::new(),
-                    diagnosis: Vec::new(),
-                    grade: 0.0,
-                    feedback: "not graded yet".into(),
-                    failed: true,
-                    key: String::new(),
-                })
-        })
+        .map(|s| read_result(students_dir, &s.id).unwrap_or_else(|| StudentResult::not_graded(s)))
         .collect();
     if let Ok(entries) = std::fs::read_dir(students_dir) {
-        let mut others: Vec<result::Row> = entries
+        let mut others: Vec<StudentResult> = entries
             .flatten()
             .filter(|e| e.file_type().is_ok_and(|t| t.is_dir()))
             .filter_map(|e| read_result(students_dir, &e.file_name().to_string_lossy()))
-            .filter_map(|r| result::row(&r))
-            .filter(|r| !submissions.iter().any(|s| s.id == r.id))
+            .filter(|r| !submissions.iter().any(|s| s.id == r.extra.id))
             .collect();
         rows.append(&mut others);
     }
-    rows.sort_by(|a, b| a.id.cmp(&b.id));
+    rows.sort_by(|a, b| a.extra.id.cmp(&b.extra.id));
     rows
 }
 
-fn count_statuses(rows: &[result::Row]) -> Vec<(String, usize)> {
-    let mut counts: std::collections::BTreeMap<String, usize> = Default::default();
+fn count_statuses(rows: &[StudentResult]) -> Vec<(String, usize)> {
+    let mut counts: std::collections::BTreeMap<&str, usize> = Default::default();
     for r in rows {
-        *counts.entry(r.status.clone()).or_default() += 1;
+        *counts.entry(r.extra.status.name()).or_default() += 1;
     }
-    counts.into_iter().collect()
+    counts
+        .into_iter()
+        .map(|(s, n)| (s.to_string(), n))
+        .collect()
 }
 
 /// The class files; returns the path of index.html.
-fn write_class(outdir: &Path, rows: &[result::Row], settings: &[String]) -> Result<PathBuf> {
+fn write_class(outdir: &Path, rows: &[StudentResult], settings: &[String]) -> Result<PathBuf> {
     let now = modified_now();
     write_atomic(&outdir.join("class.csv"), class::class_csv(rows).as_bytes())?;
     write_atomic(

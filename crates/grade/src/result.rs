@@ -4,6 +4,7 @@
 //! The class files are made from these alone, so a rerun, a Slurm aggregation or a second
 //! look reads the same facts.
 
+use serde::{Deserialize, Serialize};
 use serde_json::{json, Value};
 
 use super::intake::Submission;
@@ -15,30 +16,157 @@ use whitted_check::check::suite::Role;
 use whitted_check::check::summary;
 use whitted_check::mistakes::{Bug, Mistakes};
 
-/// What the class files need of one student, read back from `extra_data`.
-#[derive(Debug, Clone)]
-pub struct Row {
-    pub id: String,
+/// Where a student stands: what `result.json`, `class.csv`, `moodle.csv` and the class page say.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum StudentStatus {
+    /// Their program compiled and ran over the suite.
+    Graded,
+    /// javac refused their files.
+    CompileError,
+    /// Their submission holds no Plane.java and Renderer.java to grade.
+    NoFiles,
+    /// Something stopped them being graded (a compilation that timed out, two submissions of
+    /// one id, a program that could not be started): `--rerun failed` tries again.
+    Error,
+}
+
+impl StudentStatus {
+    /// Its name in every file (the serde name).
+    pub fn name(self) -> &'static str {
+        match self {
+            StudentStatus::Graded => "graded",
+            StudentStatus::CompileError => "compile-error",
+            StudentStatus::NoFiles => "no-files",
+            StudentStatus::Error => "error",
+        }
+    }
+}
+
+/// A student's `result.json`: Gradescope's `results.json`. Fields are in the order of their
+/// names, the order the file has always had.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct StudentResult {
+    /// whitted's own findings, where Gradescope keeps a tool's data.
+    #[serde(rename = "extra_data")]
+    pub extra: Extra,
+    pub output: String,
+    pub score: f64,
+    pub tests: Vec<Test>,
+}
+
+/// One case, as a Gradescope test.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct Test {
+    pub max_score: f64,
     pub name: String,
-    /// The folder the submission came in (Moodle's), where its feedback goes back to.
-    pub folder: String,
-    /// Its two files' fingerprint, comments and whitespace aside (`similar.rs`); empty when
-    /// there were no files.
-    pub fingerprint: String,
-    /// `graded`, `compile-error`, `no-files` or `error`.
-    pub status: String,
-    /// Counted cases passed, of how many counted.
-    pub passed: usize,
+    pub output: String,
+    pub score: f64,
+    pub status: TestStatus,
+    pub tags: Vec<String>,
+}
+
+/// Gradescope's verdict on a test.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum TestStatus {
+    Passed,
+    Failed,
+}
+
+/// `extra_data`: what the class files read, and what a second look needs.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct Extra {
+    /// Counted cases, 0 when none ran.
     pub cases: usize,
-    /// Per case: its name and whether it passed.
-    pub case_passes: Vec<(String, bool)>,
+    /// `check --json`'s report of the suite (hidden cases cut unless shown), when it ran.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub check: Option<Value>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub compile_errors: Option<String>,
     /// The top diagnosis' entries, when it explains the images well.
     pub diagnosis: Vec<String>,
-    pub grade: f64,
-    pub feedback: String,
     /// Whether `--rerun failed` runs it again (an error or a timeout).
     pub failed: bool,
+    /// The one line sent back to Moodle.
+    pub feedback: String,
+    /// Their two files' fingerprint, comments and whitespace aside (`similar.rs`), when there
+    /// were files.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fingerprint: Option<String>,
+    /// The folder the submission came in (Moodle's), where its feedback goes back to.
+    pub folder: String,
+    pub grade: f64,
+    pub id: String,
+    /// The hash of what decided this result (`key` in lib.rs).
     pub key: String,
+    pub name: String,
+    pub notes: Vec<String>,
+    /// Counted cases passed.
+    pub passed: usize,
+    pub policy: String,
+    /// The stages of the handout the program has reached, when it ran.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub progress: Option<Value>,
+    pub sandbox: bool,
+    pub skeleton: String,
+    pub status: StudentStatus,
+    pub tolerance: u8,
+    pub warnings: Vec<String>,
+    /// The version of whitted that graded it.
+    pub whitted: String,
+}
+
+impl StudentResult {
+    /// The row of a student who has no result (yet): an `error` that `--rerun failed` grades.
+    pub fn not_graded(submission: &Submission) -> StudentResult {
+        StudentResult {
+            extra: Extra {
+                cases: 0,
+                check: None,
+                compile_errors: None,
+                diagnosis: Vec::new(),
+                failed: true,
+                feedback: "not graded yet".into(),
+                fingerprint: None,
+                folder: submission.folder.clone(),
+                grade: 0.0,
+                id: submission.id.clone(),
+                key: String::new(),
+                name: submission.name.clone(),
+                notes: Vec::new(),
+                passed: 0,
+                policy: String::new(),
+                progress: None,
+                sandbox: false,
+                skeleton: String::new(),
+                status: StudentStatus::Error,
+                tolerance: 0,
+                warnings: Vec::new(),
+                whitted: String::new(),
+            },
+            output: String::new(),
+            score: 0.0,
+            tests: Vec::new(),
+        }
+    }
+
+    /// Per case: its name and whether it passed.
+    pub fn case_passes(&self) -> impl Iterator<Item = (&str, bool)> {
+        self.tests
+            .iter()
+            .map(|t| (t.name.as_str(), t.status == TestStatus::Passed))
+    }
+
+    /// Reads a `result.json`; None for one that is not whitted's (or not this shape).
+    pub fn parse(bytes: &[u8]) -> Option<StudentResult> {
+        serde_json::from_slice(bytes).ok()
+    }
+
+    /// The file's text.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string_pretty(self).unwrap_or_default()
+    }
 }
 
 /// The result of `submission` graded to `outcome`, under `key`.
@@ -50,39 +178,27 @@ pub fn build(
     sandboxed: bool,
     skeleton: &str,
     show_hidden: bool,
-) -> Value {
-    let mut extra = json!({
-        "whitted": env!("CARGO_PKG_VERSION"),
-        "skeleton": skeleton,
-        "policy": policy.describe(),
-        "tolerance": policy.tolerance,
-        "key": key,
-        "id": submission.id,
-        "name": submission.name,
-        "folder": submission.folder,
-        "sandbox": sandboxed,
-        "notes": submission.notes,
-        "warnings": submission.warnings,
-    });
-    if let Ok(files) = &submission.files {
-        extra["fingerprint"] = json!(super::similar::fingerprint(files));
-    }
+) -> StudentResult {
     let counted = (0..policy.weights.len())
         .filter(|&i| policy.counts(i))
         .count();
+    let mut check = None;
+    let mut progress = None;
+    let mut compile_errors = None;
+    let mut diagnosis = Vec::new();
     let (status, tests, passes, feedback, failed) = match outcome {
         Outcome::Refused { status, message } => (
             *status,
             Vec::new(),
             Vec::new(),
             message.clone(),
-            *status == "error",
+            *status == StudentStatus::Error,
         ),
         Outcome::CompileError(messages) => {
-            extra["compile_errors"] = json!(messages);
+            compile_errors = Some(messages.clone());
             let first = messages.lines().next().unwrap_or("javac failed");
             (
-                "compile-error",
+                StudentStatus::CompileError,
                 Vec::new(),
                 Vec::new(),
                 format!("does not compile: {first}"),
@@ -90,14 +206,14 @@ pub fn build(
             )
         }
         Outcome::CompileTimeout => (
-            "error",
+            StudentStatus::Error,
             Vec::new(),
             Vec::new(),
             "javac did not finish within the time limit".to_string(),
             true,
         ),
         Outcome::Ran(run) => {
-            let tests: Vec<Value> = run
+            let tests: Vec<Test> = run
                 .cases
                 .iter()
                 .enumerate()
@@ -114,15 +230,15 @@ pub fn build(
                 .cases
                 .iter()
                 .any(|c| matches!(c.status, Status::Timeout(_)));
-            let mut check = suite_json(run, None);
+            let mut report = suite_json(run, None);
             if !show_hidden {
-                withhold_hidden(&mut check, run);
+                withhold_hidden(&mut report, run);
             }
-            extra["diagnosis"] = json!(diagnosis_ids(run));
-            extra["progress"] = check["progress"].clone();
-            extra["check"] = check;
+            diagnosis = diagnosis_ids(run).into_iter().map(String::from).collect();
+            progress = Some(report["progress"].clone());
+            check = Some(report);
             let feedback = feedback(run, policy);
-            ("graded", tests, passes, feedback, timed_out)
+            (StudentStatus::Graded, tests, passes, feedback, timed_out)
         }
     };
     let grade = policy.grade(&passes);
@@ -130,30 +246,48 @@ pub fn build(
         .filter(|&i| passes[i] && policy.counts(i))
         .count();
     let cases = if passes.is_empty() { 0 } else { counted };
-    extra["status"] = json!(status);
-    extra["passed"] = json!(passed);
-    extra["cases"] = json!(cases);
-    extra["grade"] = json!(grade);
-    extra["feedback"] = json!(feedback);
-    extra["failed"] = json!(failed);
-    if !extra.get("diagnosis").is_some_and(Value::is_array) {
-        extra["diagnosis"] = json!([]);
-    }
     let mut output = feedback.clone();
     if !sandboxed {
         output += "\n(graded with --no-sandbox: the program ran unconfined)";
     }
-    json!({
-        "score": grade,
-        "output": output,
-        "tests": tests,
-        "extra_data": extra,
-    })
+    StudentResult {
+        extra: Extra {
+            cases,
+            check,
+            compile_errors,
+            diagnosis,
+            failed,
+            feedback,
+            fingerprint: submission
+                .files
+                .as_ref()
+                .ok()
+                .map(super::similar::fingerprint),
+            folder: submission.folder.clone(),
+            grade,
+            id: submission.id.clone(),
+            key: key.to_string(),
+            name: submission.name.clone(),
+            notes: submission.notes.clone(),
+            passed,
+            policy: policy.describe(),
+            progress,
+            sandbox: sandboxed,
+            skeleton: skeleton.to_string(),
+            status,
+            tolerance: policy.tolerance,
+            warnings: submission.warnings.clone(),
+            whitted: env!("CARGO_PKG_VERSION").to_string(),
+        },
+        output,
+        score: grade,
+        tests,
+    }
 }
 
 /// One case as a Gradescope test, worth `weight` (0: it informs, scores nothing). A hidden
 /// case says its verdict only, unless `show_hidden`.
-fn test(case: &CaseOutcome, weight: f64, show_hidden: bool) -> Value {
+fn test(case: &CaseOutcome, weight: f64, show_hidden: bool) -> Test {
     let passed = case.passed();
     let hidden = case.case.role == Role::Hidden && !show_hidden;
     let (output, tags) = match &case.status {
@@ -172,7 +306,7 @@ fn test(case: &CaseOutcome, weight: f64, show_hidden: bool) -> Value {
             if !shown.is_empty() {
                 line += &format!("; looks like {}", shown.name());
             }
-            (line, shown.ids())
+            (line, shown.ids().into_iter().map(String::from).collect())
         }
         other => (status_line(other, &case.stderr_tail), Vec::new()),
     };
@@ -180,14 +314,18 @@ fn test(case: &CaseOutcome, weight: f64, show_hidden: bool) -> Value {
         true => output,
         false => format!("{output}\n(whitted's diagnostic scene: it informs, it is not graded)"),
     };
-    json!({
-        "name": case.name,
-        "score": if passed { weight } else { 0.0 },
-        "max_score": weight,
-        "status": if passed { "passed" } else { "failed" },
-        "output": output,
-        "tags": tags,
-    })
+    Test {
+        max_score: weight,
+        name: case.name.to_string(),
+        output,
+        score: if passed { weight } else { 0.0 },
+        status: if passed {
+            TestStatus::Passed
+        } else {
+            TestStatus::Failed
+        },
+        tags,
+    }
 }
 
 /// The check's JSON with each hidden case cut to its name, status and verdict: no scene, no
@@ -284,51 +422,4 @@ fn feedback(run: &SuiteRun, policy: &Policy) -> String {
         _ => line += &format!("; {}", findings.progress.sentence()),
     }
     line
-}
-
-/// The row of a `result.json`, or None for one that is not whitted's.
-pub fn row(result: &Value) -> Option<Row> {
-    let extra = result.get("extra_data")?;
-    let text = |k: &str| extra.get(k).and_then(Value::as_str).map(str::to_string);
-    let count = |k: &str| extra.get(k).and_then(Value::as_u64).unwrap_or(0) as usize;
-    let case_passes = result
-        .get("tests")
-        .and_then(Value::as_array)
-        .map(|tests| {
-            tests
-                .iter()
-                .map(|t| {
-                    let name = t.get("name").and_then(Value::as_str).unwrap_or("");
-                    (
-                        name.to_string(),
-                        t.get("status").and_then(Value::as_str) == Some("passed"),
-                    )
-                })
-                .collect()
-        })
-        .unwrap_or_default();
-    Some(Row {
-        id: text("id")?,
-        name: text("name").unwrap_or_default(),
-        folder: text("folder").unwrap_or_default(),
-        fingerprint: text("fingerprint").unwrap_or_default(),
-        status: text("status")?,
-        passed: count("passed"),
-        cases: count("cases"),
-        case_passes,
-        diagnosis: extra
-            .get("diagnosis")
-            .and_then(Value::as_array)
-            .map(|a| {
-                a.iter()
-                    .filter_map(Value::as_str)
-                    .map(str::to_string)
-                    .collect()
-            })
-            .unwrap_or_default(),
-        grade: extra.get("grade").and_then(Value::as_f64).unwrap_or(0.0),
-        feedback: text("feedback").unwrap_or_default(),
-        failed: extra.get("failed").and_then(Value::as_bool).unwrap_or(true),
-        key: text("key").unwrap_or_default(),
-    })
 }

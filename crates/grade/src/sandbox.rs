@@ -401,12 +401,9 @@ fn running_tasks() -> u32 {
     count
 }
 
-/// `name` in PATH, as an absolute path.
+/// The executable `name` in PATH, as an absolute path (the which crate).
 pub fn find_in_path(name: &str) -> Option<PathBuf> {
-    let path = std::env::var_os("PATH")?;
-    std::env::split_paths(&path)
-        .map(|dir| dir.join(name))
-        .find(|p| p.is_file())
+    which::which(name).ok()
 }
 
 #[cfg(test)]

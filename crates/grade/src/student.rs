@@ -8,6 +8,8 @@ use std::sync::{Mutex, MutexGuard, TryLockError};
 
 use super::compile::{compile, Compiled};
 use super::intake::{Files, Submission};
+use super::jvm;
+use super::result::StudentStatus;
 use super::sandbox::{Area, Limits, RunGuard, Sandbox, AREA_BYTES, AREA_FILES, AREA_FULL};
 use super::skeleton::Skeleton;
 use super::warm_javac::WarmJavac;
@@ -32,7 +34,7 @@ pub struct Setup {
 pub enum Outcome {
     /// The files could not be had: `no-files` or `error`, and why.
     Refused {
-        status: &'static str,
+        status: StudentStatus,
         message: String,
     },
     /// javac refused them: its first messages.
@@ -209,21 +211,14 @@ struct SandboxedJava<'a> {
 impl Launch for SandboxedJava<'_> {
     fn command(&self, dir: &Path) -> Result<Command> {
         let limits = self.setup.limits;
-        let program = vec![
-            self.setup.java.display().to_string(),
-            format!("-Xmx{}m", (limits.memory_mib / 2).max(32)),
-            // A case runs for under a second: C2's compiler threads would cost more CPU than
-            // they save (4 cases of tick2: 2.5 s of CPU instead of 4.3, the same wall time
-            // alone). Java's arithmetic is the same at every tier (strict since Java 17; the
-            // interpreter and both compilers share Math.pow's stub): the bytes do not change.
-            "-XX:TieredStopAtLevel=1".into(),
-            "-XX:+UseSerialGC".into(),
-            "-XX:-UsePerfData".into(),
+        let mut program = vec![self.setup.java.display().to_string()];
+        program.extend(jvm::options(limits));
+        program.extend([
             "-Djava.awt.headless=true".into(),
             "-cp".into(),
             self.classes.display().to_string(),
             "gfx.tick2.Tick2".into(),
-        ];
+        ]);
         let classes = self.classes.as_path();
         let (command, run) = self.setup.sandbox.command(
             &program,

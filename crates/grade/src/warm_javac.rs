@@ -12,14 +12,15 @@
 
 use std::io::{BufRead, BufReader, Read, Write};
 use std::path::{Path, PathBuf};
-use std::process::{Child, ChildStdin, Stdio};
+use std::process::{ChildStdin, Stdio};
 use std::sync::mpsc::{self, Receiver, RecvTimeoutError};
 use std::time::{Duration, Instant};
 
-use super::compile::{first_lines, javac_options, Compiled, COMPILE_SECONDS, MESSAGES};
+use super::compile::{first_lines, javac_options, Compiled, MESSAGES};
+use super::jvm;
 use super::sandbox::{Area, Limits, RunGuard, Sandbox};
-use whitted_check::check::program::kill_group;
 use whitted_core::error::{Error, Result};
+use whitted_process::{Capture, Process};
 
 const SOURCE: &str = include_str!("WarmJavac.java");
 
@@ -50,7 +51,8 @@ pub struct WarmJavac<'a> {
 }
 
 struct Server {
-    child: Child,
+    /// The JVM, the leader of its process group: dropping it kills the group.
+    process: Process,
     stdin: ChildStdin,
     replies: Receiver<Reply>,
     compiled: usize,
@@ -187,23 +189,13 @@ impl<'a> WarmJavac<'a> {
         let source = self.dir.join("WarmJavac.java");
         std::fs::write(&source, SOURCE).map_err(|e| Error::io(&source, "cannot write", e))?;
         let (src, classes) = (self.dir.join("src"), self.dir.join("classes"));
-        let mut program = vec![
-            self.java.display().to_string(),
-            format!("-Xmx{}m", (self.limits.memory_mib / 2).max(32)),
-            // Measured over 48 compilations: C1 alone costs half the CPU of both compilers.
-            "-XX:TieredStopAtLevel=1".into(),
-            "-XX:+UseSerialGC".into(),
-            "-XX:-UsePerfData".into(),
-            source.display().to_string(),
-            src.display().to_string(),
-        ];
+        let mut program = vec![self.java.display().to_string()];
+        program.extend(jvm::options(self.limits));
+        program.extend([source.display().to_string(), src.display().to_string()]);
         program.extend(javac_options(&classes));
         // Its CPU limit is a compilation's time limit: the JVM is replaced long before it
         // could add up to that.
-        let limits = Limits {
-            seconds: self.limits.seconds.max(COMPILE_SECONDS),
-            ..self.limits
-        };
+        let limits = jvm::compiling(self.limits);
         let (mut command, run) = self.sandbox.command(
             &program,
             &[&src, &source],
@@ -212,17 +204,12 @@ impl<'a> WarmJavac<'a> {
             self.slot,
             limits,
         )?;
-        command
-            .stdin(Stdio::piped())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::null());
-        std::os::unix::process::CommandExt::process_group(&mut command, 0);
-        let mut child = command
-            .spawn()
+        command.stdin(Stdio::piped()).stdout(Stdio::piped());
+        let mut process = Process::spawn(command, Capture::Nothing)
             .map_err(|e| Error::Environment(format!("cannot start javac: {e}")))?;
+        let child = process.child_mut();
         let (Some(stdin), Some(stdout)) = (child.stdin.take(), child.stdout.take()) else {
-            kill_group(&child);
-            let _ = child.wait();
+            process.kill();
             return Err(Error::Environment("cannot talk to javac".into()));
         };
         let (send, replies) = mpsc::channel();
@@ -237,7 +224,7 @@ impl<'a> WarmJavac<'a> {
             }
         });
         Ok(Server {
-            child,
+            process,
             stdin,
             replies,
             compiled: 0,
@@ -248,8 +235,7 @@ impl<'a> WarmJavac<'a> {
     /// Kills the running compiler with everything in its sandbox.
     fn stop(&mut self) {
         if let Some(mut server) = self.running.take() {
-            kill_group(&server.child);
-            let _ = server.child.wait();
+            server.process.kill();
         }
     }
 }
@@ -273,7 +259,7 @@ fn read_reply(stdout: &mut impl BufRead) -> Reply {
         Some(("errors", n)) => n.parse::<u64>().ok().map(|n| (false, n)),
         _ => None,
     };
-    let Some((ok, length)) = parsed.filter(|(_, n)| *n <= MESSAGES) else {
+    let Some((ok, length)) = parsed.filter(|(_, n)| *n <= MESSAGES as u64) else {
         return Reply::Gone;
     };
     let mut messages = Vec::new();
@@ -390,8 +376,8 @@ mod tests {
             javac.compile(&[("A.java", good)], &into).expect("compile"),
             Some(Compiled::Ok)
         );
-        if let Some(server) = &javac.running {
-            kill_group(&server.child);
+        if let Some(server) = &mut javac.running {
+            server.process.kill();
         }
         // The dead one cannot answer: the caller is told to compile this student itself.
         assert_eq!(

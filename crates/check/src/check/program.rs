@@ -5,14 +5,10 @@
 //! error kept; the PNG it writes is checked before it is decoded. Two cases run at a time;
 //! Ctrl-C kills every program and removes every temporary directory within a few polls.
 
-use std::io::Read;
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, ExitStatus, Stdio};
-use std::sync::{Arc, Mutex};
-use std::thread::JoinHandle;
-use std::time::{Duration, Instant};
+use std::process::{Command, ExitStatus, Stdio};
+use std::time::Duration;
 
-use crate::check::orphans;
 use crate::check::renderer::SharedScene;
 use crate::check::student_png::{self, Rgb8};
 use crate::check::suite::{cases, SuiteCase};
@@ -20,6 +16,8 @@ use crate::check::{find, prepare, CaseReport, Findings};
 use whitted_core::error::{Error, Result};
 use whitted_core::interrupt;
 use whitted_core::scene::{self, Scene};
+use whitted_process::orphans;
+use whitted_process::{Capture, Process};
 
 /// The image size the course's program always writes.
 pub const WIDTH: u32 = 640;
@@ -33,11 +31,6 @@ const POLL: Duration = Duration::from_millis(20);
 
 /// Bytes of a program's standard error kept: its end, where the exception is.
 const STDERR_TAIL: usize = 4096;
-
-/// How long the standard error reader may take to reach the pipe's end once the case's
-/// processes are killed: a descendant that left the process group can hold the pipe open
-/// for ever, and then the tail read so far is all there is.
-const STDERR_GRACE: Duration = Duration::from_millis(200);
 
 /// How one case ended.
 #[derive(Debug, Clone)]
@@ -274,12 +267,10 @@ enum Ran {
 /// A case whose program is running.
 struct Running {
     index: usize,
-    child: Child,
-    /// The reader of the program's standard error and the tail it has kept so far.
-    stderr: Option<JoinHandle<()>>,
-    stderr_tail: Arc<Mutex<Vec<u8>>>,
-    started: Instant,
-    /// Holds the scene and the output; removed when dropped.
+    /// The program, the leader of its own process group, keeping the tail of its standard
+    /// error.
+    process: Process,
+    /// Holds the scene and the output; removed when dropped (after `process`).
     dir: tempfile::TempDir,
 }
 
@@ -329,12 +320,12 @@ fn run_programs(
         }
         let mut still = Vec::new();
         for mut r in running.drain(..) {
-            match r.child.try_wait() {
+            match r.process.try_wait() {
                 Ok(Some(status)) => {
                     let index = r.index;
                     results[index] = Some(finish(launch, r, Some(status), timeout));
                 }
-                Ok(None) if r.started.elapsed() > timeout => {
+                Ok(None) if r.process.elapsed() > timeout => {
                     let index = r.index;
                     results[index] = Some(finish(launch, r, None, timeout));
                 }
@@ -388,54 +379,19 @@ fn start(launch: &dyn Launch, case: &SuiteCase, index: usize) -> Result<Running>
         .arg("--bounces")
         .arg(case.bounces.to_string())
         .stdin(Stdio::null())
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped());
-    #[cfg(unix)]
-    std::os::unix::process::CommandExt::process_group(&mut command, 0);
+        .stdout(Stdio::null());
     let program = command.get_program().to_string_lossy().into_owned();
-    let mut child = command
-        .spawn()
+    let process = Process::spawn(command, Capture::Tail(STDERR_TAIL))
         .map_err(|e| Error::Usage(format!("cannot start the program `{program}`: {e}")))?;
-    let stderr = child.stderr.take();
-    let stderr_tail = Arc::new(Mutex::new(Vec::new()));
-    let tail = Arc::clone(&stderr_tail);
-    let reader = std::thread::spawn(move || {
-        if let Some(pipe) = stderr {
-            keep_tail(pipe, &tail);
-        }
-    });
     Ok(Running {
         index,
-        child,
-        stderr: Some(reader),
-        stderr_tail,
-        started: Instant::now(),
+        process,
         dir,
     })
 }
 
 fn output_path(dir: &Path) -> PathBuf {
     dir.join("output.png")
-}
-
-/// Reads `pipe` to its end, keeping only the last `STDERR_TAIL` bytes in `tail`.
-fn keep_tail(mut pipe: impl Read, tail: &Mutex<Vec<u8>>) {
-    let mut buffer = [0u8; 8192];
-    loop {
-        match pipe.read(&mut buffer) {
-            Ok(0) | Err(_) => break,
-            Ok(n) => {
-                // A poisoned lock only means another reader panicked: the bytes are still
-                // worth keeping.
-                let mut tail = tail.lock().unwrap_or_else(|e| e.into_inner());
-                tail.extend_from_slice(&buffer[..n]);
-                if tail.len() > STDERR_TAIL {
-                    let excess = tail.len() - STDERR_TAIL;
-                    tail.drain(..excess);
-                }
-            }
-        }
-    }
 }
 
 /// The last lines of a standard error tail, as text.
@@ -448,31 +404,7 @@ fn tail_text(bytes: &[u8]) -> String {
 /// Kills the case's whole process group, reaps the program and returns its stderr tail. The
 /// temporary directory stays until `r` is dropped.
 fn stop(r: &mut Running) -> String {
-    kill_group(&r.child);
-    let _ = r.child.kill();
-    let _ = r.child.wait();
-    // The pipe ends once every process holding it is gone; one that left the group may
-    // hold it for ever, so the reader gets a moment, then is left to end on its own.
-    let deadline = Instant::now() + STDERR_GRACE;
-    if let Some(reader) = r.stderr.take() {
-        while !reader.is_finished() && Instant::now() < deadline {
-            std::thread::sleep(Duration::from_millis(5));
-        }
-        if reader.is_finished() {
-            let _ = reader.join();
-        }
-    }
-    let tail = r.stderr_tail.lock().unwrap_or_else(|e| e.into_inner());
-    tail_text(&tail)
-}
-
-/// Kills `child`'s process group (it was started as its leader).
-pub fn kill_group(child: &Child) {
-    #[cfg(unix)]
-    if let Some(pid) = rustix::process::Pid::from_child(child).into() {
-        // The group may be gone already (everything exited): nothing to do then.
-        let _ = rustix::process::kill_process_group(pid, rustix::process::Signal::KILL);
-    }
+    tail_text(&r.process.finish())
 }
 
 /// The result of a case whose program exited with `status` (`None`: timed out). Every
