@@ -14,6 +14,7 @@ use whitted_check::check::report::{contact_sheet, failing_rows, heat_map, Report
 use whitted_check::check::reproduce::{explain_commands, Reproduce};
 use whitted_check::check::suite;
 use whitted_check::check::summary::{self, candidates_heading, opening};
+use whitted_check::check::words;
 use whitted_check::check::{check_image, student_png, CaseReport, Findings};
 use whitted_check::mistakes::Bug;
 use whitted_core::course::Course;
@@ -74,7 +75,7 @@ fn run_image(args: &CheckArgs, image: &std::path::Path) -> Result<bool> {
     refuse_clashes(&inputs, &outputs)?;
     let mut heatmap = args.heatmap.as_deref().map(Destination::open).transpose()?;
     let mut report = args.report.as_deref().map(Destination::open).transpose()?;
-    let input = scene::load_input(args.input.as_deref(), Course::default())?;
+    let input = scene::input::load_input(args.input.as_deref(), Course::default())?;
     let student = student_png::read(image)?;
     let (case, findings) = check_image(
         &input.scene,
@@ -176,35 +177,6 @@ fn findings_text(findings: &Findings) -> String {
     out
 }
 
-/// One suite case's verdict, in a line: how far it is off and what of the diagnosis shows in
-/// it, or that it passes while rendering exactly what the diagnosis renders.
-fn case_line(case: &CaseReport) -> String {
-    let d = &case.difference;
-    if d.verdict.passes() {
-        return match case.hidden_mistakes.is_empty() {
-            true => d.verdict.name().to_string(),
-            false => format!(
-                "{}, but is exactly what {} renders: the same fix",
-                d.verdict.name(),
-                case.hidden_mistakes.name()
-            ),
-        };
-    }
-    let shows = case.diagnosis.first().map_or(String::new(), |t| {
-        format!(
-            "; shows {} ({}% of this case explained)",
-            t.mistakes.name(),
-            whitted_core::numbers::plain(100.0 * t.explained)
-        )
-    });
-    format!(
-        "{}: {} pixels, {}{shows}",
-        d.verdict.name(),
-        d.differing_pixels,
-        summary::largest(d)
-    )
-}
-
 fn case_text(case: &CaseReport, findings: &Findings, input: Option<&std::path::Path>) -> String {
     let d = &case.difference;
     let mut out = format!(
@@ -224,11 +196,9 @@ fn case_text(case: &CaseReport, findings: &Findings, input: Option<&std::path::P
         out += "every byte of every pixel equals the reference";
         return out;
     }
-    if !case.hidden_mistakes.is_empty() {
-        out += &format!(
-            "it passes, but is exactly what {} renders: fix it all the same\n",
-            case.hidden_mistakes.name()
-        );
+    if let Some(line) = words::passes_but_hidden(case) {
+        out += &line;
+        out += "\n";
     }
     out += &summary::difference_sentence(d);
     out += "\n";
@@ -239,10 +209,7 @@ fn case_text(case: &CaseReport, findings: &Findings, input: Option<&std::path::P
     out += &findings_text(findings);
     if let Some(pixel) = d.worst_pixel {
         let scene = input.map(|p| p.display().to_string());
-        let top = case
-            .diagnosis
-            .first()
-            .map_or(case.hidden_mistakes, |t| t.mistakes);
+        let top = case.shown_mistakes();
         let size = (d.width, d.height);
         let commands = explain_commands(scene.as_deref(), case.bounces, size, pixel, top);
         out += &format!(
@@ -270,7 +237,7 @@ fn suite_text(run: &SuiteRun, suite_dir: Option<&Path>) -> String {
             _ => None,
         };
         let detail = match &c.status {
-            Status::Ok(case) => case_line(case),
+            Status::Ok(case) => words::case_line(case),
             other => other.failure_line().unwrap_or_default(),
         };
         out += &format!("  {:<28} {detail}\n", c.name);

@@ -25,9 +25,9 @@ pub fn run(args: &ExplainArgs) -> Result<()> {
              --bug out (or use --course 2016-17)"
         )));
     }
-    let input = scene::load_input(args.input.as_deref(), course)?;
+    let input = scene::input::load_input(args.input.as_deref(), course)?;
     input.report_warnings();
-    let scene::Input { scene, name, .. } = input;
+    let scene::input::Input { scene, name, .. } = input;
     let (x, y) = args.pixel;
     let e = if mistakes.is_empty() {
         explain(&course.rules(), &scene, &args.frame(), x, y)?

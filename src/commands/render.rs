@@ -17,7 +17,7 @@ use whitted_io::render_record;
 
 pub fn run(args: &RenderArgs) -> Result<()> {
     let started = Instant::now();
-    let input = scene::load_input(args.input.as_deref(), args.frame.course.course())?;
+    let input = scene::input::load_input(args.input.as_deref(), args.frame.course.course())?;
     input.report_warnings();
     let load_time = started.elapsed();
     let scene = &input.scene;
@@ -138,7 +138,7 @@ fn summary(plan: &RenderPlan, stats: &RenderStats, layers: usize, times: Times) 
 /// What the writers are to write for `plan`: the EXR's header metadata (the render record)
 /// is built here, with the rest of the plan's facts, so that `output/` knows nothing of plans
 /// or scenes.
-fn outputs<'a>(plan: &'a RenderPlan, input: &scene::Input, exr: bool) -> Outputs<'a> {
+fn outputs<'a>(plan: &'a RenderPlan, input: &scene::input::Input, exr: bool) -> Outputs<'a> {
     let (region, camera) = (plan.frame.region(), plan.frame.camera());
     let metadata = exr.then(|| {
         let lights = input.scene.lights.iter().map(|l| l.name.clone()).collect();

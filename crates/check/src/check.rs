@@ -12,6 +12,7 @@ pub mod difference;
 pub mod image_cache;
 pub mod json;
 pub mod numbers;
+pub mod pixel_sample;
 pub mod program;
 pub mod progress;
 pub mod renderer;
@@ -22,6 +23,7 @@ pub mod student_png;
 pub mod suite;
 pub mod summary;
 pub mod terms;
+pub mod words;
 
 use crate::check::case::Case;
 use crate::check::diagnose::{CaseFinding, Diagnosis, Search};

@@ -1,72 +1,15 @@
 //! The scene as plain data: validated once when loaded, trusted by everything after.
 
+pub mod input;
 pub mod xml;
 
 pub use xml::{load, parse_bytes, parse_str, read_file};
-
-use crate::course::Course;
 
 /// The course's Tick 2 scene, compiled in so that `whitted` with no arguments has a scene.
 pub const EMBEDDED_TICK2: &str = include_str!("../scenes/tick2.xml");
 
 /// The name messages and EXR headers use for the embedded scene.
 pub const EMBEDDED_NAME: &str = "tick2.xml (embedded)";
-
-/// A scene read for a command: the scene, the file's bytes (which an EXR's render identity
-/// fingerprints), its name as given, and what a course year's loader ignored in it.
-pub struct Input {
-    pub scene: Scene,
-    pub bytes: Vec<u8>,
-    pub name: String,
-    /// One line each, `file:line:col: ...` (empty under 2016-17, whose format is strict).
-    pub warnings: Vec<String>,
-}
-
-impl Input {
-    /// Tells the user, on stderr, what the year's loader ignored.
-    pub fn report_warnings(&self) {
-        for warning in &self.warnings {
-            eprintln!("warning: {warning}");
-        }
-    }
-}
-
-/// The scene file at `path` read as `course` reads scenes (whitted's strict format for
-/// 2016-17, the year's loader otherwise), or the year's own scene when there is none.
-pub fn load_input(path: Option<&std::path::Path>, course: Course) -> crate::Result<Input> {
-    let (embedded, embedded_name) = course.default_scene();
-    let bytes = match path {
-        Some(path) => read_file(path)?,
-        None => embedded.as_bytes().to_vec(),
-    };
-    let name = path.map_or(embedded_name.to_string(), |p| p.display().to_string());
-    let (scene, mut warnings) = parse_for_course(&name, &bytes, course)?;
-    if path.is_none() {
-        // The course's own file, read as the course read it: nothing for the user to fix.
-        warnings.clear();
-    }
-    Ok(Input {
-        scene,
-        bytes,
-        name,
-        warnings,
-    })
-}
-
-/// Parses scene bytes named `name` as `course` reads scenes: the scene, and the warnings of a
-/// course year's loader.
-pub fn parse_for_course(
-    name: &str,
-    bytes: &[u8],
-    course: Course,
-) -> crate::Result<(Scene, Vec<String>)> {
-    if !course.dialect().course_loader {
-        return Ok((parse_bytes(name, bytes)?, Vec::new()));
-    }
-    let text = xml::utf8(name, bytes)?;
-    let read = xml::course::parse(name, text, course)?;
-    Ok((read.scene, read.warnings))
-}
 
 use glam::DVec3;
 

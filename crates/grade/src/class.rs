@@ -7,7 +7,8 @@
 use std::collections::BTreeMap;
 
 use super::html::{escape, STYLE};
-use super::result::{StudentResult, StudentStatus};
+use super::result::StudentResult;
+use super::status::StudentStatus;
 use whitted_check::mistakes::Bug;
 
 /// A field that a spreadsheet would run as a formula (`=`, `+`, `-`, `@`, a tab or a carriage

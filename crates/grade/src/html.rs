@@ -3,7 +3,7 @@
 //! mailed), and one style sheet.
 
 use std::collections::HashMap;
-use std::sync::{Mutex, OnceLock};
+use std::sync::Mutex;
 
 use whitted_io::output::png::{write_png, PngImage, PngPixels};
 
@@ -46,27 +46,36 @@ pub fn base64(bytes: &[u8]) -> String {
     out
 }
 
-/// `image`, for an image every student's report shows (a case's reference): encoded once per
-/// run, kept by its bytes' fingerprint.
-pub fn shared_image(width: u32, height: u32, rgb: &[u8], alt: &str) -> String {
+/// The images every student's report shows (a case's reference), encoded once per run and
+/// kept by what they are: their size, their bytes' fingerprint and their caption.
+#[derive(Default)]
+pub struct SharedImages {
+    encoded: Mutex<HashMap<(u32, u32, String, String), String>>,
+}
+
+impl SharedImages {
     /// Images kept: a suite's references, with room for hidden scenes.
     const KEPT: usize = 64;
-    static ENCODED: OnceLock<Mutex<HashMap<String, String>>> = OnceLock::new();
-    let key = format!(
-        "{width}x{height} {} {alt}",
-        whitted_core::fingerprint::fingerprint(&[rgb])
-    );
-    let cache = ENCODED.get_or_init(Mutex::default);
-    if let Some(html) = cache.lock().ok().and_then(|c| c.get(&key).cloned()) {
-        return html;
-    }
-    let html = image(width, height, rgb.to_vec(), alt);
-    if let Ok(mut c) = cache.lock() {
-        if c.len() < KEPT {
-            c.insert(key, html.clone());
+
+    /// [`image`] of `rgb`, encoded the first time it is asked for.
+    pub fn image(&self, width: u32, height: u32, rgb: &[u8], alt: &str) -> String {
+        let key = (
+            width,
+            height,
+            whitted_core::fingerprint::fingerprint(&[rgb]),
+            alt.to_string(),
+        );
+        if let Some(html) = self.encoded.lock().ok().and_then(|c| c.get(&key).cloned()) {
+            return html;
         }
+        let html = image(width, height, rgb.to_vec(), alt);
+        if let Ok(mut c) = self.encoded.lock() {
+            if c.len() < Self::KEPT {
+                c.insert(key, html.clone());
+            }
+        }
+        html
     }
-    html
 }
 
 /// An 8-bit RGB image as an `<img>` whose source is its PNG, inline.

@@ -9,7 +9,7 @@ use std::path::Path;
 
 use super::archive::{self, Holdings, WANTED};
 use super::moodle;
-use super::result::StudentStatus;
+use super::status::StudentStatus;
 use whitted_core::error::{Error, Result};
 
 /// A student as the class lists them.

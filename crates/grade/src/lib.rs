@@ -34,6 +34,7 @@ mod scenes;
 mod seccomp;
 mod similar;
 mod skeleton;
+mod status;
 mod student;
 mod warm_javac;
 
@@ -44,12 +45,15 @@ use std::sync::Mutex;
 pub use policy::{Grading, Policy};
 pub use sandbox::Limits;
 
+use html::SharedImages;
 use intake::Submission;
-use result::{StudentResult, StudentStatus};
+use result::StudentResult;
 use sandbox::Sandbox;
 use skeleton::Skeleton;
+use status::StudentStatus;
 use student::{Outcome, Setup};
 use warm_javac::WarmJavac;
+use whitted_check::check::image_cache::ImageCache;
 use whitted_check::check::suite::{cases, SuiteCase};
 use whitted_core::error::{Error, Result};
 use whitted_core::fingerprint::fingerprint;
@@ -132,6 +136,8 @@ pub fn run(options: &Options) -> Result<Summary> {
         limits: options.limits,
         tolerance: options.tolerance,
         work: work.path().to_path_buf(),
+        images: ImageCache::new(),
+        report_images: SharedImages::default(),
     };
     let mine: Vec<&Submission> = submissions
         .iter()
@@ -455,6 +461,7 @@ fn grade_one(
     let shown = report::Shown {
         hidden: options.show_hidden,
         policy,
+        images: &setup.report_images,
     };
     whitted_io::output::png::write_png(&mut png, &report::sheet(&outcome, feedback, &shown))
         .map_err(|e| Error::Environment(format!("cannot encode a report: {e}")))?;

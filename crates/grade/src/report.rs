@@ -4,7 +4,7 @@
 //! through the handout they are.
 
 use super::compile::SHOWN_LINES;
-use super::html::{escape, image, shared_image, STYLE};
+use super::html::{escape, image, SharedImages, STYLE};
 use super::intake::Submission;
 use super::policy::Policy;
 use super::student::Outcome;
@@ -12,7 +12,7 @@ use whitted_check::check::program::CaseOutcome;
 use whitted_check::check::program::{Status, SuiteRun};
 use whitted_check::check::report::{contact_sheet, failing_rows, heat_map, ReportRow};
 use whitted_check::check::suite::Role;
-use whitted_check::check::summary;
+use whitted_check::check::{summary, words};
 use whitted_io::canvas::Canvas;
 use whitted_io::output::png::{PngImage, PngPixels};
 
@@ -21,6 +21,8 @@ use whitted_io::output::png::{PngImage, PngPixels};
 pub struct Shown<'a> {
     pub hidden: bool,
     pub policy: &'a Policy,
+    /// The run's encoded references.
+    pub images: &'a SharedImages,
 }
 
 impl Shown<'_> {
@@ -124,12 +126,7 @@ fn ran(run: &SuiteRun, shown: &Shown, feedback: &str) -> String {
         };
         let what = match &case.status {
             _ if shown.withheld(case) => super::result::verdict(case),
-            Status::Ok(r) if case.passed() => r.difference.verdict.name().to_string(),
-            Status::Ok(r) => format!(
-                "{}: {}",
-                r.difference.verdict.name(),
-                summary::difference_sentence(&r.difference)
-            ),
+            Status::Ok(r) => words::verdict(r),
             other => other.name().to_string(),
         };
         out += &format!(
@@ -155,7 +152,9 @@ fn ran(run: &SuiteRun, shown: &Shown, feedback: &str) -> String {
                     ),
                     (
                         "the reference",
-                        shared_image(w, h, &r.reference.bytes, "the reference"),
+                        shown
+                            .images
+                            .image(w, h, &r.reference.bytes, "the reference"),
                     ),
                     ("where they differ", image(w, h, heat, "where they differ")),
                 ] {

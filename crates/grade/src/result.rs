@@ -9,39 +9,13 @@ use serde_json::{json, Value};
 
 use super::intake::Submission;
 use super::policy::Policy;
+use super::status::StudentStatus;
 use super::student::Outcome;
 use whitted_check::check::json::suite_json;
 use whitted_check::check::program::{CaseOutcome, Status, SuiteRun};
 use whitted_check::check::suite::Role;
-use whitted_check::check::summary;
+use whitted_check::check::words;
 use whitted_check::mistakes::{Bug, Mistakes};
-
-/// Where a student stands: what `result.json`, `class.csv`, `moodle.csv` and the class page say.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum StudentStatus {
-    /// Their program compiled and ran over the suite.
-    Graded,
-    /// javac refused their files.
-    CompileError,
-    /// Their submission holds no Plane.java and Renderer.java to grade.
-    NoFiles,
-    /// Something stopped them being graded (a compilation that timed out, two submissions of
-    /// one id, a program that could not be started): `--rerun failed` tries again.
-    Error,
-}
-
-impl StudentStatus {
-    /// Its name in every file (the serde name).
-    pub fn name(self) -> &'static str {
-        match self {
-            StudentStatus::Graded => "graded",
-            StudentStatus::CompileError => "compile-error",
-            StudentStatus::NoFiles => "no-files",
-            StudentStatus::Error => "error",
-        }
-    }
-}
 
 /// A student's `result.json`: Gradescope's `results.json`. Fields are in the order of their
 /// names, the order the file has always had.
@@ -293,20 +267,11 @@ fn test(case: &CaseOutcome, weight: f64, show_hidden: bool) -> Test {
     let (output, tags) = match &case.status {
         _ if hidden => (verdict(case), Vec::new()),
         Status::Ok(report) => {
-            let d = &report.difference;
-            let mut line = d.verdict.name().to_string();
-            if !passed {
-                line = format!("{line}: {}", summary::difference_sentence(d));
-            }
-            let shown = report
-                .diagnosis
-                .first()
-                .map(|t| t.mistakes)
-                .unwrap_or(report.hidden_mistakes);
-            if !shown.is_empty() {
-                line += &format!("; looks like {}", shown.name());
-            }
-            (line, shown.ids().into_iter().map(String::from).collect())
+            let tags = report.shown_mistakes().ids();
+            (
+                words::test_line(report),
+                tags.into_iter().map(String::from).collect(),
+            )
         }
         other => (status_line(other, &case.stderr_tail), Vec::new()),
     };
@@ -394,14 +359,7 @@ fn feedback(run: &SuiteRun, policy: &Policy) -> String {
             .fold(Mistakes::NONE, |all, m| {
                 m.bugs().into_iter().fold(all, Mistakes::with)
             });
-        return match hidden.is_empty() {
-            true => format!("passes all {cases} graded cases"),
-            false => format!(
-                "passes all {cases} graded cases, but renders exactly what {} renders: fix it \
-                 all the same",
-                hidden.name()
-            ),
-        };
+        return words::all_pass(cases, hidden);
     }
     let mut line = match passed == cases {
         true => format!(

@@ -4,15 +4,17 @@
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use std::sync::{Mutex, MutexGuard, TryLockError};
+use std::sync::{Arc, Mutex, MutexGuard, TryLockError};
 
 use super::compile::{compile, Compiled};
+use super::html::SharedImages;
 use super::intake::{Files, Submission};
 use super::jvm;
-use super::result::StudentStatus;
 use super::sandbox::{Area, Limits, RunGuard, Sandbox, AREA_BYTES, AREA_FILES, AREA_FULL};
 use super::skeleton::Skeleton;
+use super::status::StudentStatus;
 use super::warm_javac::WarmJavac;
+use whitted_check::check::image_cache::ImageCache;
 use whitted_check::check::program::{run_suite_with, Launch, LimitHit, SuiteRun};
 use whitted_check::check::suite::SuiteCase;
 use whitted_core::error::{Error, Result};
@@ -28,6 +30,10 @@ pub struct Setup {
     pub tolerance: u8,
     /// Where the students' work folders are made (removed at the end).
     pub work: PathBuf,
+    /// The suite's whole images, rendered once for the class.
+    pub images: Arc<ImageCache>,
+    /// The references every report shows, encoded once for the class.
+    pub report_images: SharedImages,
 }
 
 /// How far a student got.
@@ -104,6 +110,7 @@ pub fn grade(
         &setup.suite,
         setup.tolerance,
         setup.limits.seconds,
+        &setup.images,
     )?;
     let mut run = run;
     offer_only_their_files(&mut run);

@@ -22,8 +22,11 @@ use std::time::Duration;
 
 use tokio::sync::{OwnedSemaphorePermit, Semaphore};
 
-/// Heavy replies computed at once: one fewer than the server's worker threads.
-pub const HEAVY_AT_ONCE: usize = super::server::WORKERS - 1;
+/// The server's blocking worker threads, on which every reply is computed: the admission rules
+/// are written in terms of them, so the count lives here and the server reads it.
+pub const WORKERS: usize = 4;
+/// Heavy replies computed at once: one fewer than the worker threads.
+pub const HEAVY_AT_ONCE: usize = WORKERS - 1;
 /// What replies computed but not yet sent may hold at once.
 pub const REPLY_BUDGET: u64 = 256 << 20;
 /// The budget's unit: replies are charged in whole units.

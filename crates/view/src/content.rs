@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use serde_json::Value;
 
-use whitted_check::check::{check_image, json::case_json, student_png};
+use whitted_check::check::{check_image, json::case_json, student_png, words};
 use whitted_check::mistakes::Mistakes;
 use whitted_core::course::Course;
 use whitted_core::error::{Error, Result};
@@ -134,7 +134,7 @@ fn load_view(image: &Path, reference: Option<&Path>, scene: Option<&Path>) -> Re
 }
 
 fn load_check(image: &Path, scene: Option<&Path>, bounces: u32, tolerance: u8) -> Result<Content> {
-    let input = scene::load_input(scene, Course::default())?;
+    let input = scene::input::load_input(scene, Course::default())?;
     let student = student_png::read(image)?;
     let (case, findings) = check_image(&input.scene, &input.name, bounces, tolerance, student)?;
     let (width, height) = (case.student.width, case.student.height);
@@ -152,6 +152,10 @@ fn load_check(image: &Path, scene: Option<&Path>, bounces: u32, tolerance: u8) -
         .map(|b| (b.id().to_string(), Value::from(b.description())))
         .collect();
     report["descriptions"] = Value::Object(named);
+    // The check's own sentence for a passing image that hides a mistake.
+    if let Some(line) = words::passes_but_hidden(&case) {
+        report["hidden_text"] = Value::from(line);
+    }
     Ok(Content {
         main: as_image(&case.student.bytes),
         reference: Some(as_image(&case.reference.bytes)),
@@ -184,9 +188,9 @@ fn recorded_tracer(image: &Image, path: &Path, scene: Option<&Path>) -> Result<O
     let course = image.course(path)?;
     let embedded = course.default_scene().0.as_bytes();
     let input = match (scene, recorded) {
-        (Some(scene), _) => scene::load_input(Some(scene), course)?,
+        (Some(scene), _) => scene::input::load_input(Some(scene), course)?,
         (None, Some(print)) if print == fingerprint(&[embedded]) => {
-            scene::load_input(None, course)?
+            scene::input::load_input(None, course)?
         }
         (None, _) => return Ok(None),
     };

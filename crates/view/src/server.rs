@@ -29,7 +29,7 @@ use hyper::header::{HeaderValue, CONTENT_LENGTH, HOST, TRANSFER_ENCODING};
 use hyper::{Request, Response};
 use hyper_util::rt::{TokioIo, TokioTimer};
 
-use super::admission::Admission;
+use super::admission::{Admission, WORKERS};
 use super::held_body::HeldBody;
 use super::request::{parse, ApiRequest, Incoming};
 use super::{api, text, Reply, Served, State};
@@ -40,7 +40,6 @@ const MAX_HEAD: usize = 16 * 1024;
 const HEAD_TIMEOUT: Duration = Duration::from_secs(10);
 const CONNECTION_TIME: Duration = Duration::from_secs(120);
 const MAX_CONNECTIONS: usize = 64;
-pub const WORKERS: usize = 4;
 const OPEN_TIMEOUT: Duration = Duration::from_secs(60);
 /// How often the accept loop looks for Ctrl-C.
 const POLL: Duration = Duration::from_millis(100);

@@ -1,63 +1,115 @@
-//! Whole images already rendered in this process, by scene, size, bounces and candidate
-//! program. A class graded at once (`whitted grade`) checks every student against the same
-//! suite: the references and the common mistakes' images are the same for all of them, so
-//! each is rendered once per class, not once per student. Only renderers given a scene key
-//! (the suite's scenes, by their XML) use it; a single check has nothing to share.
+//! Whole images already rendered in one run, by scene, size, bounces and candidate program. A
+//! class graded at once (`whitted grade`) checks every student against the same suite: the
+//! references and the common mistakes' images are the same for all of them, so each is
+//! rendered once per class, not once per student. The run that checks (`check --program`, a
+//! class's grading) owns the cache and hands it to the renderers of its suite's scenes; a single
+//! check has nothing to share and has none.
 
 use std::collections::HashMap;
-use std::sync::{Arc, Mutex, OnceLock};
+use std::sync::{Arc, Mutex, MutexGuard};
 
 use crate::check::student_png::Rgb8;
+use crate::mistakes::{Mistakes, Parameter, Variant};
 use whitted_core::error::Result;
 
 /// What the cache may hold: about 400 images of 640x480. Past it, new images are not kept
 /// (the first students' are, and the references come first).
 const LIMIT_BYTES: usize = 384 << 20;
 
+/// What an image is of: equal keys are equal programs rendering equal frames.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub struct ImageKey {
+    /// The scene's XML fingerprint.
+    pub scene: String,
+    pub width: u32,
+    pub height: u32,
+    pub bounces: u32,
+    pub mistakes: Mistakes,
+    /// A changed number: which, and its value's bits (equal bits, equal arithmetic).
+    pub number: Option<(Parameter, u64)>,
+    /// `Some(n)`: the bytes at the case's lattice of `n` pixels, not the whole image.
+    pub lattice: Option<usize>,
+}
+
+impl ImageKey {
+    /// The whole image of `variant` (None: the course's model) of `scene` at this size.
+    pub fn of(
+        scene: &str,
+        (width, height): (u32, u32),
+        bounces: u32,
+        variant: Option<&Variant>,
+    ) -> ImageKey {
+        ImageKey {
+            scene: scene.to_string(),
+            width,
+            height,
+            bounces,
+            mistakes: variant.map_or(Mistakes::NONE, |v| v.mistakes),
+            number: variant
+                .and_then(|v| v.number)
+                .map(|n| (n.parameter, n.value.to_bits())),
+            lattice: None,
+        }
+    }
+}
+
+/// The images of one run, shared by its renderers (and their threads).
 #[derive(Default)]
-struct Cache {
-    images: HashMap<String, Arc<Rgb8>>,
+pub struct ImageCache {
+    kept: Mutex<Kept>,
+}
+
+#[derive(Default)]
+struct Kept {
+    images: HashMap<ImageKey, Arc<Rgb8>>,
     bytes: usize,
 }
 
-fn cache() -> &'static Mutex<Cache> {
-    static CACHE: OnceLock<Mutex<Cache>> = OnceLock::new();
-    CACHE.get_or_init(Mutex::default)
-}
-
-/// The image under `key`, rendered by `render` when it is not there yet. Two threads that
-/// ask for one key at once may both render it: the result is the same.
-pub fn get_or_render(key: String, render: impl FnOnce() -> Result<Rgb8>) -> Result<Rgb8> {
-    get_or_render_family(key, || Ok((render()?, Vec::new())))
-}
-
-/// The image under `key`; when it is not there yet, `render` makes it together with others
-/// that cost little more to make at once (the same scene's images at other bounce counts),
-/// and all are kept.
-pub fn get_or_render_family(
-    key: String,
-    render: impl FnOnce() -> Result<(Rgb8, Vec<(String, Rgb8)>)>,
-) -> Result<Rgb8> {
-    if let Some(found) = lock().images.get(&key) {
-        return Ok(Rgb8::clone(found));
+impl ImageCache {
+    /// An empty cache, to be shared.
+    pub fn new() -> Arc<ImageCache> {
+        Arc::new(ImageCache::default())
     }
-    let (image, others) = render()?;
-    let mut cache = lock();
-    for (name, kept) in [(key, image.clone())].into_iter().chain(others) {
-        if cache.bytes + kept.bytes.len() <= LIMIT_BYTES && !cache.images.contains_key(&name) {
-            cache.bytes += kept.bytes.len();
-            cache.images.insert(name, Arc::new(kept));
+
+    /// The image under `key`, rendered by `render` when it is not there yet. Two threads that
+    /// ask for one key at once may both render it: the result is the same.
+    pub fn get_or_render(
+        &self,
+        key: ImageKey,
+        render: impl FnOnce() -> Result<Rgb8>,
+    ) -> Result<Rgb8> {
+        self.get_or_render_family(key, || Ok((render()?, Vec::new())))
+    }
+
+    /// The image under `key`; when it is not there yet, `render` makes it together with others
+    /// that cost little more to make at once (the same scene's images at other bounce counts),
+    /// and all are kept.
+    pub fn get_or_render_family(
+        &self,
+        key: ImageKey,
+        render: impl FnOnce() -> Result<(Rgb8, Vec<(ImageKey, Rgb8)>)>,
+    ) -> Result<Rgb8> {
+        if let Some(found) = self.lock().images.get(&key) {
+            return Ok(Rgb8::clone(found));
         }
+        let (image, others) = render()?;
+        let mut kept = self.lock();
+        for (name, image) in [(key, image.clone())].into_iter().chain(others) {
+            if kept.bytes + image.bytes.len() <= LIMIT_BYTES && !kept.images.contains_key(&name) {
+                kept.bytes += image.bytes.len();
+                kept.images.insert(name, Arc::new(image));
+            }
+        }
+        Ok(image)
     }
-    Ok(image)
-}
 
-/// Whether `bytes` more of images would be kept now.
-pub fn has_room(bytes: usize) -> bool {
-    lock().bytes.saturating_add(bytes) <= LIMIT_BYTES
-}
+    /// Whether `bytes` more of images would be kept now.
+    pub fn has_room(&self, bytes: usize) -> bool {
+        self.lock().bytes.saturating_add(bytes) <= LIMIT_BYTES
+    }
 
-/// The cache, even if a thread panicked while holding it (it holds finished images only).
-fn lock() -> std::sync::MutexGuard<'static, Cache> {
-    cache().lock().unwrap_or_else(|e| e.into_inner())
+    /// The images, even if a thread panicked while holding them (they are finished images).
+    fn lock(&self) -> MutexGuard<'_, Kept> {
+        self.kept.lock().unwrap_or_else(|e| e.into_inner())
+    }
 }

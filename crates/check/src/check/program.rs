@@ -7,8 +7,10 @@
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitStatus, Stdio};
+use std::sync::Arc;
 use std::time::Duration;
 
+use crate::check::image_cache::ImageCache;
 use crate::check::renderer::SharedScene;
 use crate::check::student_png::{self, Rgb8};
 use crate::check::suite::{cases, SuiteCase};
@@ -166,17 +168,20 @@ impl Launch for Plain {
 /// Runs `program` over the suite and checks each image at `tolerance`.
 pub fn run_suite(program: &str, tolerance: u8, timeout: u64) -> Result<SuiteRun> {
     let plain = Plain(words(program)?);
-    run_suite_with(&plain, program, &cases(), tolerance, timeout)
+    let cache = ImageCache::new();
+    run_suite_with(&plain, program, &cases(), tolerance, timeout, &cache)
 }
 
 /// Runs the program `launch` starts (shown to the user as `program`) over `suite`, and checks
-/// each image at `tolerance`.
+/// each image at `tolerance`. The suite's whole images are kept in `cache`, which a caller
+/// checking many programs over one suite (a class) shares between them.
 pub fn run_suite_with(
     launch: &dyn Launch,
     program: &str,
     suite: &[SuiteCase],
     tolerance: u8,
     timeout: u64,
+    cache: &Arc<ImageCache>,
 ) -> Result<SuiteRun> {
     let finished = run_programs(launch, suite, Duration::from_secs(timeout))?;
     let mut statuses: Vec<Option<Status>> = Vec::new();
@@ -212,6 +217,7 @@ pub fn run_suite_with(
         let shared = SharedScene {
             key: keys[k].clone(),
             bounce_family,
+            cache: Arc::clone(cache),
         };
         let (c, report) = prepare(
             scene,

@@ -3,9 +3,12 @@
 //! needs them. Every whole image is checked against the memory budget before it is made: a
 //! student's PNG sets the size, and a small file can claim a huge one.
 
+use std::sync::Arc;
+
 use rayon::prelude::*;
 
-use crate::check::case::PixelSample;
+use crate::check::image_cache::{ImageCache, ImageKey};
+use crate::check::pixel_sample::PixelSample;
 use crate::check::student_png::Rgb8;
 use crate::mistakes::{Mistakes, Variant};
 use whitted_core::accel::Accelerator;
@@ -28,20 +31,22 @@ const ROWS_PER_TASK: u32 = 4;
 /// for the allocator.
 const BYTES_PER_PIXEL: u64 = 48;
 
-/// A scene many checks share (a class's suite), for the cache of whole images.
-#[derive(Debug, Clone)]
+/// A scene many checks share (a class's suite), for the run's cache of whole images.
+#[derive(Clone)]
 pub struct SharedScene {
     /// The scene's XML fingerprint.
     pub key: String,
     /// The bounce counts of the suite's cases of this scene at the student's size.
     pub bounce_family: Vec<u32>,
+    /// The run's images.
+    pub cache: Arc<ImageCache>,
 }
 
 /// Renders one scene at one size and bounce count under any candidate.
 pub struct Renderer<'a> {
     pub scene: &'a Scene,
-    /// Names the scene for the image cache (`image_cache.rs`); None renders every time.
-    scene_key: Option<String>,
+    /// Names the scene in the run's image cache (`image_cache.rs`); None renders every time.
+    shared: Option<(String, Arc<ImageCache>)>,
     /// The bounce counts whose whole images are rendered together when one is asked for
     /// (this case's, and the suite's other cases of the scene at this size), ascending.
     bounce_family: Vec<u32>,
@@ -63,7 +68,7 @@ impl<'a> Renderer<'a> {
         Frame::new(scene, &spec)?;
         Ok(Renderer {
             scene,
-            scene_key: None,
+            shared: None,
             bounce_family: vec![spec.bounces],
             spec,
             bvh: Accelerator::build(&scene.objects),
@@ -88,8 +93,12 @@ impl<'a> Renderer<'a> {
         if memory::check(budget, memory::available_bytes(), "").is_ok() {
             self.bounce_family = family;
         }
-        self.scene_key = Some(shared.key);
+        self.shared = Some((shared.key, shared.cache));
         self
+    }
+
+    fn size(&self) -> (u32, u32) {
+        (self.spec.width, self.spec.height)
     }
 
     pub fn width(&self) -> u32 {
@@ -161,14 +170,13 @@ impl<'a> Renderer<'a> {
         lattice: &[(u32, u32)],
     ) -> Result<Option<Rgb8>> {
         let shared = variant.number.is_none() && variant.mistakes.len() <= 2;
-        let Some(scene) = self.scene_key.as_ref().filter(|_| shared) else {
+        let Some((scene, cache)) = self.shared.as_ref().filter(|_| shared) else {
             return Ok(None);
         };
-        let key = format!(
-            "{scene} {:?} {variant:?} lattice of {}",
-            self.spec,
-            lattice.len()
-        );
+        let key = ImageKey {
+            lattice: Some(lattice.len()),
+            ..ImageKey::of(scene, self.size(), self.spec.bounces, Some(variant))
+        };
         let render = || {
             Ok(Rgb8 {
                 width: lattice.len() as u32,
@@ -176,7 +184,7 @@ impl<'a> Renderer<'a> {
                 bytes: self.bytes_at(variant, frame, lattice)?,
             })
         };
-        crate::check::image_cache::get_or_render(key, render).map(Some)
+        cache.get_or_render(key, render).map(Some)
     }
 
     /// The whole images under `model` in `frame` at each of `bounces` (each at most the
@@ -237,24 +245,17 @@ impl<'a> Renderer<'a> {
             .bounce_family
             .iter()
             .position(|&b| b == self.spec.bounces);
-        let (Some(scene), Some(own)) = (&self.scene_key, own) else {
+        let (Some((scene, cache)), Some(own)) = (&self.shared, own) else {
             let mut images = self.images_at(variant, &[self.spec.bounces])?;
             return Ok(images.swap_remove(0));
         };
-        // Debug prints a number's exact value: equal keys are equal programs.
-        let key = |bounces| {
-            let spec = FrameSpec {
-                bounces,
-                ..self.spec.clone()
-            };
-            format!("{scene} {spec:?} {variant:?}")
-        };
-        crate::check::image_cache::get_or_render_family(key(self.spec.bounces), || {
+        let key = |bounces| ImageKey::of(scene, self.size(), bounces, variant);
+        cache.get_or_render_family(key(self.spec.bounces), || {
             // The others are worth their deeper trace only if the cache can keep them.
             let family_bytes = (3 * self.bounce_family.len())
                 .saturating_mul(self.spec.width as usize)
                 .saturating_mul(self.spec.height as usize);
-            if !crate::check::image_cache::has_room(family_bytes) {
+            if !cache.has_room(family_bytes) {
                 let mut images = self.images_at(variant, &[self.spec.bounces])?;
                 return Ok((images.swap_remove(0), Vec::new()));
             }

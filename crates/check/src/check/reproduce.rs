@@ -71,10 +71,7 @@ impl Reproduce {
         let explain = report
             .and_then(|r| {
                 let d = &r.difference;
-                let top = r
-                    .diagnosis
-                    .first()
-                    .map_or(r.hidden_mistakes, |t| t.mistakes);
+                let top = r.shown_mistakes();
                 d.worst_pixel.map(|pixel| {
                     explain_commands(Some(&scene), case.bounces, (d.width, d.height), pixel, top)
                 })

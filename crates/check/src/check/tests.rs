@@ -4,6 +4,7 @@
 
 use super::*;
 use crate::check::difference::Verdict;
+use crate::check::image_cache::ImageCache;
 use crate::check::progress::StageState;
 use crate::check::suite::{cases, SuiteCase};
 use crate::mistakes::{Bug, Mistakes, Number, Parameter, Stage, Variant};
@@ -314,6 +315,7 @@ fn a_scene_s_bounce_counts_rendered_together_are_each_one_s_own_render() {
                 value: 0.5,
             }),
         });
+        let cache = ImageCache::new();
         for (n, variant) in variants.iter().enumerate() {
             let family = vec![0, 1, 2, 3];
             for &bounces in &family {
@@ -323,6 +325,7 @@ fn a_scene_s_bounce_counts_rendered_together_are_each_one_s_own_render() {
                     .remembered_as(Some(SharedScene {
                         key: format!("bounce family test {} {n}", case.file),
                         bounce_family: family.clone(),
+                        cache: cache.clone(),
                     }));
                 assert!(
                     alone.variant_image(variant).expect("image")

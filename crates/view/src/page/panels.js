@@ -88,7 +88,8 @@ const PANELS = (() => {
       };
       line(`${report.scene}, ${report.width}x${report.height}, ${report.bounces} bounces: ${report.verdict}`, `verdict ${report.verdict}`);
       line(report.difference_text);
-      if ((report.hidden_mistakes || []).length) line(`it passes, but is exactly what ${report.hidden_mistakes.join("+")} renders: fix it all the same`);
+      // The server's words (the check's words.rs), the same as the text report's.
+      if (report.hidden_text) line(report.hidden_text);
       for (const text of report.summary || []) line(text, "summary");
       if (report.worst_pixel) {
         const [x, y] = report.worst_pixel;
