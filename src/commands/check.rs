@@ -9,7 +9,7 @@ use serde_json::Value;
 use crate::cli::CheckArgs;
 use whitted_check::check::diagnose::Diagnosis;
 use whitted_check::check::json::{case_json, suite_json};
-use whitted_check::check::program::{run_suite, Status, SuiteRun};
+use whitted_check::check::program::{run_suite, RunStatus, SuiteRun};
 use whitted_check::check::report::{contact_sheet, failing_rows, heat_map, ReportRow};
 use whitted_check::check::reproduce::{explain_commands, Reproduce};
 use whitted_check::check::suite;
@@ -233,11 +233,11 @@ fn suite_text(run: &SuiteRun, suite_dir: Option<&Path>) -> String {
     }
     for c in &run.cases {
         let report = match &c.status {
-            Status::Ok(case) => Some(case.as_ref()),
+            RunStatus::Ok(case) => Some(case.as_ref()),
             _ => None,
         };
         let detail = match &c.status {
-            Status::Ok(case) => words::case_line(case),
+            RunStatus::Ok(case) => words::case_line(case),
             other => other.failure_line().unwrap_or_default(),
         };
         out += &format!("  {:<28} {detail}\n", c.name);
@@ -256,7 +256,10 @@ fn suite_text(run: &SuiteRun, suite_dir: Option<&Path>) -> String {
     }
     let passed = run.cases.iter().filter(|c| c.passed()).count();
     out += &format!("{passed} of {} cases pass\n", run.cases.len());
-    let any_image = run.cases.iter().any(|c| matches!(c.status, Status::Ok(_)));
+    let any_image = run
+        .cases
+        .iter()
+        .any(|c| matches!(c.status, RunStatus::Ok(_)));
     if !any_image {
         out += "diagnosis: no case wrote an image to diagnose\n";
     } else if !run.passed() {

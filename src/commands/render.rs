@@ -5,7 +5,7 @@ use std::time::{Duration, Instant};
 
 use crate::cli::RenderArgs;
 use whitted_core::error::{Error, Result};
-use whitted_core::progress::Progress;
+use whitted_core::progress::Bar;
 use whitted_core::render::{render_strips, RenderStats};
 use whitted_core::scene;
 use whitted_io::output::atomic::AtomicFile;
@@ -26,7 +26,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let mut png = plan.png.as_deref().map(Destination::open).transpose()?;
     let mut exr_file = plan.exr.as_deref().map(AtomicFile::create).transpose()?;
 
-    let progress = Progress::new(u64::from(plan.frame.region().height()), args.quiet);
+    let progress = Bar::new(u64::from(plan.frame.region().height()), args.quiet);
     let started = Instant::now();
     // Both writers take each strip as it is finished, into temporary files: then rename, so
     // that there are all outputs or none.

@@ -29,7 +29,7 @@ use crate::check::case::Case;
 use crate::check::diagnose::{CaseFinding, Diagnosis, Search};
 use crate::check::difference::{difference, Difference};
 use crate::check::numbers::NumberFit;
-use crate::check::progress::{Evidence, Progress};
+use crate::check::progress::{Evidence, Stages};
 use crate::check::renderer::{Renderer, SharedScene};
 use crate::check::student_png::Rgb8;
 use crate::check::terms::{TermCase, TermFit};
@@ -56,7 +56,7 @@ pub struct Findings {
     pub terms: Vec<TermFit>,
     /// Where no candidate explains the images well: the model's numbers that do.
     pub parameters: Vec<NumberFit>,
-    pub progress: Progress,
+    pub progress: Stages,
 }
 
 impl Findings {
@@ -74,7 +74,7 @@ impl Findings {
             per_case: vec![CaseFinding::default(); cases],
             terms: Vec::new(),
             parameters: Vec::new(),
-            progress: Progress::of(&evidence),
+            progress: Stages::of(&evidence),
         }
     }
 }
@@ -106,7 +106,7 @@ pub fn find(cases: &[Case], all_pass: bool) -> Result<Findings> {
         per_case,
         terms: Vec::new(),
         parameters: Vec::new(),
-        progress: Progress::of(&Evidence::Nothing),
+        progress: Stages::of(&Evidence::Nothing),
     };
     if findings.weak() {
         findings.terms = fit_terms(cases)?;
@@ -122,7 +122,7 @@ pub fn find(cases: &[Case], all_pass: bool) -> Result<Findings> {
         );
         findings.parameters = numbers::fit(cases, &bases)?;
     }
-    findings.progress = Progress::of(&evidence(&findings, all_pass));
+    findings.progress = Stages::of(&evidence(&findings, all_pass));
     Ok(findings)
 }
 

@@ -10,7 +10,9 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 /// How long a render runs before the bar is worth showing.
 const DELAY: Duration = Duration::from_millis(500);
 
-pub struct Progress {
+/// The bar of a long run (rows rendered, students graded): not the stages of the handout a
+/// student has reached, which are `whitted_check::check::progress::Stages`.
+pub struct Bar {
     bar: ProgressBar,
     started: Instant,
     /// Whether the bar may ever be shown (a terminal, and not --quiet).
@@ -18,10 +20,10 @@ pub struct Progress {
     shown: AtomicBool,
 }
 
-impl Progress {
+impl Bar {
     /// A bar over `rows` rows; `quiet` or a non-terminal stderr keep it hidden for good.
     pub fn new(rows: u64, quiet: bool) -> Self {
-        Progress::counting(rows, quiet, "rendering", "rows")
+        Bar::counting(rows, quiet, "rendering", "rows")
     }
 
     /// A bar over `total` things (`unit`) that `doing` goes through.
@@ -32,7 +34,7 @@ impl Progress {
         )) {
             bar.set_style(style.progress_chars("=> "));
         }
-        Progress {
+        Bar {
             bar,
             started: Instant::now(),
             wanted: !quiet && std::io::stderr().is_terminal(),
@@ -57,7 +59,7 @@ impl Progress {
     }
 }
 
-impl Drop for Progress {
+impl Drop for Bar {
     /// Also on an error or an interruption: the bar never stays on screen.
     fn drop(&mut self) {
         self.bar.finish_and_clear();

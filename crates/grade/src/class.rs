@@ -101,14 +101,15 @@ pub fn mistakes_csv(rows: &[StudentResult]) -> String {
             .to_string(),
             bug.stage().key().to_string(),
             n.to_string(),
-            share(n, graded),
+            fraction_of(n, graded),
             bug.description().to_string(),
         ]);
     }
     out
 }
 
-fn share(n: usize, of: usize) -> String {
+/// `n` students of `of`, as a fraction to three decimals (mistakes.csv).
+fn fraction_of(n: usize, of: usize) -> String {
     match of {
         0 => "0".into(),
         _ => whitted_core::numbers::plain((1000.0 * n as f64 / of as f64).round() / 1000.0),

@@ -138,7 +138,12 @@ pub fn run(options: &Options) -> Result<Summary> {
         work: work.path().to_path_buf(),
         images: ImageCache::new(),
         report_images: SharedImages::default(),
+        policy,
+        show_hidden: options.show_hidden,
+        students_dir,
+        quiet: options.quiet,
     };
+    let (policy, students_dir) = (&setup.policy, &setup.students_dir);
     let mine: Vec<&Submission> = submissions
         .iter()
         .enumerate()
@@ -148,8 +153,8 @@ pub fn run(options: &Options) -> Result<Summary> {
         .collect();
     let todo: Vec<(&Submission, String)> = mine
         .iter()
-        .map(|s| (*s, key(&setup.skeleton, &setup.suite, &policy, options, s)))
-        .filter(|(s, key)| !only.is_empty() || needs_grading(&students_dir, s, key, options.rerun))
+        .map(|s| (*s, key(&setup.skeleton, &setup.suite, policy, options, s)))
+        .filter(|(s, key)| !only.is_empty() || needs_grading(students_dir, s, key, options.rerun))
         .collect();
     let skipped = mine.len() - todo.len();
     // Without a sandbox, orphans of a program are found as this process's children, which
@@ -159,8 +164,8 @@ pub fn run(options: &Options) -> Result<Summary> {
     } else {
         options.jobs.max(1)
     };
-    grade_all(&setup, &policy, options, &students_dir, &todo, jobs)?;
-    let rows = read_rows(&students_dir, &submissions);
+    grade_all(&setup, &todo, jobs)?;
+    let rows = read_rows(students_dir, &submissions);
     let mut summary = Summary {
         students: submissions.len(),
         graded_now: todo.len(),
@@ -356,17 +361,10 @@ fn needs_grading(
 const WORKERS_PER_COMPILER: usize = 4;
 
 /// Grades `todo`, `jobs` students at a time, each written as soon as it is done.
-fn grade_all(
-    setup: &Setup,
-    policy: &Policy,
-    options: &Options,
-    students_dir: &Path,
-    todo: &[(&Submission, String)],
-    jobs: usize,
-) -> Result<()> {
-    let progress = whitted_core::progress::Progress::counting(
+fn grade_all(setup: &Setup, todo: &[(&Submission, String)], jobs: usize) -> Result<()> {
+    let progress = whitted_core::progress::Bar::counting(
         todo.len() as u64,
-        options.quiet,
+        setup.quiet,
         "grading",
         "students",
     );
@@ -391,16 +389,7 @@ fn grade_all(
                     return;
                 }
                 let (submission, key) = &todo[i];
-                let graded = grade_one(
-                    setup,
-                    policy,
-                    options,
-                    students_dir,
-                    submission,
-                    key,
-                    slot,
-                    javac,
-                );
+                let graded = grade_one(setup, submission, key, slot, javac);
                 match graded {
                     Ok(()) => progress.advance(1),
                     Err(e) => {
@@ -422,12 +411,8 @@ fn grade_all(
 }
 
 /// Grades one student and writes their folder: report.png, report.html, then result.json.
-#[allow(clippy::too_many_arguments)]
 fn grade_one(
     setup: &Setup,
-    policy: &Policy,
-    options: &Options,
-    students_dir: &Path,
     submission: &Submission,
     key: &str,
     slot: usize,
@@ -449,18 +434,18 @@ fn grade_one(
         submission,
         &outcome,
         key,
-        policy,
+        &setup.policy,
         sandboxed,
         skeleton,
-        options.show_hidden,
+        setup.show_hidden,
     );
     let feedback = &result.extra.feedback;
-    let dir = students_dir.join(&submission.id);
+    let dir = setup.students_dir.join(&submission.id);
     std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, "cannot create", e))?;
     let mut png = Vec::new();
     let shown = report::Shown {
-        hidden: options.show_hidden,
-        policy,
+        hidden: setup.show_hidden,
+        policy: &setup.policy,
         images: &setup.report_images,
     };
     whitted_io::output::png::write_png(&mut png, &report::sheet(&outcome, feedback, &shown))
@@ -515,7 +500,7 @@ fn count_statuses(rows: &[StudentResult]) -> Vec<(String, usize)> {
 
 /// The class files; returns the path of index.html.
 fn write_class(outdir: &Path, rows: &[StudentResult], settings: &[String]) -> Result<PathBuf> {
-    let now = modified_now();
+    let now = moodle::modified_now();
     write_atomic(&outdir.join("class.csv"), class::class_csv(rows).as_bytes())?;
     write_atomic(
         &outdir.join("mistakes.csv"),
@@ -535,75 +520,4 @@ fn write_class(outdir: &Path, rows: &[StudentResult], settings: &[String]) -> Re
         class::index_html(rows, "Tick 2: the class", settings).as_bytes(),
     )?;
     Ok(index)
-}
-
-/// "Last modified (grade)" as Moodle writes it in its worksheets: `Wednesday, 2 December 2026,
-/// 9:15 AM`, in UTC.
-fn modified_now() -> String {
-    let seconds = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map(|d| d.as_secs())
-        .unwrap_or(0);
-    moodle_date(seconds)
-}
-
-/// `seconds` since 1970 (UTC) in Moodle's worksheet format.
-fn moodle_date(seconds: u64) -> String {
-    const DAYS: [&str; 7] = [
-        "Thursday",
-        "Friday",
-        "Saturday",
-        "Sunday",
-        "Monday",
-        "Tuesday",
-        "Wednesday",
-    ];
-    const MONTHS: [&str; 12] = [
-        "January",
-        "February",
-        "March",
-        "April",
-        "May",
-        "June",
-        "July",
-        "August",
-        "September",
-        "October",
-        "November",
-        "December",
-    ];
-    let days = (seconds / 86_400) as i64;
-    let (hour, minute) = ((seconds % 86_400) / 3600, (seconds % 3600) / 60);
-    let (year, month, day) = whitted_core::calendar::civil_from_days(days);
-    let (h12, half) = match hour {
-        0 => (12, "AM"),
-        1..=11 => (hour, "AM"),
-        12 => (12, "PM"),
-        _ => (hour - 12, "PM"),
-    };
-    format!(
-        "{}, {day} {} {year}, {h12}:{minute:02} {half}",
-        DAYS[days.rem_euclid(7) as usize],
-        MONTHS[(month - 1) as usize]
-    )
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn moodle_dates_are_civil_dates() {
-        assert_eq!(moodle_date(0), "Thursday, 1 January 1970, 12:00 AM");
-        // 2026-12-02 09:15 UTC.
-        assert_eq!(
-            moodle_date(1_796_202_900),
-            "Wednesday, 2 December 2026, 9:15 AM"
-        );
-        // 2024-02-29 13:05 UTC, a leap day.
-        assert_eq!(
-            moodle_date(1_709_211_900),
-            "Thursday, 29 February 2024, 1:05 PM"
-        );
-    }
 }

@@ -2,6 +2,7 @@
 //! (Moodle 3.x adds a trailing `_`), `Participant_<id>_assignsubmission_file` under blind
 //! marking, `<Group>_<groupid>_assignsubmission_file` for teams. docs/grade.md's pattern
 //! `^(.+)_(\d+)_assignsubmission_([a-z]+)_?$`, matched by hand: it is one split from the right.
+//! And the dates Moodle's worksheets write.
 
 /// A folder's student: the name as Moodle wrote it, and the id grades go back by.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -38,9 +39,75 @@ pub fn parse(folder: &str) -> Option<Folder> {
     })
 }
 
+/// "Last modified (grade)" as Moodle writes it in its worksheets: `Wednesday, 2 December 2026,
+/// 9:15 AM`, in UTC.
+pub fn modified_now() -> String {
+    let seconds = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_secs())
+        .unwrap_or(0);
+    moodle_date(seconds)
+}
+
+/// `seconds` since 1970 (UTC) in Moodle's worksheet format.
+fn moodle_date(seconds: u64) -> String {
+    const DAYS: [&str; 7] = [
+        "Thursday",
+        "Friday",
+        "Saturday",
+        "Sunday",
+        "Monday",
+        "Tuesday",
+        "Wednesday",
+    ];
+    const MONTHS: [&str; 12] = [
+        "January",
+        "February",
+        "March",
+        "April",
+        "May",
+        "June",
+        "July",
+        "August",
+        "September",
+        "October",
+        "November",
+        "December",
+    ];
+    let days = (seconds / 86_400) as i64;
+    let (hour, minute) = ((seconds % 86_400) / 3600, (seconds % 3600) / 60);
+    let (year, month, day) = whitted_core::calendar::civil_from_days(days);
+    let (h12, half) = match hour {
+        0 => (12, "AM"),
+        1..=11 => (hour, "AM"),
+        12 => (12, "PM"),
+        _ => (hour - 12, "PM"),
+    };
+    format!(
+        "{}, {day} {} {year}, {h12}:{minute:02} {half}",
+        DAYS[days.rem_euclid(7) as usize],
+        MONTHS[(month - 1) as usize]
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn moodle_dates_are_civil_dates() {
+        assert_eq!(moodle_date(0), "Thursday, 1 January 1970, 12:00 AM");
+        // 2026-12-02 09:15 UTC.
+        assert_eq!(
+            moodle_date(1_796_202_900),
+            "Wednesday, 2 December 2026, 9:15 AM"
+        );
+        // 2024-02-29 13:05 UTC, a leap day.
+        assert_eq!(
+            moodle_date(1_709_211_900),
+            "Thursday, 29 February 2024, 1:05 PM"
+        );
+    }
 
     fn folder(name: &str, id: &str) -> Option<Folder> {
         Some(Folder {

@@ -9,7 +9,7 @@ use super::intake::Submission;
 use super::policy::Policy;
 use super::student::Outcome;
 use whitted_check::check::program::CaseOutcome;
-use whitted_check::check::program::{Status, SuiteRun};
+use whitted_check::check::program::{RunStatus, SuiteRun};
 use whitted_check::check::report::{contact_sheet, failing_rows, heat_map, ReportRow};
 use whitted_check::check::suite::Role;
 use whitted_check::check::{summary, words};
@@ -126,7 +126,7 @@ fn ran(run: &SuiteRun, shown: &Shown, feedback: &str) -> String {
         };
         let what = match &case.status {
             _ if shown.withheld(case) => super::result::verdict(case),
-            Status::Ok(r) => words::verdict(r),
+            RunStatus::Ok(r) => words::verdict(r),
             other => other.name().to_string(),
         };
         out += &format!(
@@ -138,7 +138,7 @@ fn ran(run: &SuiteRun, shown: &Shown, feedback: &str) -> String {
     out += "</table>\n";
     for case in run.cases.iter().filter(|c| !shown.withheld(c)) {
         match &case.status {
-            Status::Ok(r) if !case.passed() => {
+            RunStatus::Ok(r) if !case.passed() => {
                 let (w, h) = (r.student.width, r.student.height);
                 let heat = heat_map(&r.student, &r.reference, r.tolerance);
                 let PngPixels::Eight(heat) = heat.pixels else {
@@ -161,7 +161,7 @@ fn ran(run: &SuiteRun, shown: &Shown, feedback: &str) -> String {
                     out += &format!("<figure>{html}<figcaption>{alt}</figcaption></figure>\n");
                 }
             }
-            Status::Ok(_) => {}
+            RunStatus::Ok(_) => {}
             _ if !case.stderr_tail.is_empty() => {
                 out += &format!(
                     "<h2>{}: {}</h2>\n<pre>{}</pre>\n",
@@ -191,7 +191,7 @@ pub fn sheet(outcome: &Outcome, feedback: &str, shown: &Shown) -> PngImage {
     if rows.is_empty() {
         rows.extend(run.cases.iter().filter(|c| !shown.withheld(c)).find_map(
             |c| match &c.status {
-                Status::Ok(case) => Some(ReportRow::of(&c.name, case, &run.findings)),
+                RunStatus::Ok(case) => Some(ReportRow::of(&c.name, case, &run.findings)),
                 _ => None,
             },
         ));

@@ -12,7 +12,7 @@ use super::policy::Policy;
 use super::status::StudentStatus;
 use super::student::Outcome;
 use whitted_check::check::json::suite_json;
-use whitted_check::check::program::{CaseOutcome, Status, SuiteRun};
+use whitted_check::check::program::{CaseOutcome, RunStatus, SuiteRun};
 use whitted_check::check::suite::Role;
 use whitted_check::check::words;
 use whitted_check::mistakes::{Bug, Mistakes};
@@ -203,7 +203,7 @@ pub fn build(
             let timed_out = run
                 .cases
                 .iter()
-                .any(|c| matches!(c.status, Status::Timeout(_)));
+                .any(|c| matches!(c.status, RunStatus::Timeout(_)));
             let mut report = suite_json(run, None);
             if !show_hidden {
                 withhold_hidden(&mut report, run);
@@ -266,7 +266,7 @@ fn test(case: &CaseOutcome, weight: f64, show_hidden: bool) -> Test {
     let hidden = case.case.role == Role::Hidden && !show_hidden;
     let (output, tags) = match &case.status {
         _ if hidden => (verdict(case), Vec::new()),
-        Status::Ok(report) => {
+        RunStatus::Ok(report) => {
             let tags = report.shown_mistakes().ids();
             (
                 words::test_line(report),
@@ -314,13 +314,13 @@ fn withhold_hidden(check: &mut Value, run: &SuiteRun) {
 /// A case's verdict alone: `identical`, `differs`, `timeout`, ...
 pub fn verdict(case: &CaseOutcome) -> String {
     match &case.status {
-        Status::Ok(report) => report.difference.verdict.name().to_string(),
+        RunStatus::Ok(report) => report.difference.verdict.name().to_string(),
         other => other.name().to_string(),
     }
 }
 
 /// A case that wrote no image to check: how it ended, and the end of its standard error.
-fn status_line(status: &Status, tail: &str) -> String {
+fn status_line(status: &RunStatus, tail: &str) -> String {
     let what = status.failure_line().unwrap_or_else(|| "ok".into());
     match tail.lines().last() {
         Some(last) if !last.trim().is_empty() => format!("{what}\n{tail}"),
@@ -353,7 +353,7 @@ fn feedback(run: &SuiteRun, policy: &Policy) -> String {
             .cases
             .iter()
             .filter_map(|c| match &c.status {
-                Status::Ok(r) => Some(r.hidden_mistakes),
+                RunStatus::Ok(r) => Some(r.hidden_mistakes),
                 _ => None,
             })
             .fold(Mistakes::NONE, |all, m| {

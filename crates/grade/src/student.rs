@@ -10,6 +10,7 @@ use super::compile::{compile, Compiled};
 use super::html::SharedImages;
 use super::intake::{Files, Submission};
 use super::jvm;
+use super::policy::Policy;
 use super::sandbox::{Area, Limits, RunGuard, Sandbox, AREA_BYTES, AREA_FILES, AREA_FULL};
 use super::skeleton::Skeleton;
 use super::status::StudentStatus;
@@ -34,6 +35,14 @@ pub struct Setup {
     pub images: Arc<ImageCache>,
     /// The references every report shows, encoded once for the class.
     pub report_images: SharedImages,
+    /// How cases become a grade.
+    pub policy: Policy,
+    /// Whether hidden scenes are shown to students in full.
+    pub show_hidden: bool,
+    /// OUTDIR/students: a folder per student.
+    pub students_dir: PathBuf,
+    /// No progress bar.
+    pub quiet: bool,
 }
 
 /// How far a student got.

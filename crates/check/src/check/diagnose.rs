@@ -17,7 +17,7 @@ use rayon::prelude::*;
 
 use crate::check::case::Case;
 use crate::check::difference::pixel_difference;
-use crate::check::score::{cost, share, Scored};
+use crate::check::score::{cost, explained_share, Scored};
 use crate::mistakes::{Bug, Mistakes, Variant};
 use whitted_core::error::Result;
 
@@ -238,7 +238,7 @@ impl Search {
         let wrong = cases[i].wrong.len();
         let label = Diagnosis {
             mistakes: shows,
-            explained: share(here.explained, wrong),
+            explained: explained_share(here.explained, wrong),
             unexplained_pixels: (wrong as f64 - here.explained).max(0.0).round() as u64,
             wrongly_changed_pixels: here.wrongly_changed.round() as u64,
             indistinguishable_from: Vec::new(),
@@ -313,7 +313,7 @@ fn rank(order: Vec<&Scored>, differing: usize) -> Vec<Diagnosis> {
         let explained = s.explained();
         let diagnosis = Diagnosis {
             mistakes,
-            explained: share(explained, differing),
+            explained: explained_share(explained, differing),
             unexplained_pixels: (differing as f64 - explained).max(0.0).round() as u64,
             wrongly_changed_pixels: s.wrongly_changed().round() as u64,
             indistinguishable_from: Vec::new(),

@@ -5,16 +5,16 @@ use serde_json::{json, Value};
 
 use super::diagnose::Diagnosis;
 use super::numbers::NumberFit;
-use super::progress::Progress;
+use super::progress::Stages;
 use super::terms::TermFit;
 use std::path::Path;
 
-use super::program::{CaseOutcome, Status, SuiteRun};
+use super::program::{CaseOutcome, RunStatus, SuiteRun};
 use super::reproduce::Reproduce;
 use super::{summary, CaseReport, Findings};
 
-/// A share rounded to three decimals.
-fn share(x: f64) -> f64 {
+/// A number (a share of the differing pixels, a factor) rounded to three decimals for the JSON.
+fn three_decimals(x: f64) -> f64 {
     (x * 1000.0).round() / 1000.0
 }
 
@@ -23,7 +23,7 @@ pub fn diagnosis_json(list: &[Diagnosis]) -> Value {
         .iter()
         .map(|d| json!({
             "bugs": d.mistakes.ids(),
-            "explained": share(d.explained),
+            "explained": three_decimals(d.explained),
             "unexplained_pixels": d.unexplained_pixels,
             "wrongly_changed_pixels": d.wrongly_changed_pixels,
             "indistinguishable_from": d.indistinguishable_from.iter().map(|&m| m.name()).collect::<Vec<_>>(),
@@ -42,8 +42,8 @@ pub fn terms_json(terms: &[TermFit]) -> Value {
         .map(|t| json!({
             "layer": t.layer,
             "replaces": t.replaces,
-            "factor": share(t.factor),
-            "explained": share(t.explained),
+            "factor": three_decimals(t.factor),
+            "explained": three_decimals(t.explained),
         }))
         .collect::<Vec<_>>())
 }
@@ -56,14 +56,14 @@ pub fn parameters_json(parameters: &[NumberFit]) -> Value {
             "course": p.parameter.course(),
             "fitted": p.fitted,
             "with": p.with.ids(),
-            "explained": share(p.explained),
+            "explained": three_decimals(p.explained),
             "wrongly_changed_pixels": p.wrongly_changed_pixels,
             "where": p.parameter.place(),
         }))
         .collect::<Vec<_>>())
 }
 
-pub fn progress_json(progress: &Progress) -> Value {
+pub fn progress_json(progress: &Stages) -> Value {
     let object: serde_json::Map<String, Value> = progress
         .stages
         .iter()
@@ -113,7 +113,7 @@ pub fn case_json(case: &CaseReport, findings: Option<&Findings>) -> Value {
 
 fn outcome_json(run: &SuiteRun, outcome: &CaseOutcome, suite_dir: Option<&Path>) -> Value {
     let report = match &outcome.status {
-        Status::Ok(case) => Some(case.as_ref()),
+        RunStatus::Ok(case) => Some(case.as_ref()),
         _ => None,
     };
     let mut object = report.map_or_else(|| json!({}), |case| case_json(case, None));
@@ -121,14 +121,14 @@ fn outcome_json(run: &SuiteRun, outcome: &CaseOutcome, suite_dir: Option<&Path>)
     object["case"] = json!(outcome.name);
     object["status"] = json!(outcome.status.name());
     object["stderr_tail"] = json!(outcome.stderr_tail);
-    if let Status::WrongSize { width, height } = outcome.status {
+    if let RunStatus::WrongSize { width, height } = outcome.status {
         object["width"] = json!(width);
         object["height"] = json!(height);
     }
-    if let Status::Crashed(message)
-    | Status::NoOutput(message)
-    | Status::OutOfMemory(message)
-    | Status::OutputTooLarge(message) = &outcome.status
+    if let RunStatus::Crashed(message)
+    | RunStatus::NoOutput(message)
+    | RunStatus::OutOfMemory(message)
+    | RunStatus::OutputTooLarge(message) = &outcome.status
     {
         object["message"] = json!(message);
     }

@@ -8,7 +8,7 @@
 use rayon::prelude::*;
 
 use crate::check::case::Case;
-use crate::check::score::{share, Scored};
+use crate::check::score::{explained_share, Scored};
 use crate::mistakes::{Mistakes, Number, Parameter, Variant};
 use whitted_core::error::Result;
 use whitted_core::numbers::plain;
@@ -174,7 +174,7 @@ pub fn fit(cases: &[Case], bases: &[Mistakes]) -> Result<Vec<NumberFit>> {
                 parameter: number.parameter,
                 fitted: number.value,
                 with: whole.variant.mistakes,
-                explained: share(whole.explained(), differing),
+                explained: explained_share(whole.explained(), differing),
                 wrongly_changed_pixels: whole.wrongly_changed().round() as u64,
             });
         }

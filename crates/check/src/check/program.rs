@@ -36,7 +36,7 @@ const STDERR_TAIL: usize = 4096;
 
 /// How one case ended.
 #[derive(Debug, Clone)]
-pub enum Status {
+pub enum RunStatus {
     /// It wrote a 640x480 PNG, which was checked.
     Ok(Box<CaseReport>),
     /// It exited with a failure status or was killed by a signal.
@@ -53,31 +53,31 @@ pub enum Status {
     OutputTooLarge(String),
 }
 
-impl Status {
+impl RunStatus {
     pub fn name(&self) -> &'static str {
         match self {
-            Status::Ok(_) => "ok",
-            Status::Crashed(_) => "crashed",
-            Status::Timeout(_) => "timeout",
-            Status::NoOutput(_) => "no-output",
-            Status::WrongSize { .. } => "wrong-size",
-            Status::OutOfMemory(_) => "out-of-memory",
-            Status::OutputTooLarge(_) => "output-too-large",
+            RunStatus::Ok(_) => "ok",
+            RunStatus::Crashed(_) => "crashed",
+            RunStatus::Timeout(_) => "timeout",
+            RunStatus::NoOutput(_) => "no-output",
+            RunStatus::WrongSize { .. } => "wrong-size",
+            RunStatus::OutOfMemory(_) => "out-of-memory",
+            RunStatus::OutputTooLarge(_) => "output-too-large",
         }
     }
 
     /// How a case that wrote no image to check ended, in a line (None for `Ok`).
     pub fn failure_line(&self) -> Option<String> {
         Some(match self {
-            Status::Ok(_) => return None,
-            Status::WrongSize { width, height } => {
+            RunStatus::Ok(_) => return None,
+            RunStatus::WrongSize { width, height } => {
                 format!("wrong-size: wrote {width}x{height}, expected {WIDTH}x{HEIGHT}")
             }
-            Status::Crashed(message)
-            | Status::NoOutput(message)
-            | Status::OutOfMemory(message)
-            | Status::OutputTooLarge(message) => format!("{}: {message}", self.name()),
-            Status::Timeout(seconds) => format!("timeout: still running after {seconds} s"),
+            RunStatus::Crashed(message)
+            | RunStatus::NoOutput(message)
+            | RunStatus::OutOfMemory(message)
+            | RunStatus::OutputTooLarge(message) => format!("{}: {message}", self.name()),
+            RunStatus::Timeout(seconds) => format!("timeout: still running after {seconds} s"),
         })
     }
 }
@@ -88,14 +88,14 @@ pub struct CaseOutcome {
     pub name: String,
     /// The suite case it ran.
     pub case: SuiteCase,
-    pub status: Status,
+    pub status: RunStatus,
     /// The last lines of what the program wrote to standard error.
     pub stderr_tail: String,
 }
 
 impl CaseOutcome {
     pub fn passed(&self) -> bool {
-        matches!(&self.status, Status::Ok(c) if c.difference.verdict.passes())
+        matches!(&self.status, RunStatus::Ok(c) if c.difference.verdict.passes())
     }
 }
 
@@ -184,7 +184,7 @@ pub fn run_suite_with(
     cache: &Arc<ImageCache>,
 ) -> Result<SuiteRun> {
     let finished = run_programs(launch, suite, Duration::from_secs(timeout))?;
-    let mut statuses: Vec<Option<Status>> = Vec::new();
+    let mut statuses: Vec<Option<RunStatus>> = Vec::new();
     let mut tails = Vec::new();
     let mut scenes: Vec<(usize, Scene)> = Vec::new();
     let mut images: Vec<Rgb8> = Vec::new();
@@ -245,9 +245,9 @@ pub fn run_suite_with(
                 Some((mut report, finding)) => {
                     report.diagnosis = finding.label.iter().cloned().collect();
                     report.hidden_mistakes = finding.hidden(report.difference.verdict.passes());
-                    Status::Ok(Box::new(report))
+                    RunStatus::Ok(Box::new(report))
                 }
-                None => Status::Crashed("not checked".into()),
+                None => RunStatus::Crashed("not checked".into()),
             });
             CaseOutcome {
                 name: case.name(),
@@ -267,7 +267,7 @@ pub fn run_suite_with(
 /// What running one case gave.
 enum Ran {
     Image(Rgb8),
-    Failed(Status),
+    Failed(RunStatus),
 }
 
 /// A case whose program is running.
@@ -339,7 +339,7 @@ fn run_programs(
                 Err(e) => {
                     let index = r.index;
                     let tail = stop(&mut r);
-                    let status = Status::Crashed(format!("cannot wait for the program: {e}"));
+                    let status = RunStatus::Crashed(format!("cannot wait for the program: {e}"));
                     results[index] = Some((Ran::Failed(status), tail));
                 }
             }
@@ -353,7 +353,7 @@ fn run_programs(
         .into_iter()
         .map(|r| {
             r.unwrap_or((
-                Ran::Failed(Status::Crashed("not run".into())),
+                Ran::Failed(RunStatus::Crashed("not run".into())),
                 String::new(),
             ))
         })
@@ -425,19 +425,18 @@ fn finish(
     let hit = launch.ended(r.dir.path());
     let memory_limit = hit == Some(LimitHit::Memory);
     let ran = match (status, hit) {
-        (None, _) => Ran::Failed(Status::Timeout(timeout.as_secs())),
-        (Some(_), Some(LimitHit::WritableArea(limit))) => Ran::Failed(Status::OutputTooLarge(
+        (None, _) => Ran::Failed(RunStatus::Timeout(timeout.as_secs())),
+        (Some(_), Some(LimitHit::WritableArea(limit))) => Ran::Failed(RunStatus::OutputTooLarge(
             format!("filled its writable area ({limit})"),
         )),
-        (Some(s), _) if !s.success() && memory_limit => Ran::Failed(Status::OutOfMemory(format!(
-            "{}: killed at its memory limit",
-            describe(s)
-        ))),
+        (Some(s), _) if !s.success() && memory_limit => Ran::Failed(RunStatus::OutOfMemory(
+            format!("{}: killed at its memory limit", describe(s)),
+        )),
         (Some(s), _) if !s.success() => Ran::Failed(failure(s, &tail)),
         (Some(_), _) => match read_output(&output_path(r.dir.path())) {
             Ok(Ok(image)) => Ran::Image(image),
-            Ok(Err((width, height))) => Ran::Failed(Status::WrongSize { width, height }),
-            Err(message) => Ran::Failed(Status::NoOutput(message)),
+            Ok(Err((width, height))) => Ran::Failed(RunStatus::WrongSize { width, height }),
+            Err(message) => Ran::Failed(RunStatus::NoOutput(message)),
         },
     };
     (ran, tail)
@@ -446,18 +445,18 @@ fn finish(
 /// Why a program failed: a limit it hit, named (Java's OutOfMemoryError; a write past the file
 /// size limit, which kills with SIGXFSZ or, where the signal is ignored as the JVM does, fails
 /// with EFBIG, "File too large"), or a crash.
-fn failure(status: ExitStatus, tail: &str) -> Status {
+fn failure(status: ExitStatus, tail: &str) -> RunStatus {
     const SIGXFSZ: i32 = 25;
     #[cfg(unix)]
     let signal = std::os::unix::process::ExitStatusExt::signal(&status);
     #[cfg(not(unix))]
     let signal: Option<i32> = None;
     if tail.contains("OutOfMemoryError") {
-        Status::OutOfMemory(describe(status))
+        RunStatus::OutOfMemory(describe(status))
     } else if signal == Some(SIGXFSZ) || tail.contains("File too large") {
-        Status::OutputTooLarge(describe(status))
+        RunStatus::OutputTooLarge(describe(status))
     } else {
-        Status::Crashed(describe(status))
+        RunStatus::Crashed(describe(status))
     }
 }
 

@@ -35,7 +35,7 @@ impl StageState {
 
 /// Every stage's state, in the handout's order.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Progress {
+pub struct Stages {
     pub stages: Vec<(Stage, StageState)>,
 }
 
@@ -55,9 +55,9 @@ pub enum Evidence {
     Unexplained,
 }
 
-impl Progress {
-    pub fn of(evidence: &Evidence) -> Progress {
-        let all = |state: StageState| Progress {
+impl Stages {
+    pub fn of(evidence: &Evidence) -> Stages {
+        let all = |state: StageState| Stages {
             stages: Stage::ALL.iter().map(|&s| (s, state.clone())).collect(),
         };
         match *evidence {
@@ -68,7 +68,7 @@ impl Progress {
             }
             Evidence::Explained {
                 mistakes, number, ..
-            } => Progress {
+            } => Stages {
                 stages: Stage::ALL
                     .iter()
                     .map(|&stage| (stage, state_of(stage, mistakes, number)))
@@ -126,7 +126,7 @@ mod tests {
 
     #[test]
     fn each_stage_is_read_from_the_explanation() {
-        let p = Progress::of(&Evidence::Explained {
+        let p = Stages::of(&Evidence::Explained {
             mistakes: Mistakes::of(&[
                 Bug::ReflectUnclamped,
                 Bug::NoShadows,
@@ -142,18 +142,18 @@ mod tests {
         );
         let states: Vec<&str> = p.stages.iter().map(|(_, s)| s.name()).collect();
         assert_eq!(states, ["done", "mistaken", "missing", "missing"]);
-        let unknown = Progress::of(&Evidence::Nothing);
+        let unknown = Stages::of(&Evidence::Nothing);
         assert!(unknown
             .stages
             .iter()
             .all(|(_, s)| *s == StageState::Unknown));
-        let weak = Progress::of(&Evidence::Explained {
+        let weak = Stages::of(&Evidence::Explained {
             mistakes: Mistakes::of(&[Bug::NoAmbient]),
             number: None,
             explained: 0.03,
         });
         assert!(weak.stages.iter().all(|(_, s)| *s == StageState::Unknown));
-        let number = Progress::of(&Evidence::Explained {
+        let number = Stages::of(&Evidence::Explained {
             mistakes: Mistakes::NONE,
             number: Some(Parameter::Epsilon),
             explained: 0.99,

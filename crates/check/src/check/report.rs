@@ -3,7 +3,7 @@
 //! a caption with the case, the verdict and the top diagnosis).
 
 use crate::check::difference::pixel_difference;
-use crate::check::program::{CaseOutcome, Status, SuiteRun};
+use crate::check::program::{CaseOutcome, RunStatus, SuiteRun};
 use crate::check::student_png::Rgb8;
 use crate::check::summary::{fits, largest};
 use crate::check::{CaseReport, Findings};
@@ -117,7 +117,7 @@ pub fn failing_rows(run: &SuiteRun, shown: impl Fn(&CaseOutcome) -> bool) -> Vec
         .iter()
         .filter(|c| shown(c))
         .filter_map(|c| match &c.status {
-            Status::Ok(case) if !case.difference.verdict.passes() => {
+            RunStatus::Ok(case) if !case.difference.verdict.passes() => {
                 Some(ReportRow::of(&c.name, case, &run.findings))
             }
             _ => None,

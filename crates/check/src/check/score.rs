@@ -24,7 +24,7 @@ pub fn cost(difference: u8) -> f64 {
 }
 
 /// `explained` differing pixels as a share of `differing` (0 when nothing differs).
-pub fn share(explained: f64, differing: usize) -> f64 {
+pub fn explained_share(explained: f64, differing: usize) -> f64 {
     if differing == 0 {
         0.0
     } else {
