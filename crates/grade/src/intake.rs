@@ -170,19 +170,31 @@ fn from_zip(path: &Path) -> Result<Vec<(String, String, Holdings)>> {
     }
     let mut ignored = Vec::new();
     for (folder, entries) in folders {
-        if let Some(not) = not_files(&folder) {
-            ignored.push(not);
+        let Some((id, name, mut holdings)) = student_folder(&folder, &mut ignored) else {
             continue;
-        }
-        let (id, name) = student_of(&folder);
-        let mut holdings = Holdings {
-            folder: folder.clone(),
-            ..Holdings::default()
         };
         archive::search_zip(&mut zip, &entries, &mut holdings, false);
         students.push((id, name, holdings));
     }
     Ok(with_ignored(students, ignored))
+}
+
+/// The student a submission folder is, with nothing found yet; None (and a line in `ignored`)
+/// for a folder Moodle made for something other than files.
+fn student_folder(
+    folder: &str,
+    ignored: &mut Vec<(String, String, String)>,
+) -> Option<(String, String, Holdings)> {
+    if let Some(not) = not_files(folder) {
+        ignored.push(not);
+        return None;
+    }
+    let (id, name) = student_of(folder);
+    let holdings = Holdings {
+        folder: folder.to_string(),
+        ..Holdings::default()
+    };
+    Some((id, name, holdings))
 }
 
 /// A folder with a folder per student (links and files beside them are not students).
@@ -196,14 +208,8 @@ fn from_folders(dir: &Path) -> Result<Vec<(String, String, Holdings)>> {
             continue;
         }
         let folder = entry.file_name().to_string_lossy().into_owned();
-        if let Some(not) = not_files(&folder) {
-            ignored.push(not);
+        let Some((id, name, mut holdings)) = student_folder(&folder, &mut ignored) else {
             continue;
-        }
-        let (id, name) = student_of(&folder);
-        let mut holdings = Holdings {
-            folder: folder.clone(),
-            ..Holdings::default()
         };
         archive::search_dir(&entry.path(), &mut holdings);
         students.push((id, name, holdings));
