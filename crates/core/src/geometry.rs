@@ -41,33 +41,39 @@ pub struct Hit {
 
 /// `v` divided by its length, component by component. The course divides; glam's `normalize`
 /// multiplies by the reciprocal, which differs in the last bit and changes tick pixels.
+#[inline]
 pub fn normalise(v: DVec3) -> DVec3 {
     divide_by_length(v, v.length())
 }
 
 /// `normalise` for a vector whose length is already at hand (`length` must be `v.length()`):
 /// the same divisions, without computing the square root twice.
+#[inline]
 pub fn divide_by_length(v: DVec3, length: f64) -> DVec3 {
     DVec3::new(v.x / length, v.y / length, v.z / length)
 }
 
 impl Ray {
+    #[inline]
     pub fn new(origin: DVec3, direction: DVec3) -> Self {
         Ray { origin, direction }
     }
 
     /// The point at parameter `s`.
+    #[inline]
     pub fn at(&self, s: f64) -> DVec3 {
         self.origin + self.direction * s
     }
 
     /// A ray leaving `point` along `direction`, started `EPSILON` along it so that it does not
     /// find the surface it leaves.
+    #[inline]
     pub fn offset_from(point: DVec3, direction: DVec3) -> Self {
         Ray::offset_by(point, direction, EPSILON)
     }
 
     /// A ray leaving `point` along `direction`, started `epsilon` along it.
+    #[inline]
     pub fn offset_by(point: DVec3, direction: DVec3, epsilon: f64) -> Self {
         Ray::new(point + direction * epsilon, direction)
     }
@@ -83,6 +89,7 @@ pub struct SphereTerms {
 }
 
 impl SphereTerms {
+    #[inline]
     pub fn of(ray: &Ray) -> Self {
         let a = ray.direction.dot(ray.direction);
         SphereTerms {
@@ -113,6 +120,7 @@ fn sphere_quadratic(
 }
 
 /// The course's ray-sphere test: the near root `(-b - sqrt(disc)) / 2a`, if positive.
+#[inline]
 pub fn sphere_hit(
     ray: &Ray,
     terms: &SphereTerms,
@@ -126,6 +134,7 @@ pub fn sphere_hit(
 
 /// The far root `(-b + sqrt(disc)) / 2a`, if positive: not the course's rule, but what the
 /// handout's literal reading adds (the `sphere-far-root` mistake of docs/check.md).
+#[inline]
 pub fn sphere_far_hit(
     ray: &Ray,
     terms: &SphereTerms,
@@ -139,6 +148,7 @@ pub fn sphere_far_hit(
 
 /// The near root if positive, else the far one if positive: a sphere hit from inside counts
 /// (the later course years' rule, and the `sphere-far-root` mistake of 2016-17).
+#[inline]
 pub fn sphere_near_else_far_hit(
     ray: &Ray,
     terms: &SphereTerms,
@@ -152,12 +162,14 @@ pub fn sphere_near_else_far_hit(
 /// The parameter `s = ((Q - O).N) / (D.N)` at which `ray` meets the plane through `point`
 /// with `normal`, before any test: infinite or NaN for a ray parallel to it, negative
 /// behind it (the model decides which hits count).
+#[inline]
 pub fn plane_parameter(point: DVec3, normal: DVec3, ray: &Ray) -> f64 {
     (point - ray.origin).dot(normal) / ray.direction.dot(normal)
 }
 
 impl Shape {
     /// Unit surface normal at a point `p` on the shape.
+    #[inline]
     pub fn normal_at(&self, p: DVec3) -> DVec3 {
         match *self {
             Shape::Sphere { centre, .. } => normalise(p - centre),

@@ -157,6 +157,7 @@ impl Model for Tick {}
 
 /// The direction a ray along `d` leaves a mirror with normal `n`: `-d` reflected about `n`,
 /// `2 (n . -d) n - (-d)`, normalised as the course does.
+#[inline]
 pub fn mirror_direction(d: DVec3, n: DVec3) -> DVec3 {
     let to_eye = -d;
     normalise(n * (2.0 * n.dot(to_eye)) - to_eye)

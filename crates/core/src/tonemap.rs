@@ -36,6 +36,7 @@ const MAX_INPUT: f64 = 1e9;
 impl ToneMap {
     /// Display values in [0, 1] for linear `v` (exposure already applied). NaN counts as 0 and
     /// negative values as 0, so that no curve maps a negative input to a bright output.
+    #[inline]
     pub fn apply(self, v: DVec3) -> DVec3 {
         let bounded = bounded(v);
         match self {
@@ -59,6 +60,7 @@ impl ToneMap {
 
 /// `v` with NaN as 0 and every channel within [0, `MAX_INPUT`]: what the display operators
 /// take.
+#[inline]
 fn bounded(v: DVec3) -> DVec3 {
     DVec3::from_array(v.to_array().map(|c| {
         if c.is_nan() {
@@ -76,6 +78,7 @@ pub fn exposure_gain(ev: f64) -> f64 {
 }
 
 /// The sRGB OETF of IEC 61966-2-1 (piecewise: linear toe, then a 1/2.4 power), via palette.
+#[inline]
 pub fn srgb_oetf(t: f64) -> f64 {
     <Srgb as FromLinear<f64, f64>>::from_linear(t)
 }
@@ -83,6 +86,7 @@ pub fn srgb_oetf(t: f64) -> f64 {
 /// Linear `v` as display values in [0, 1], ready to quantise: exposure (`gain` from
 /// `exposure_gain`), the tone map, then the sRGB curve for every operator but `tick`. The one
 /// place the PNG writer and the contact sheet share.
+#[inline]
 pub fn to_display(v: DVec3, tone_map: ToneMap, gain: f64) -> [f64; 3] {
     let t = tone_map.apply(v * gain).to_array();
     if tone_map.srgb_encoded() {
