@@ -169,6 +169,8 @@ fn findings_text(findings: &Findings) -> String {
     let mut out = String::new();
     if findings.diagnosis.is_empty() {
         out += "diagnosis: no catalogued mistake reproduces the images better than the reference does\n";
+    } else if findings.settled_by_fit() {
+        // The fit above is the story; weak candidates would tell another.
     } else {
         out += &candidates_heading(findings);
         out += "\n";
@@ -255,7 +257,16 @@ fn suite_text(run: &SuiteRun, suite_dir: Option<&Path>) -> String {
         }
     }
     let passed = run.cases.iter().filter(|c| c.passed()).count();
-    out += &format!("{passed} of {} cases pass\n", run.cases.len());
+    let hiding = run
+        .cases
+        .iter()
+        .filter(|c| match &c.status {
+            RunStatus::Ok(case) => c.passed() && !case.hidden_mistakes.is_empty(),
+            _ => false,
+        })
+        .count();
+    out += &words::pass_count(passed, run.cases.len(), hiding);
+    out += "\n";
     let any_image = run
         .cases
         .iter()

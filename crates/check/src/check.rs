@@ -41,6 +41,10 @@ use whitted_core::scene::Scene;
 /// good explanation: the term and number fits run, and the report says so first.
 pub const GOOD_EXPLANATION: f64 = 0.9;
 
+/// A number fit that reproduces this share of the differing pixels is the whole story: the
+/// weak candidates are not printed.
+pub const SETTLED: f64 = 0.99;
+
 /// The share the best entries must explain for a number to be fitted on top of them too.
 const PART_EXPLAINED: f64 = 0.3;
 
@@ -65,6 +69,21 @@ impl Findings {
         self.diagnosis
             .first()
             .is_none_or(|d| d.explained < GOOD_EXPLANATION)
+    }
+
+    /// The number fit that explains the images better than any catalogued candidate, if one
+    /// does: then it is the report's story.
+    pub fn by_number(&self) -> Option<&NumberFit> {
+        let top = self.diagnosis.first();
+        self.parameters
+            .first()
+            .filter(|n| top.is_none_or(|d| n.explained > d.explained))
+    }
+
+    /// Whether a fit beyond the catalogue explains so much (`SETTLED`) that weak candidates
+    /// would only distract.
+    pub fn settled_by_fit(&self) -> bool {
+        self.weak() && self.by_number().is_some_and(|n| n.explained >= SETTLED)
     }
 
     /// Nothing found: no images, or every one identical.
@@ -93,8 +112,14 @@ pub fn find(cases: &[Case], all_pass: bool) -> Result<Findings> {
         };
         return Ok(Findings::nothing(cases.len(), evidence));
     }
-    let search = Search::run(cases)?;
-    let diagnosis = search.diagnosis(cases);
+    let mut search = Search::run(cases)?;
+    let mut diagnosis = search.diagnosis(cases);
+    if let Some(top) = diagnosis
+        .first_mut()
+        .filter(|d| d.explained >= GOOD_EXPLANATION)
+    {
+        top.image_identical_with = search.image_identical_with(cases, top.mistakes)?;
+    }
     let per_case = (0..cases.len())
         .map(|i| match diagnosis.first() {
             Some(top) => search.in_case(cases, top.mistakes, i),
@@ -121,6 +146,21 @@ pub fn find(cases: &[Case], all_pass: bool) -> Result<Findings> {
                 .map(|d| d.mistakes),
         );
         findings.parameters = numbers::fit(cases, &bases)?;
+        // When a number explains the images best, each case tells its part of that story.
+        if let Some(fit) = findings.by_number() {
+            let labels: Vec<Option<Diagnosis>> = fit
+                .per_case
+                .iter()
+                .zip(cases)
+                .map(|(d, case)| (!case.identical()).then(|| d.clone()))
+                .collect();
+            for (finding, label) in findings.per_case.iter_mut().zip(labels) {
+                *finding = CaseFinding {
+                    label,
+                    exactly: false,
+                };
+            }
+        }
     }
     findings.progress = Stages::of(&evidence(&findings, all_pass));
     Ok(findings)
@@ -129,9 +169,7 @@ pub fn find(cases: &[Case], all_pass: bool) -> Result<Findings> {
 /// The best explanation found, for the progress.
 fn evidence(findings: &Findings, all_pass: bool) -> Evidence {
     let top = findings.diagnosis.first();
-    let number = findings.parameters.first();
-    let by_number = number.filter(|n| top.is_none_or(|d| n.explained > d.explained));
-    match (top, by_number) {
+    match (top, findings.by_number()) {
         (_, Some(n)) => Evidence::Explained {
             mistakes: n.with,
             number: Some(n.parameter),

@@ -38,6 +38,7 @@ pub enum Bug {
     BouncesMinusOne,
     PlaneBehind,
     SphereFarRoot,
+    RvUnclamped,
     PlanesMissing,
     LightsMissing,
     ReflectionMissing,
@@ -78,7 +79,7 @@ impl Stage {
 
 impl Bug {
     /// Every entry, in catalogue order: the mistakes, then the unfinished stages.
-    pub const ALL: [Bug; 25] = [
+    pub const ALL: [Bug; 26] = [
         Bug::ReflectUnclamped,
         Bug::SpecularGated,
         Bug::ViewFromRayOrigin,
@@ -100,10 +101,39 @@ impl Bug {
         Bug::BouncesMinusOne,
         Bug::PlaneBehind,
         Bug::SphereFarRoot,
+        Bug::RvUnclamped,
         Bug::PlanesMissing,
         Bug::LightsMissing,
         Bug::ReflectionMissing,
         Bug::ReflectionIgnored,
+    ];
+
+    /// The mistakes in written code, the most common first: the order in which a report
+    /// names the ones an image cannot rule out. From the course's students' histories
+    /// (docs/check.md): the specular R and its gate, then the offsets, the view vector, the
+    /// specular clamp, the light's terms, reflection, and the rarer intersection rules.
+    pub const BY_COMMONNESS: [Bug; 21] = [
+        Bug::ReflectUnclamped,
+        Bug::SpecularGated,
+        Bug::NoShadowBias,
+        Bug::NoReflectionBias,
+        Bug::ViewFromRayOrigin,
+        Bug::RvUnclamped,
+        Bug::ReflectionWrongSign,
+        Bug::ReflectionUnweighted,
+        Bug::LightUnnormalised,
+        Bug::ViewFlipped,
+        Bug::SpecularObjectColour,
+        Bug::DiffuseNoColour,
+        Bug::NoFalloff,
+        Bug::NoAmbient,
+        Bug::ShadowAnyHit,
+        Bug::FirstLightOnly,
+        Bug::LastLightWins,
+        Bug::BouncesPlusOne,
+        Bug::BouncesMinusOne,
+        Bug::PlaneBehind,
+        Bug::SphereFarRoot,
     ];
 
     /// The stable id of docs/check.md.

@@ -119,6 +119,23 @@ fn sphere_quadratic(
     Some((-b, disc.sqrt()))
 }
 
+/// Both roots of the sphere quadratic, near then far, unfiltered, in the course's operation
+/// order (the same bits as [`sphere_hit`] and [`sphere_far_hit`]), or `None` when
+/// `disc < 0`: for a model that decides itself which roots count.
+#[inline]
+pub fn sphere_roots(
+    ray: &Ray,
+    terms: &SphereTerms,
+    centre: DVec3,
+    radius_squared: f64,
+) -> Option<(f64, f64)> {
+    let (minus_b, root) = sphere_quadratic(ray, terms, centre, radius_squared)?;
+    Some((
+        (minus_b - root) / terms.two_a,
+        (minus_b + root) / terms.two_a,
+    ))
+}
+
 /// The course's ray-sphere test: the near root `(-b - sqrt(disc)) / 2a`, if positive.
 #[inline]
 pub fn sphere_hit(

@@ -7,12 +7,16 @@
 //! Mistakes that are options rather than rules (one bounce more or fewer, no shadow rays)
 //! change the frame instead (`Mistakes::frame_spec`).
 
+pub mod rounding;
 pub mod search;
 
 use glam::DVec3;
 
-use crate::geometry::{divide_by_length, normalise, sphere_hit, Ray, SphereTerms, EPSILON};
+use crate::geometry::{
+    divide_by_length, normalise, plane_parameter, sphere_hit, Ray, SphereTerms, EPSILON,
+};
 use crate::scene::PointLight;
+use crate::trace::java_max_zero;
 
 /// The radiance of every ray that leaves the scene under the course's 2016-17 rules.
 pub const BACKGROUND: DVec3 = DVec3::splat(0.1);
@@ -42,6 +46,18 @@ pub trait Model: Sync {
     /// Whether a plane hit at parameter `s` counts: finite and not behind the ray.
     fn plane_accepts(&self, s: f64) -> bool {
         s.is_finite() && s >= 0.0
+    }
+
+    /// The parameter at which `ray` hits the plane through `point` with `normal`, if it
+    /// counts: `s = ((Q - O).N) / (D.N)` when [`Model::plane_accepts`] it.
+    fn plane_root(&self, ray: &Ray, point: DVec3, normal: DVec3) -> Option<f64> {
+        let s = plane_parameter(point, normal, ray);
+        self.plane_accepts(s).then_some(s)
+    }
+
+    /// `max(0, R.V)` before the specular exponent, as Java's `Math.max(0, x)` does.
+    fn clamp_r_dot_v(&self, r_dot_v: f64) -> f64 {
+        java_max_zero(r_dot_v)
     }
 
     /// The radiance of a ray that leaves the scene: 0.1 on every channel.

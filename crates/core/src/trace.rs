@@ -330,7 +330,7 @@ fn light_terms<O: Observer>(
     let reaches = model.reaches(raw_n_dot_l);
     let n_dot_l = java_max_zero(raw_n_dot_l);
     let r = model.specular_mirror(n, l, n_dot_l);
-    let r_dot_v = java_max_zero(r.dot(v));
+    let r_dot_v = model.clamp_r_dot_v(r.dot(v));
     // A light that does not reach the point adds exact zeros: no term is computed for it.
     let (diffuse, specular) = if reaches {
         let diffuse = model.diffuse(m.colour, illumination, m.kd, n_dot_l);

@@ -96,7 +96,7 @@ fn ran(run: &SuiteRun, shown: &Shown, feedback: &str) -> String {
     if !feedback.contains(&progress) {
         out += &format!("<p>{}</p>\n", escape(&progress));
     }
-    if !findings.diagnosis.is_empty() {
+    if !findings.diagnosis.is_empty() && !findings.settled_by_fit() {
         out += &format!(
             "<h2>{}</h2>\n<ol>\n",
             escape(&summary::candidates_heading(findings))

@@ -81,9 +81,49 @@ pub fn fit(text: &str, width: usize) -> String {
     }
 }
 
+/// `text` broken into lines that fit `width` pixels: at spaces where it can be, inside a word
+/// only where one word alone is wider. Nothing is cut.
+pub fn wrap(text: &str, width: usize) -> Vec<String> {
+    let max = (width / CHAR_WIDTH).max(1);
+    let mut lines = Vec::new();
+    let mut line = String::new();
+    for word in text.split(' ') {
+        let mut word: Vec<char> = word.chars().collect();
+        let used = line.chars().count();
+        if used > 0 && used + 1 + word.len() > max {
+            lines.push(std::mem::take(&mut line));
+        }
+        if !line.is_empty() {
+            line.push(' ');
+        }
+        while line.chars().count() + word.len() > max {
+            let room = max - line.chars().count();
+            line.extend(word.drain(..room));
+            lines.push(std::mem::take(&mut line));
+        }
+        line.extend(word);
+    }
+    if !line.is_empty() || lines.is_empty() {
+        lines.push(line);
+    }
+    lines
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn wrapping_keeps_every_character_and_fits_the_width() {
+        let text = "look at the exponent n in Renderer.illuminate's Math.pow(Math.max(0, R.dot(V)), n): object.getPhong_n()";
+        let width = 20 * CHAR_WIDTH;
+        let lines = wrap(text, width);
+        assert!(lines.len() > 1);
+        assert!(lines.iter().all(|l| l.chars().count() <= 20), "{lines:?}");
+        assert_eq!(lines.join(" ").replace(' ', ""), text.replace(' ', ""));
+        assert_eq!(wrap("", width), vec![String::new()]);
+        assert_eq!(wrap(&"x".repeat(45), width).len(), 3);
+    }
 
     #[test]
     fn text_sets_pixels_inside_its_box_only() {

@@ -18,8 +18,9 @@ use rayon::prelude::*;
 use crate::check::case::Case;
 use crate::check::difference::pixel_difference;
 use crate::check::score::{cost, explained_share, Scored};
-use crate::mistakes::{Bug, Mistakes, Variant};
+use crate::mistakes::{Bug, Mistakes, Number, Variant};
 use whitted_core::error::Result;
+use whitted_core::numbers::plain;
 
 /// Candidates the second stage renders whole, at most: those whose sampled cost is within
 /// `CLOSE` of the best (plus a margin for the sample's noise), where the ranking could turn.
@@ -44,6 +45,32 @@ pub struct Diagnosis {
     pub indistinguishable_from: Vec<Mistakes>,
     /// Whether the numbers were counted over whole images (else estimated from a sample).
     pub exact: bool,
+    /// A fitted number of the model that is part of this explanation (a case's label when a
+    /// number explains the images best).
+    pub number: Option<Number>,
+    /// Share of the differing pixels reproduced only as one way rounding can go (shadow
+    /// acne and self-reflections: `whitted_core::model::rounding`).
+    pub by_rounding: f64,
+    /// Entries that, added to these, render every case byte for byte the same: the images
+    /// cannot tell whether the program has them too. Most common first.
+    pub image_identical_with: Vec<Bug>,
+}
+
+impl Diagnosis {
+    /// The explanation's name: its entries, and its number as `name=value`.
+    pub fn name(&self) -> String {
+        let number = self
+            .number
+            .map(|n| format!("{}={}", n.parameter.name(), plain(n.value)));
+        let parts: Vec<String> = self
+            .mistakes
+            .ids()
+            .into_iter()
+            .map(str::to_string)
+            .chain(number)
+            .collect();
+        parts.join("+")
+    }
 }
 
 /// What the reference itself explains of `cases`: its cost, the cost of "no mistake".
@@ -206,6 +233,38 @@ impl Search {
         Ok(())
     }
 
+    /// The entries that, added to `top`, render every case byte for byte as `top` does (each
+    /// confirmed on whole images), most common first.
+    pub fn image_identical_with(&mut self, cases: &[Case], top: Mistakes) -> Result<Vec<Bug>> {
+        let Some(base) = self.get(top).cloned() else {
+            return Ok(Vec::new());
+        };
+        let base = if base.is_whole() {
+            base
+        } else {
+            base.made_whole(cases)?
+        };
+        let mut found = Vec::new();
+        for bug in Bug::BY_COMMONNESS {
+            if !top.admits(bug) {
+                continue;
+            }
+            let Some(s) = self.get_mut(top.with(bug)) else {
+                continue;
+            };
+            if !s.renders_like(&base) {
+                continue;
+            }
+            if !s.is_whole() {
+                *s = s.made_whole(cases)?;
+            }
+            if s.renders_like(&base) {
+                found.push(bug);
+            }
+        }
+        Ok(found)
+    }
+
     /// The ranked diagnosis over every case.
     pub fn diagnosis(&self, cases: &[Case]) -> Vec<Diagnosis> {
         let null: f64 = cases.iter().map(null_cost).sum();
@@ -243,6 +302,9 @@ impl Search {
             wrongly_changed_pixels: here.wrongly_changed.round() as u64,
             indistinguishable_from: Vec::new(),
             exact: here.is_whole(),
+            number: None,
+            by_rounding: explained_share(here.by_rounding, wrong),
+            image_identical_with: Vec::new(),
         };
         CaseFinding {
             exactly: here.is_whole() && here.changes_image && here.cost == 0.0 && !shows.is_empty(),
@@ -318,6 +380,9 @@ fn rank(order: Vec<&Scored>, differing: usize) -> Vec<Diagnosis> {
             wrongly_changed_pixels: s.wrongly_changed().round() as u64,
             indistinguishable_from: Vec::new(),
             exact: s.is_whole(),
+            number: None,
+            by_rounding: explained_share(s.by_rounding(), differing),
+            image_identical_with: Vec::new(),
         };
         listed.push((s, diagnosis));
     }

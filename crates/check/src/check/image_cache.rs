@@ -11,6 +11,7 @@ use std::sync::{Arc, Mutex, MutexGuard};
 use crate::check::student_png::Rgb8;
 use crate::mistakes::{Mistakes, Parameter, Variant};
 use whitted_core::error::Result;
+use whitted_core::model::rounding::SelfHit;
 
 /// What the cache may hold: about 400 images of 640x480. Past it, new images are not kept
 /// (the first students' are, and the references come first).
@@ -29,6 +30,8 @@ pub struct ImageKey {
     pub number: Option<(Parameter, u64)>,
     /// `Some(n)`: the bytes at the case's lattice of `n` pixels, not the whole image.
     pub lattice: Option<usize>,
+    /// How the program's rounding-dependent roots were taken.
+    pub self_hit: SelfHit,
 }
 
 impl ImageKey {
@@ -49,6 +52,7 @@ impl ImageKey {
                 .and_then(|v| v.number)
                 .map(|n| (n.parameter, n.value.to_bits())),
             lattice: None,
+            self_hit: variant.map_or(SelfHit::Exact, |v| v.self_hit),
         }
     }
 }

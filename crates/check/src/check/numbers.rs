@@ -8,8 +8,9 @@
 use rayon::prelude::*;
 
 use crate::check::case::Case;
+use crate::check::diagnose::Diagnosis;
 use crate::check::score::{explained_share, Scored};
-use crate::mistakes::{Mistakes, Number, Parameter, Variant};
+use crate::mistakes::{Bug, Mistakes, Number, Parameter, Variant};
 use whitted_core::error::Result;
 use whitted_core::numbers::plain;
 
@@ -32,15 +33,22 @@ pub struct NumberFit {
     /// Share of the differing pixels it reproduces within 1 LSB.
     pub explained: f64,
     pub wrongly_changed_pixels: u64,
+    /// Per case, counted whole: what the fit explains of it, as a case's label.
+    pub per_case: Vec<Diagnosis>,
 }
 
 impl NumberFit {
     /// The fit in words, for the text report.
     pub fn sentence(&self) -> String {
-        let with = if self.with.is_empty() {
-            String::new()
-        } else {
-            format!(", together with {}", self.with.name())
+        let with: Vec<String> = self
+            .with
+            .bugs()
+            .into_iter()
+            .map(|b| format!("{} ({}; fix: {})", b.id(), b.description(), b.fix()))
+            .collect();
+        let with = match with.is_empty() {
+            true => String::new(),
+            false => format!(", together with {}", with.join(" and ")),
         };
         format!(
             "{} looks like {} (the course's is {}){with}; look at {}",
@@ -56,6 +64,7 @@ fn variant(base: Mistakes, parameter: Parameter, value: f64) -> Variant {
     Variant {
         mistakes: base,
         number: Some(Number { parameter, value }),
+        ..Variant::default()
     }
 }
 
@@ -131,6 +140,33 @@ fn plainer(parameter: Parameter, x: f64) -> Vec<f64> {
     }
 }
 
+/// The best fit's number together with the one catalogue entry that lowers its cost most,
+/// if one does by more than the sample's noise: `Math.pow(RdotV, 20)` is a doubled exponent
+/// *and* an unclamped R.V, and the number alone leaves the second unsaid.
+fn with_an_entry(cases: &[Case], best: Option<&Scored>) -> Result<Option<Scored>> {
+    let Some((best, number)) = best.and_then(|b| Some((b, b.variant.number?))) else {
+        return Ok(None);
+    };
+    let base = best.variant.mistakes;
+    let candidates: Vec<Mistakes> = Bug::ALL
+        .into_iter()
+        .filter(|&b| base.admits(b))
+        .map(|b| base.with(b))
+        .collect();
+    let scored: Vec<Scored> = candidates
+        .par_iter()
+        .map(|&m| sampled(cases, m, number.parameter, number.value))
+        .collect::<Result<_>>()?;
+    let margin = PAIRED_GAIN * best.cost() + 1.0;
+    Ok(scored
+        .into_iter()
+        .filter(|s| s.cost() + margin < best.cost())
+        .min_by(|a, b| a.cost().total_cmp(&b.cost())))
+}
+
+/// The share of a fit's cost an added entry must remove to be named with it.
+const PAIRED_GAIN: f64 = 0.1;
+
 /// Every parameter fitted on top of each of `bases`; the best `LISTED` that explain the
 /// images better than `bases` do without a number, counted whole, best first.
 pub fn fit(cases: &[Case], bases: &[Mistakes]) -> Result<Vec<NumberFit>> {
@@ -157,6 +193,9 @@ pub fn fit(cases: &[Case], bases: &[Mistakes]) -> Result<Vec<NumberFit>> {
         !course && s.cost() < without
     });
     fits.sort_by(|a, b| a.cost().total_cmp(&b.cost()));
+    if let Some(paired) = with_an_entry(cases, fits.first())? {
+        fits.insert(0, paired);
+    }
     // A number on top of entries is worth saying only where it beats every number alone.
     let best_alone = fits
         .iter()
@@ -176,6 +215,25 @@ pub fn fit(cases: &[Case], bases: &[Mistakes]) -> Result<Vec<NumberFit>> {
                 with: whole.variant.mistakes,
                 explained: explained_share(whole.explained(), differing),
                 wrongly_changed_pixels: whole.wrongly_changed().round() as u64,
+                per_case: cases
+                    .iter()
+                    .zip(&whole.cases)
+                    .map(|(case, here)| {
+                        let wrong = case.wrong.len();
+                        Diagnosis {
+                            mistakes: whole.variant.mistakes,
+                            explained: explained_share(here.explained, wrong),
+                            unexplained_pixels: (wrong as f64 - here.explained).max(0.0).round()
+                                as u64,
+                            wrongly_changed_pixels: here.wrongly_changed.round() as u64,
+                            indistinguishable_from: Vec::new(),
+                            exact: true,
+                            number: Some(number),
+                            by_rounding: explained_share(here.by_rounding, wrong),
+                            image_identical_with: Vec::new(),
+                        }
+                    })
+                    .collect(),
             });
         }
     }

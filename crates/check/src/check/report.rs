@@ -7,7 +7,7 @@ use crate::check::program::{CaseOutcome, RunStatus, SuiteRun};
 use crate::check::student_png::Rgb8;
 use crate::check::summary::{fits, largest};
 use crate::check::{CaseReport, Findings};
-use whitted_io::canvas::{fit, Canvas, LINE_HEIGHT};
+use whitted_io::canvas::{wrap, Canvas, LINE_HEIGHT};
 use whitted_io::output::png::{PngImage, PngPixels};
 
 /// The colour of a pixel `d` LSB off: black when equal, blue within the tolerance, then red
@@ -135,8 +135,15 @@ pub fn contact_sheet(rows: &[ReportRow]) -> PngImage {
         .unwrap_or(TILE_WIDTH);
     let width = 3 * tile_width + 4 * GAP;
     let heading = ["your image", "reference", "difference"];
+    // Captions wrap at the sheet's width: a fix's line of code is read whole, never cut.
+    let caption = |r: &ReportRow| -> Vec<String> {
+        r.caption
+            .iter()
+            .flat_map(|text| wrap(text, width - 2 * GAP))
+            .collect()
+    };
     let row_height =
-        |r: &ReportRow| r.tiles[0].height + (r.caption.len() + 1) * LINE_HEIGHT + 2 * GAP;
+        |r: &ReportRow| r.tiles[0].height + (caption(r).len() + 1) * LINE_HEIGHT + 2 * GAP;
     let height = GAP
         + LINE_HEIGHT
         + rows
@@ -157,8 +164,8 @@ pub fn contact_sheet(rows: &[ReportRow]) -> PngImage {
             sheet.blit(GAP + i * (tile_width + GAP), y, t);
         }
         let mut line = y + row.tiles[0].height + GAP / 2;
-        for text in &row.caption {
-            sheet.text(GAP, line, &fit(text, width - 2 * GAP), [235, 235, 235]);
+        for text in caption(row) {
+            sheet.text(GAP, line, &text, [235, 235, 235]);
             line += LINE_HEIGHT;
         }
         y += row_height(row);

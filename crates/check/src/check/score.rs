@@ -10,9 +10,55 @@ use std::hash::{Hash, Hasher};
 
 use crate::check::case::Case;
 use crate::check::difference::pixel_difference;
-use crate::check::student_png::Rgb8;
 use crate::mistakes::Variant;
 use whitted_core::error::Result;
+use whitted_core::model::rounding::SelfHit;
+
+/// What a pixel costs on top when a candidate reproduces it only as one of the ways its
+/// rounding can go: a candidate that reproduces it for certain ranks first.
+const ROUNDING_MATCH: f64 = 0.05;
+
+/// A candidate's bytes at some pixels: what its own arithmetic renders, and, for a program
+/// whose pixels hinge on rounding (`whitted_core::model::rounding`), its bytes with every such
+/// root taken as a hit and as a miss.
+#[derive(Clone, Copy)]
+pub struct Rendered<'a> {
+    pub exact: &'a [u8],
+    pub either: Option<(&'a [u8], &'a [u8])>,
+}
+
+/// How a candidate's pixel compares with the student's.
+struct PixelCall {
+    cost: f64,
+    /// Within 1 LSB of the student's, its own way or one way its rounding can go.
+    reproduced: bool,
+    /// Reproduced only as one way its rounding can go.
+    by_rounding: bool,
+}
+
+impl Rendered<'_> {
+    /// Pixel `i` of these bytes against pixel `i` of `student`.
+    fn call(&self, student: &[u8], i: usize) -> PixelCall {
+        let d = pixel_difference(self.exact, student, i);
+        let certain = PixelCall {
+            cost: cost(d),
+            reproduced: d <= 1,
+            by_rounding: false,
+        };
+        let Some((hit, miss)) = self.either.filter(|_| d > 1) else {
+            return certain;
+        };
+        let either = pixel_difference(hit, student, i).min(pixel_difference(miss, student, i));
+        if either <= 1 {
+            return PixelCall {
+                cost: cost(either) + ROUNDING_MATCH,
+                reproduced: true,
+                by_rounding: true,
+            };
+        }
+        certain
+    }
+}
 
 /// A pixel's cost for a candidate `difference` LSB away from the student's pixel.
 pub fn cost(difference: u8) -> f64 {
@@ -48,6 +94,8 @@ pub struct CaseScore {
     pub explained: f64,
     /// Pixels the student got right that it changes by more than 1 LSB.
     pub wrongly_changed: f64,
+    /// Of `explained`, the pixels it reproduces only as one way its rounding can go.
+    pub by_rounding: f64,
     /// Whether it renders the case differently from the reference anywhere it was looked at.
     pub changes_image: bool,
     /// The fingerprint of what it rendered on the sample.
@@ -66,6 +114,7 @@ impl CaseScore {
             cost: 0.0,
             explained: 0.0,
             wrongly_changed: 0.0,
+            by_rounding: 0.0,
             changes_image: false,
             sample_fingerprint,
             differs_on_sample: false,
@@ -73,48 +122,46 @@ impl CaseScore {
         }
     }
 
-    /// Counts one pixel standing for `weight` pixels, which the student got wrong or not, and
-    /// which the candidate renders `d` LSB away from the student's.
-    fn tally(&mut self, weight: f64, was_wrong: bool, d: u8) {
-        self.cost += weight * cost(d);
-        match (was_wrong, d <= 1) {
-            (true, true) => self.explained += weight,
+    /// Counts one pixel standing for `weight` pixels, which the student got wrong or not, as
+    /// `call` compares the candidate's with the student's.
+    fn tally(&mut self, weight: f64, was_wrong: bool, call: PixelCall) {
+        self.cost += weight * call.cost;
+        match (was_wrong, call.reproduced) {
+            (true, true) => {
+                self.explained += weight;
+                if call.by_rounding {
+                    self.by_rounding += weight;
+                }
+            }
             (false, false) => self.wrongly_changed += weight,
             _ => {}
         }
     }
 
     /// The estimate from `bytes` rendered at `case`'s sample.
-    pub fn on_sample(case: &Case, bytes: &[u8]) -> Self {
+    pub fn on_sample(case: &Case, bytes: Rendered) -> Self {
         let sample = &case.sample;
-        let mut s = CaseScore::empty(fingerprint(bytes));
-        s.changes_image = bytes != sample.reference.as_slice();
-        s.differs_on_sample = bytes != sample.student.as_slice();
+        let mut s = CaseScore::empty(fingerprint(bytes.exact));
+        s.changes_image = bytes.exact != sample.reference.as_slice();
+        s.differs_on_sample = bytes.exact != sample.student.as_slice();
         for j in 0..sample.positions.len() {
             let (weight, was_wrong) = sample.kind(j);
-            s.tally(
-                weight,
-                was_wrong,
-                pixel_difference(bytes, &sample.student, j),
-            );
+            s.tally(weight, was_wrong, bytes.call(&sample.student, j));
         }
         s
     }
 
-    /// The counts over the whole `image`, keeping the sample's fingerprint of `estimate`.
-    pub fn on_image(case: &Case, image: &Rgb8, estimate: &CaseScore) -> Self {
+    /// The counts over the whole image `bytes`, keeping the sample's fingerprint of
+    /// `estimate`.
+    pub fn on_image(case: &Case, bytes: Rendered, estimate: &CaseScore) -> Self {
         let mut s = CaseScore::empty(estimate.sample_fingerprint);
         s.differs_on_sample = estimate.differs_on_sample;
-        s.changes_image = image.bytes != case.reference.bytes;
-        s.image_fingerprint = Some(fingerprint(&image.bytes));
+        s.changes_image = bytes.exact != case.reference.bytes.as_slice();
+        s.image_fingerprint = Some(fingerprint(bytes.exact));
         let mut wrong = case.wrong.iter().peekable();
-        for i in 0..image.bytes.len() / 3 {
+        for i in 0..bytes.exact.len() / 3 {
             let was_wrong = wrong.next_if_eq(&&i).is_some();
-            s.tally(
-                1.0,
-                was_wrong,
-                pixel_difference(&image.bytes, &case.student.bytes, i),
-            );
+            s.tally(1.0, was_wrong, bytes.call(&case.student.bytes, i));
         }
         s
     }
@@ -132,6 +179,20 @@ impl CaseScore {
     }
 }
 
+/// `variant`'s bytes with its rounding-dependent roots taken as hits and as misses, rendered
+/// by `render`, when its pixels hinge on rounding.
+fn rounding_ways(
+    variant: &Variant,
+    render: impl Fn(&Variant) -> Result<Vec<u8>>,
+) -> Result<Option<(Vec<u8>, Vec<u8>)>> {
+    if !variant.hinges_on_rounding() {
+        return Ok(None);
+    }
+    let hit = render(&variant.taking_self_hits(SelfHit::Hit))?;
+    let miss = render(&variant.taking_self_hits(SelfHit::Miss))?;
+    Ok(Some((hit, miss)))
+}
+
 /// One candidate's showing on every case.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Scored {
@@ -147,8 +208,14 @@ impl Scored {
             .iter()
             .map(|case| {
                 let frame = case.renderer.frame(variant.mistakes)?;
-                let bytes = case.renderer.sample_bytes(&variant, &frame, &case.sample)?;
-                Ok(CaseScore::on_sample(case, &bytes))
+                let sample = |v: &Variant| case.renderer.sample_bytes(v, &frame, &case.sample);
+                let exact = sample(&variant)?;
+                let either = rounding_ways(&variant, sample)?;
+                let bytes = Rendered {
+                    exact: &exact,
+                    either: either.as_ref().map(|(h, m)| (h.as_slice(), m.as_slice())),
+                };
+                Ok(CaseScore::on_sample(case, bytes))
             })
             .collect::<Result<_>>()?;
         Ok(Scored {
@@ -163,8 +230,14 @@ impl Scored {
             .iter()
             .zip(&self.cases)
             .map(|(case, estimate)| {
-                let image = case.renderer.variant_image(&self.variant)?;
-                Ok(CaseScore::on_image(case, &image, estimate))
+                let image = |v: &Variant| Ok(case.renderer.variant_image(v)?.bytes);
+                let exact = image(&self.variant)?;
+                let either = rounding_ways(&self.variant, image)?;
+                let bytes = Rendered {
+                    exact: &exact,
+                    either: either.as_ref().map(|(h, m)| (h.as_slice(), m.as_slice())),
+                };
+                Ok(CaseScore::on_image(case, bytes, estimate))
             })
             .collect::<Result<_>>()?;
         Ok(Scored {
@@ -183,6 +256,11 @@ impl Scored {
 
     pub fn wrongly_changed(&self) -> f64 {
         self.cases.iter().map(|c| c.wrongly_changed).sum()
+    }
+
+    /// Of `explained`, the pixels reproduced only as one way rounding can go.
+    pub fn by_rounding(&self) -> f64 {
+        self.cases.iter().map(|c| c.by_rounding).sum()
     }
 
     pub fn changes_any(&self) -> bool {

@@ -5,6 +5,7 @@
 use super::diagnose::Diagnosis;
 use super::difference::Difference;
 use super::{Findings, GOOD_EXPLANATION};
+use crate::mistakes::{Bug, Mistakes};
 use whitted_core::numbers::plain;
 
 /// The explanations beyond the catalogue (numbers and terms), best first, each as "what:
@@ -52,7 +53,9 @@ pub fn opening(findings: &Findings) -> Vec<String> {
 
 /// The heading of the candidate list: plain when the best is good, marked weak otherwise.
 pub fn candidates_heading(findings: &Findings) -> String {
-    if findings.weak() {
+    if findings.settled_by_fit() {
+        String::new()
+    } else if findings.weak() {
         format!(
             "weak candidates (each explains less than {}%), best first:",
             plain(100.0 * GOOD_EXPLANATION)
@@ -97,6 +100,33 @@ pub fn diagnosis_lines(d: &Diagnosis) -> Vec<String> {
             "; figures estimated from a sample of the pixels, not counted over the whole image"
         }
     ));
+    if d.by_rounding > 0.0 {
+        lines.push(format!(
+            "{}% of the differing pixels can go either way with the last bits of P and the ray: {}",
+            plain(100.0 * d.by_rounding),
+            rounding_words(d.mistakes)
+        ));
+    }
+    for (i, bug) in d.image_identical_with.iter().enumerate() {
+        if i == 0 {
+            lines.push(format!(
+                "the images cannot tell whether the program also has: {}",
+                d.image_identical_with
+                    .iter()
+                    .map(|b| b.id())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ));
+        }
+        lines.push(format!(
+            "  with {} in place, {} ({}) renders the same: if fixing it leaves a difference, look at {}: {}",
+            d.mistakes.name(),
+            bug.id(),
+            bug.description(),
+            bug.place(),
+            bug.fix()
+        ));
+    }
     if !d.indistinguishable_from.is_empty() {
         let twins: Vec<String> = d.indistinguishable_from.iter().map(|m| m.name()).collect();
         lines.push(format!(
@@ -105,4 +135,15 @@ pub fn diagnosis_lines(d: &Diagnosis) -> Vec<String> {
         ));
     }
     lines
+}
+
+/// What pixels that hinge on rounding look like, in plain words, for the entries that make them.
+fn rounding_words(mistakes: Mistakes) -> &'static str {
+    if mistakes.has(Bug::NoShadowBias) {
+        "scattered dark pixels on lit surfaces: shadow acne (each surface point shadows itself, or not, by rounding)"
+    } else if mistakes.has(Bug::NoReflectionBias) {
+        "speckles in reflections: a reflected ray that starts on its surface sees that surface again, or not, by rounding"
+    } else {
+        "an offset too small to clear rounding: surfaces shadow or reflect themselves at scattered pixels"
+    }
 }

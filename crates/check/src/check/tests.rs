@@ -215,6 +215,7 @@ fn the_model_s_numbers_are_fitted() {
         let variant = Variant {
             mistakes: Mistakes::NONE,
             number: Some(Number { parameter, value }),
+            ..Variant::default()
         };
         let image = r.variant_image(&variant).expect("image");
         let (_, findings) = check_image(&scene, "tick2.xml", bounces, 2, image).expect("check");
@@ -222,7 +223,13 @@ fn the_model_s_numbers_are_fitted() {
             .parameters
             .iter()
             .find(|p| p.parameter == parameter)
-            .unwrap_or_else(|| panic!("{parameter:?}: {:?}", findings.parameters));
+            .unwrap_or_else(|| {
+                panic!(
+                    "{parameter:?}: {:?} {:?}",
+                    findings.parameters,
+                    findings.diagnosis.first()
+                )
+            });
         assert!(
             (fit.fitted - value).abs() <= 0.1 * value,
             "{parameter:?}: {fit:?}"
@@ -314,6 +321,7 @@ fn a_scene_s_bounce_counts_rendered_together_are_each_one_s_own_render() {
                 parameter: Parameter::Reflectivity,
                 value: 0.5,
             }),
+            ..Variant::default()
         });
         let cache = ImageCache::new();
         for (n, variant) in variants.iter().enumerate() {

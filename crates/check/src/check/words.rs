@@ -61,14 +61,15 @@ pub fn case_line(case: &CaseReport) -> String {
     let shows = case.diagnosis.first().map_or(String::new(), |t| {
         format!(
             "; shows {} ({}% of this case explained)",
-            t.mistakes.name(),
+            t.name(),
             plain(100.0 * t.explained)
         )
     });
     format!(
-        "{}: {} pixels, {}{shows}",
+        "{}: {} pixels ({} by more than the tolerance), {}{shows}",
         d.verdict.name(),
         d.differing_pixels,
+        d.beyond_tolerance,
         summary::largest(d)
     )
 }
@@ -90,6 +91,18 @@ pub fn all_pass(cases: usize, hidden: Mistakes) -> String {
         false => format!(
             "passes all {cases} graded cases, but renders {}: fix it all the same",
             exactly_what(hidden)
+        ),
+    }
+}
+
+/// How many of a suite's cases pass, and how many of those passing cases render exactly what
+/// the diagnosis renders (they pass, but need the same fix).
+pub fn pass_count(passed: usize, cases: usize, hiding: usize) -> String {
+    match hiding {
+        0 => format!("{passed} of {cases} cases pass"),
+        n => format!(
+            "{passed} of {cases} cases pass ({n} of them {} exactly what the diagnosis renders: the same fix)",
+            if n == 1 { "renders" } else { "render" }
         ),
     }
 }

@@ -95,6 +95,8 @@ pub(super) fn entry(bug: Bug) -> Entry {
             Where("Plane.intersectionWith", "return new RaycastHit(this, s, ray.evaluateAt(s), normal);  // s never checked", "s = (Q - O).N / (D.N); no hit unless s >= 0: if (s < 0) return new RaycastHit();")),
         Bug::SphereFarRoot => mistake("sphere-far-root", Planes, "the sphere takes the far root when the near one is not > 0, so a ray from inside hits it",
             Where("Sphere.intersectionWith", "if (s1 > 0) return hit at s1; else return hit at s2;", "only the near root s1 = (-b - sqrt(b^2 - 4ac)) / 2a, and only when s1 > 0")),
+        Bug::RvUnclamped => mistake("rv-unclamped", Lights, "specular pow(R.V, n) without max(0, .): an even n lights the far side of each highlight, an odd n darkens it",
+            Where(ILLUMINATE, "Math.pow(R.dot(V), n)", "clamp before the power: Math.pow(Math.max(0, R.dot(V)), n)")),
         Bug::PlanesMissing => unfinished("planes-missing", Planes, "Plane.intersectionWith still returns the empty hit: no plane is ever hit (no floor, no plane shadows or reflections)",
             Where("Plane.intersectionWith", "the intersection (it returns new RaycastHit(), no hit)", "s = (Q - O).N / (D.N); a hit at ray.evaluateAt(s) with the plane's normal when s >= 0")),
         Bug::LightsMissing => unfinished("lights-missing", Lights, "Renderer.illuminate adds the ambient term only: no diffuse or specular from any light",

@@ -6,7 +6,10 @@
 use glam::DVec3;
 
 use super::{Bug, Mistakes};
-use whitted_core::geometry::{normalise, sphere_near_else_far_hit, Ray, SphereTerms, EPSILON};
+use whitted_core::geometry::{
+    normalise, plane_parameter, sphere_near_else_far_hit, sphere_roots, Ray, SphereTerms, EPSILON,
+};
+use whitted_core::model::rounding::{decide, plane_band, sphere_band, SelfHit};
 use whitted_core::model::{mirror_direction, Model, Tick};
 use whitted_core::scene::PointLight;
 
@@ -117,11 +120,18 @@ pub struct Number {
     pub value: f64,
 }
 
-/// A candidate program: the course's model with `mistakes` and perhaps one number changed.
+/// Below this EPSILON a fitted offset leaves self-roots within reach of rounding
+/// (`whitted_core::model::rounding`): its pixels hinge on the program's last bits too.
+const ROUNDING_EPSILON: f64 = 1e-8;
+
+/// A candidate program: the course's model with `mistakes` and perhaps one number changed;
+/// `self_hit` says how roots that hinge on rounding are taken (exactly as the model's own
+/// arithmetic has them, except when the diagnosis asks for both ways).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Variant {
     pub mistakes: Mistakes,
     pub number: Option<Number>,
+    pub self_hit: SelfHit,
 }
 
 impl From<Mistakes> for Variant {
@@ -129,6 +139,7 @@ impl From<Mistakes> for Variant {
         Variant {
             mistakes,
             number: None,
+            self_hit: SelfHit::Exact,
         }
     }
 }
@@ -148,7 +159,27 @@ impl Variant {
     /// Whether two variants are the same candidate (numbers compared bit for bit).
     pub fn same(&self, other: &Variant) -> bool {
         let bits = |v: &Variant| v.number.map(|n| (n.parameter, n.value.to_bits()));
-        self.mistakes == other.mistakes && bits(self) == bits(other)
+        self.mistakes == other.mistakes
+            && bits(self) == bits(other)
+            && self.self_hit == other.self_hit
+    }
+
+    /// Whether some of this program's pixels hinge on rounding: a shadow or reflected ray
+    /// that starts on its surface (no offset, or one too small to clear rounding).
+    pub fn hinges_on_rounding(&self) -> bool {
+        self.has(Bug::NoShadowBias)
+            || self.has(Bug::NoReflectionBias)
+            || self
+                .value(Parameter::Epsilon)
+                .is_some_and(|e| e < ROUNDING_EPSILON)
+    }
+
+    /// This program with its rounding-dependent roots taken `how`.
+    pub fn taking_self_hits(&self, how: SelfHit) -> Variant {
+        Variant {
+            self_hit: how,
+            ..*self
+        }
     }
 }
 
@@ -164,6 +195,20 @@ impl Model for Variant {
         centre: DVec3,
         radius_squared: f64,
     ) -> Option<f64> {
+        if self.self_hit != SelfHit::Exact {
+            let (near, far) = sphere_roots(ray, terms, centre, radius_squared)?;
+            let band = sphere_band(ray, centre, radius_squared);
+            let far = self.has(Bug::SphereFarRoot).then_some(far);
+            for s in std::iter::once(near).chain(far) {
+                match decide(self.self_hit, s, band) {
+                    Some(Some(hit)) => return Some(hit),
+                    Some(None) => {}
+                    None if s > 0.0 => return Some(s),
+                    None => {}
+                }
+            }
+            return None;
+        }
         // The handout read literally: the near root if positive, else the far one.
         if self.has(Bug::SphereFarRoot) {
             sphere_near_else_far_hit(ray, terms, centre, radius_squared)
@@ -179,6 +224,24 @@ impl Model for Variant {
             s.is_finite()
         } else {
             Tick.plane_accepts(s)
+        }
+    }
+
+    fn plane_root(&self, ray: &Ray, point: DVec3, normal: DVec3) -> Option<f64> {
+        let s = plane_parameter(point, normal, ray);
+        if !self.has(Bug::PlanesMissing) {
+            if let Some(taken) = decide(self.self_hit, s, plane_band(ray, point, normal)) {
+                return taken;
+            }
+        }
+        self.plane_accepts(s).then_some(s)
+    }
+
+    fn clamp_r_dot_v(&self, r_dot_v: f64) -> f64 {
+        if self.has(Bug::RvUnclamped) {
+            r_dot_v
+        } else {
+            Tick.clamp_r_dot_v(r_dot_v)
         }
     }
 
@@ -365,6 +428,7 @@ mod tests {
                     parameter,
                     value: parameter.course(),
                 }),
+                self_hit: SelfHit::Exact,
             };
             assert_eq!(
                 course.illumination(&light, 3.0),
@@ -385,6 +449,7 @@ mod tests {
                 parameter: Parameter::FalloffPower,
                 value: 1.0,
             }),
+            self_hit: SelfHit::Exact,
         };
         let expected = 100.0 / (std::f64::consts::PI * 4.0 * 3.0);
         assert_eq!(linear.illumination(&light, 3.0), DVec3::splat(expected));

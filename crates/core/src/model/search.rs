@@ -2,7 +2,7 @@
 //! (docs/rendering.md, Intersections) under a model's rules. The hierarchy must agree with it
 //! on every ray; the tests and the unbounded shapes use it directly.
 
-use crate::geometry::{plane_parameter, Hit, Ray, Shape, SphereTerms};
+use crate::geometry::{Hit, Ray, Shape, SphereTerms};
 use crate::model::Model;
 
 /// The parameter at which `ray` hits `shape` under `model`'s rules, or `None`.
@@ -11,10 +11,7 @@ pub fn intersect(model: &impl Model, shape: &Shape, ray: &Ray) -> Option<f64> {
         Shape::Sphere { centre, radius } => {
             model.sphere_root(ray, &SphereTerms::of(ray), centre, radius * radius)
         }
-        Shape::Plane { point, normal } => {
-            let s = plane_parameter(point, normal, ray);
-            model.plane_accepts(s).then_some(s)
-        }
+        Shape::Plane { point, normal } => model.plane_root(ray, point, normal),
     }
 }
 

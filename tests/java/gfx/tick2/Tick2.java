@@ -27,6 +27,18 @@ public final class Tick2 {
         return BUGS.contains(id);
     }
 
+    /**
+     * How this program computes the points and directions whose last bits decide shadow acne
+     * and a reflected ray's self-hit (issue 41): students compute them their own ways, and a
+     * mistake without the EPSILON offset renders differently under each. {@code -Dway=}:
+     * {@code direct} (the default: the plane's root as (Q - O).N / D.N, accepted when s >= 0,
+     * L = (X - P) / |X - P|), {@code constant} (the plane's constant d = Q.N, s = (d - O.N) / D.N,
+     * accepted when s > 0), {@code reciprocal} (L and the sphere's normal scaled by a
+     * reciprocal, P = O + s D evaluated by the shape), {@code shifted} (P = O + D s computed as
+     * D s + O, the sphere's root from the half-b form).
+     */
+    static final String WAY = System.getProperty("way", "direct");
+
     record Vec3(double x, double y, double z) {
         Vec3 add(Vec3 o) { return new Vec3(x + o.x, y + o.y, z + o.z); }
         Vec3 sub(Vec3 o) { return new Vec3(x - o.x, y - o.y, z - o.z); }
@@ -66,6 +78,12 @@ public final class Tick2 {
             double disc = b * b - 4 * a * c;
             if (disc < 0) return null;
             double near = (-b - Math.sqrt(disc)) / (2 * a);
+            if (WAY.equals("shifted")) {
+                double halfB = d.dot(oc);
+                double quarter = halfB * halfB - a * c;
+                if (quarter < 0) return null;
+                near = (-halfB - Math.sqrt(quarter)) / a;
+            }
             if (near > 0) return near;
             if (bug("sphere-far-root")) {
                 double far = (-b + Math.sqrt(disc)) / (2 * a);
@@ -74,7 +92,9 @@ public final class Tick2 {
             return null;
         }
 
-        Vec3 normalAt(Vec3 p) { return p.sub(centre).normalised(); }
+        Vec3 normalAt(Vec3 p) {
+            return WAY.equals("reciprocal") ? p.sub(centre).scale(1.0 / radius) : p.sub(centre).normalised();
+        }
     }
 
     static final class Plane extends Shape {
@@ -88,9 +108,12 @@ public final class Tick2 {
         Double intersect(Ray ray) {
             // The skeleton's TODO, left as it is: the empty hit.
             if (bug("planes-missing")) return null;
-            double s = point.sub(ray.origin()).dot(normal) / ray.direction().dot(normal);
+            double s = WAY.equals("constant")
+                    ? (point.dot(normal) - ray.origin().dot(normal)) / ray.direction().dot(normal)
+                    : point.sub(ray.origin()).dot(normal) / ray.direction().dot(normal);
             if (Double.isNaN(s) || Double.isInfinite(s)) return null;
-            if (s < 0 && !bug("plane-behind")) return null;
+            boolean behind = WAY.equals("constant") ? !(s > 0) : s < 0;
+            if (behind && !bug("plane-behind")) return null;
             return s;
         }
 
@@ -170,14 +193,16 @@ public final class Tick2 {
             Vec3 toLight = light.position().sub(p);
             double d = toLight.length();
             Vec3 intensity = light.illumination(d);
-            Vec3 l = bug("light-unnormalised") ? toLight : toLight.normalised();
+            Vec3 l = bug("light-unnormalised") ? toLight
+                    : WAY.equals("reciprocal") ? toLight.scale(1.0 / d) : toLight.normalised();
             double nDotL = n.dot(l);
             Vec3 r = bug("reflect-unclamped") ? n.scale(2 * nDotL).sub(l) : n.scale(2 * max0(nDotL)).sub(l);
             Vec3 diffuse = bug("diffuse-no-colour") ? intensity.scale(shape.kD).scale(max0(nDotL))
                     : shape.colour.mul(intensity).scale(shape.kD).scale(max0(nDotL));
             // Not in the catalogue: for the tests of the term fit.
             double exponent = bug("exponent-doubled") ? 2 * shape.n : shape.n;
-            Vec3 specular = intensity.scale(shape.kS).scale(Math.pow(max0(r.dot(v)), exponent));
+            double rDotV = bug("rv-unclamped") ? r.dot(v) : max0(r.dot(v));
+            Vec3 specular = intensity.scale(shape.kS).scale(Math.pow(rDotV, exponent));
             if (bug("specular-gated") && !(nDotL > 0)) specular = new Vec3(0, 0, 0);
             if (bug("specular-object-colour")) specular = specular.mul(shape.colour);
             boolean inShadow = false;
@@ -198,7 +223,8 @@ public final class Tick2 {
         Hit hit = closest(ray);
         if (hit == null) return BACKGROUND;
         Shape s = hit.shape();
-        Vec3 p = ray.at(hit.distance());
+        Vec3 p = WAY.equals("shifted") ? ray.direction().scale(hit.distance()).add(ray.origin())
+                : ray.at(hit.distance());
         Vec3 n = s.normalAt(p);
         Vec3 direct = illuminate(s, p, n, ray);
         // Reflection not written at all: the direct illumination as it is.

@@ -79,7 +79,8 @@ public class Renderer {
                     : C.scale(I).scale(kD).scale(Math.max(0, NdotL));
             // Not in the catalogue: for the tests of the term fit.
             double exponent = bug("exponent-doubled") ? 2 * n : n;
-            Vector3 specular = I.scale(kS).scale(Math.pow(Math.max(0, R.dot(V)), exponent));
+            double RdotV = bug("rv-unclamped") ? R.dot(V) : Math.max(0, R.dot(V));
+            Vector3 specular = I.scale(kS).scale(Math.pow(RdotV, exponent));
             if (bug("specular-gated") && !(NdotL > 0)) specular = new Vector3(0);
             if (bug("specular-object-colour")) specular = specular.scale(C);
             boolean inShadow = false;
