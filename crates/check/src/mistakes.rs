@@ -8,7 +8,7 @@
 mod catalogue;
 mod variant;
 
-pub use variant::{Number, Parameter, Variant};
+pub use variant::{Number, Parameter, Rounding, Variant};
 
 use whitted_core::frame::limits::MAX_BOUNCES;
 use whitted_core::frame::{Acceleration, FrameSpec};
@@ -324,6 +324,18 @@ mod tests {
         ids.sort_unstable();
         ids.dedup();
         assert_eq!(ids.len(), Bug::ALL.len());
+    }
+
+    #[test]
+    fn every_mistake_in_written_code_has_a_place_in_the_commonness_order() {
+        let mut order = Bug::BY_COMMONNESS.to_vec();
+        order.sort_unstable();
+        order.dedup();
+        let mistakes: Vec<Bug> = Bug::ALL
+            .into_iter()
+            .filter(|b| !b.is_unfinished())
+            .collect();
+        assert_eq!(order, mistakes);
     }
 
     #[test]

@@ -55,6 +55,12 @@ pub trait Model: Sync {
         self.plane_accepts(s).then_some(s)
     }
 
+    /// How the shadow ray towards light `_light` (its index in the scene) takes roots that
+    /// hinge on rounding (`rounding.rs`): as the model's own arithmetic has them.
+    fn self_hits_toward(&self, _light: usize) -> rounding::SelfHit {
+        rounding::SelfHit::Exact
+    }
+
     /// `max(0, R.V)` before the specular exponent, as Java's `Math.max(0, x)` does.
     fn clamp_r_dot_v(&self, r_dot_v: f64) -> f64 {
         java_max_zero(r_dot_v)

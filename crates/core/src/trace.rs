@@ -9,7 +9,8 @@ use smallvec::SmallVec;
 use observe::{FoldStep, LightRecord, Observer, Silent, VertexRecord};
 
 use crate::accel::Accelerator;
-use crate::geometry::Ray;
+use crate::geometry::{Hit, Ray};
+use crate::model::rounding::{SelfHit, TakingSelfHits};
 use crate::model::{Model, Tick};
 use crate::sample::{PrimaryHit, Sample};
 use crate::scene::{Material, PointLight, Scene};
@@ -342,16 +343,16 @@ fn light_terms<O: Observer>(
     };
     let shadow_ray = model.shadow_ray(p, l, n);
     let reach = model.shadow_reach(d);
-    let (in_shadow, occluder) = match (shadows && reaches, O::RECORDS_OCCLUDERS) {
-        (false, _) => (false, None),
-        (true, true) => {
-            // The nearest hit is before `reach` exactly when something blocks the ray.
-            let hit = accel
-                .closest_hit(model, &shadow_ray)
-                .filter(|hit| hit.distance < reach);
-            (hit.is_some(), hit)
-        }
-        (true, false) => (accel.occluded(model, &shadow_ray, reach), None),
+    let cast = shadows && reaches;
+    let (in_shadow, occluder) = match model.self_hits_toward(index) {
+        SelfHit::Exact => shadow_test::<O>(model, accel, &shadow_ray, reach, cast),
+        how => shadow_test::<O>(
+            &TakingSelfHits { model, how },
+            accel,
+            &shadow_ray,
+            reach,
+            cast,
+        ),
     };
     LightRecord {
         depth: vertex.depth,
@@ -369,6 +370,29 @@ fn light_terms<O: Observer>(
         shadow_ray: (shadows && reaches).then_some(shadow_ray),
         in_shadow,
         occluder,
+    }
+}
+
+/// Whether `shadow_ray` is blocked before `reach` (when it is `cast` at all), and by what
+/// when the observer records it.
+#[inline(always)]
+fn shadow_test<O: Observer>(
+    model: &impl Model,
+    accel: &Accelerator,
+    shadow_ray: &Ray,
+    reach: f64,
+    cast: bool,
+) -> (bool, Option<Hit>) {
+    match (cast, O::RECORDS_OCCLUDERS) {
+        (false, _) => (false, None),
+        (true, true) => {
+            // The nearest hit is before `reach` exactly when something blocks the ray.
+            let hit = accel
+                .closest_hit(model, shadow_ray)
+                .filter(|hit| hit.distance < reach);
+            (hit.is_some(), hit)
+        }
+        (true, false) => (accel.occluded(model, shadow_ray, reach), None),
     }
 }
 

@@ -30,6 +30,9 @@ const CLOSE: f64 = 2.0;
 /// Pairs extended to triples.
 const BEAM: usize = 6;
 
+/// Entries an explanation masks, listed at most.
+const MASKED_LISTED: usize = 3;
+
 /// Diagnoses listed at most.
 const LISTED: usize = 8;
 
@@ -234,7 +237,8 @@ impl Search {
     }
 
     /// The entries that, added to `top`, render every case byte for byte as `top` does (each
-    /// confirmed on whole images), most common first.
+    /// confirmed on whole images), though each alone changes some case: `top` masks them.
+    /// Most common first.
     pub fn image_identical_with(&mut self, cases: &[Case], top: Mistakes) -> Result<Vec<Bug>> {
         let Some(base) = self.get(top).cloned() else {
             return Ok(Vec::new());
@@ -246,7 +250,12 @@ impl Search {
         };
         let mut found = Vec::new();
         for bug in Bug::BY_COMMONNESS {
-            if !top.admits(bug) {
+            // An entry that changes none of these images on its own is one the cases cannot
+            // show at all (a reflection mistake at 0 bounces), not one `top` masks.
+            let visible = self
+                .get(Mistakes::of(&[bug]))
+                .is_some_and(Scored::changes_any);
+            if !top.admits(bug) || !visible || found.len() == MASKED_LISTED {
                 continue;
             }
             let Some(s) = self.get_mut(top.with(bug)) else {

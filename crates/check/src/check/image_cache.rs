@@ -9,9 +9,8 @@ use std::collections::HashMap;
 use std::sync::{Arc, Mutex, MutexGuard};
 
 use crate::check::student_png::Rgb8;
-use crate::mistakes::{Mistakes, Parameter, Variant};
+use crate::mistakes::{Mistakes, Parameter, Rounding, Variant};
 use whitted_core::error::Result;
-use whitted_core::model::rounding::SelfHit;
 
 /// What the cache may hold: about 400 images of 640x480. Past it, new images are not kept
 /// (the first students' are, and the references come first).
@@ -31,7 +30,7 @@ pub struct ImageKey {
     /// `Some(n)`: the bytes at the case's lattice of `n` pixels, not the whole image.
     pub lattice: Option<usize>,
     /// How the program's rounding-dependent roots were taken.
-    pub self_hit: SelfHit,
+    pub rounding: Rounding,
 }
 
 impl ImageKey {
@@ -52,7 +51,7 @@ impl ImageKey {
                 .and_then(|v| v.number)
                 .map(|n| (n.parameter, n.value.to_bits())),
             lattice: None,
-            self_hit: variant.map_or(SelfHit::Exact, |v| v.self_hit),
+            rounding: variant.map_or(Rounding::Exact, |v| v.rounding),
         }
     }
 }

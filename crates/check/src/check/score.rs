@@ -8,23 +8,23 @@
 use std::collections::hash_map::DefaultHasher;
 use std::hash::{Hash, Hasher};
 
-use crate::check::case::Case;
+use crate::check::case::{position, Case};
 use crate::check::difference::pixel_difference;
 use crate::mistakes::Variant;
 use whitted_core::error::Result;
-use whitted_core::model::rounding::SelfHit;
 
 /// What a pixel costs on top when a candidate reproduces it only as one of the ways its
 /// rounding can go: a candidate that reproduces it for certain ranks first.
 const ROUNDING_MATCH: f64 = 0.05;
 
 /// A candidate's bytes at some pixels: what its own arithmetic renders, and, for a program
-/// whose pixels hinge on rounding (`whitted_core::model::rounding`), its bytes with every such
-/// root taken as a hit and as a miss.
+/// whose pixels hinge on rounding (`whitted_core::model::rounding`), per pixel the smallest
+/// difference from the student's of any other way its rounding can go (`u8::MAX`: none
+/// tried, or none closer).
 #[derive(Clone, Copy)]
 pub struct Rendered<'a> {
     pub exact: &'a [u8],
-    pub either: Option<(&'a [u8], &'a [u8])>,
+    pub ways: &'a [u8],
 }
 
 /// How a candidate's pixel compares with the student's.
@@ -40,24 +40,60 @@ impl Rendered<'_> {
     /// Pixel `i` of these bytes against pixel `i` of `student`.
     fn call(&self, student: &[u8], i: usize) -> PixelCall {
         let d = pixel_difference(self.exact, student, i);
-        let certain = PixelCall {
-            cost: cost(d),
-            reproduced: d <= 1,
-            by_rounding: false,
-        };
-        let Some((hit, miss)) = self.either.filter(|_| d > 1) else {
-            return certain;
-        };
-        let either = pixel_difference(hit, student, i).min(pixel_difference(miss, student, i));
-        if either <= 1 {
+        let either = self.ways.get(i).copied().unwrap_or(u8::MAX);
+        if d <= 1 || either > 1 {
             return PixelCall {
-                cost: cost(either) + ROUNDING_MATCH,
-                reproduced: true,
-                by_rounding: true,
+                cost: cost(d),
+                reproduced: d <= 1,
+                by_rounding: false,
             };
         }
-        certain
+        PixelCall {
+            cost: cost(either) + ROUNDING_MATCH,
+            reproduced: true,
+            by_rounding: true,
+        }
     }
+}
+
+/// Per pixel of `exact` (rendered at `positions`), the smallest difference from `student` of
+/// any other way `variant`'s rounding can go in a scene of `lights` lights, rendered by
+/// `render_at` only at the pixels still not reproduced: first every root taken one way and the
+/// other, then each light's shadow rays apart (`Variant::rounding_ways`). `u8::MAX` where
+/// nothing was tried.
+fn rounding_ways(
+    variant: &Variant,
+    lights: usize,
+    (exact, student, positions): (&[u8], &[u8], &[(u32, u32)]),
+    render_at: impl Fn(&Variant, &[(u32, u32)]) -> Result<Vec<u8>>,
+) -> Result<Vec<u8>> {
+    let n = exact.len() / 3;
+    let mut best = vec![u8::MAX; n];
+    if !variant.hinges_on_rounding() {
+        return Ok(best);
+    }
+    let mut open: Vec<usize> = (0..n)
+        .filter(|&i| pixel_difference(exact, student, i) > 1)
+        .collect();
+    let ways = variant.rounding_ways(lights);
+    for group in [&ways[..2], &ways[2..]] {
+        if open.is_empty() {
+            break;
+        }
+        let at: Vec<(u32, u32)> = open.iter().map(|&i| positions[i]).collect();
+        for &way in group {
+            let bytes = render_at(&variant.rounded(way), &at)?;
+            for (k, &i) in open.iter().enumerate() {
+                let d = (0..3)
+                    .map(|c| bytes[3 * k + c].abs_diff(student[3 * i + c]))
+                    .max()
+                    .unwrap_or(0);
+                best[i] = best[i].min(d);
+            }
+        }
+        open.retain(|&i| best[i] > 1);
+    }
+    Ok(best)
 }
 
 /// A pixel's cost for a candidate `difference` LSB away from the student's pixel.
@@ -179,20 +215,6 @@ impl CaseScore {
     }
 }
 
-/// `variant`'s bytes with its rounding-dependent roots taken as hits and as misses, rendered
-/// by `render`, when its pixels hinge on rounding.
-fn rounding_ways(
-    variant: &Variant,
-    render: impl Fn(&Variant) -> Result<Vec<u8>>,
-) -> Result<Option<(Vec<u8>, Vec<u8>)>> {
-    if !variant.hinges_on_rounding() {
-        return Ok(None);
-    }
-    let hit = render(&variant.taking_self_hits(SelfHit::Hit))?;
-    let miss = render(&variant.taking_self_hits(SelfHit::Miss))?;
-    Ok(Some((hit, miss)))
-}
-
 /// One candidate's showing on every case.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Scored {
@@ -210,10 +232,19 @@ impl Scored {
                 let frame = case.renderer.frame(variant.mistakes)?;
                 let sample = |v: &Variant| case.renderer.sample_bytes(v, &frame, &case.sample);
                 let exact = sample(&variant)?;
-                let either = rounding_ways(&variant, sample)?;
+                let lights = case.renderer.scene.lights.len();
+                let looked = (
+                    exact.as_slice(),
+                    case.sample.student.as_slice(),
+                    &case.sample.positions[..],
+                );
+                let ways = rounding_ways(&variant, lights, looked, |v, at| {
+                    case.renderer
+                        .bytes_at(v, &case.renderer.frame(v.mistakes)?, at)
+                })?;
                 let bytes = Rendered {
                     exact: &exact,
-                    either: either.as_ref().map(|(h, m)| (h.as_slice(), m.as_slice())),
+                    ways: &ways,
                 };
                 Ok(CaseScore::on_sample(case, bytes))
             })
@@ -230,12 +261,22 @@ impl Scored {
             .iter()
             .zip(&self.cases)
             .map(|(case, estimate)| {
-                let image = |v: &Variant| Ok(case.renderer.variant_image(v)?.bytes);
-                let exact = image(&self.variant)?;
-                let either = rounding_ways(&self.variant, image)?;
+                let exact = case.renderer.variant_image(&self.variant)?.bytes;
+                let lights = case.renderer.scene.lights.len();
+                let width = case.student.width;
+                let every: Vec<(u32, u32)> = if self.variant.hinges_on_rounding() {
+                    (0..exact.len() / 3).map(|i| position(width, i)).collect()
+                } else {
+                    Vec::new()
+                };
+                let looked = (exact.as_slice(), case.student.bytes.as_slice(), &every[..]);
+                let ways = rounding_ways(&self.variant, lights, looked, |v, at| {
+                    case.renderer
+                        .bytes_at(v, &case.renderer.frame(v.mistakes)?, at)
+                })?;
                 let bytes = Rendered {
                     exact: &exact,
-                    either: either.as_ref().map(|(h, m)| (h.as_slice(), m.as_slice())),
+                    ways: &ways,
                 };
                 Ok(CaseScore::on_image(case, bytes, estimate))
             })

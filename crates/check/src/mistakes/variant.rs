@@ -124,14 +124,46 @@ pub struct Number {
 /// (`whitted_core::model::rounding`): its pixels hinge on the program's last bits too.
 const ROUNDING_EPSILON: f64 = 1e-8;
 
+/// Lights whose shadow rays' rounding is tried one at a time (each light two renders).
+const MAX_LIGHTS_APART: usize = 4;
+
+/// How a candidate takes the roots that hinge on rounding (`whitted_core::model::rounding`):
+/// the ways a student's program can go where the model's own arithmetic goes one way.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, PartialOrd, Ord)]
+pub enum Rounding {
+    /// As the model's own arithmetic has them.
+    #[default]
+    Exact,
+    /// Every ray takes them `SelfHit::Hit` or `SelfHit::Miss`.
+    All(SelfHit),
+    /// The shadow rays towards light `light` take them `how`, every other ray the other way:
+    /// a pixel lit by two lights can self-shadow towards one of them only.
+    OneLight { light: u8, how: SelfHit },
+}
+
+impl Rounding {
+    /// How every ray but the one light's shadow rays takes them.
+    fn elsewhere(self) -> SelfHit {
+        match self {
+            Rounding::Exact => SelfHit::Exact,
+            Rounding::All(how) => how,
+            Rounding::OneLight { how, .. } => match how {
+                SelfHit::Hit => SelfHit::Miss,
+                SelfHit::Miss => SelfHit::Hit,
+                SelfHit::Exact => SelfHit::Exact,
+            },
+        }
+    }
+}
+
 /// A candidate program: the course's model with `mistakes` and perhaps one number changed;
-/// `self_hit` says how roots that hinge on rounding are taken (exactly as the model's own
-/// arithmetic has them, except when the diagnosis asks for both ways).
+/// `rounding` says how roots that hinge on rounding are taken (exactly as the model's own
+/// arithmetic has them, except when the diagnosis asks for the other ways).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Variant {
     pub mistakes: Mistakes,
     pub number: Option<Number>,
-    pub self_hit: SelfHit,
+    pub rounding: Rounding,
 }
 
 impl From<Mistakes> for Variant {
@@ -139,7 +171,7 @@ impl From<Mistakes> for Variant {
         Variant {
             mistakes,
             number: None,
-            self_hit: SelfHit::Exact,
+            rounding: Rounding::Exact,
         }
     }
 }
@@ -161,7 +193,7 @@ impl Variant {
         let bits = |v: &Variant| v.number.map(|n| (n.parameter, n.value.to_bits()));
         self.mistakes == other.mistakes
             && bits(self) == bits(other)
-            && self.self_hit == other.self_hit
+            && self.rounding == other.rounding
     }
 
     /// Whether some of this program's pixels hinge on rounding: a shadow or reflected ray
@@ -174,12 +206,29 @@ impl Variant {
                 .is_some_and(|e| e < ROUNDING_EPSILON)
     }
 
-    /// This program with its rounding-dependent roots taken `how`.
-    pub fn taking_self_hits(&self, how: SelfHit) -> Variant {
-        Variant {
-            self_hit: how,
-            ..*self
+    /// This program with its rounding-dependent roots taken as `rounding` says.
+    pub fn rounded(&self, rounding: Rounding) -> Variant {
+        Variant { rounding, ..*self }
+    }
+
+    /// The ways this program's rounding can go besides its own arithmetic, for a scene with
+    /// `lights` lights: every such root a hit, none, and (where shadow rays start on their
+    /// surface and two or more lights could each go their own way) each light's shadow rays
+    /// one way and every other ray the other. With three lights that is every combination.
+    pub fn rounding_ways(&self, lights: usize) -> Vec<Rounding> {
+        let mut ways = vec![Rounding::All(SelfHit::Hit), Rounding::All(SelfHit::Miss)];
+        let shadows_hinge = self.has(Bug::NoShadowBias)
+            || self
+                .value(Parameter::Epsilon)
+                .is_some_and(|e| e < ROUNDING_EPSILON);
+        if shadows_hinge && lights >= 2 {
+            for light in 0..lights.min(MAX_LIGHTS_APART) as u8 {
+                for how in [SelfHit::Hit, SelfHit::Miss] {
+                    ways.push(Rounding::OneLight { light, how });
+                }
+            }
         }
+        ways
     }
 }
 
@@ -195,12 +244,12 @@ impl Model for Variant {
         centre: DVec3,
         radius_squared: f64,
     ) -> Option<f64> {
-        if self.self_hit != SelfHit::Exact {
+        if self.rounding.elsewhere() != SelfHit::Exact {
             let (near, far) = sphere_roots(ray, terms, centre, radius_squared)?;
             let band = sphere_band(ray, centre, radius_squared);
             let far = self.has(Bug::SphereFarRoot).then_some(far);
             for s in std::iter::once(near).chain(far) {
-                match decide(self.self_hit, s, band) {
+                match decide(self.rounding.elsewhere(), s, band) {
                     Some(Some(hit)) => return Some(hit),
                     Some(None) => {}
                     None if s > 0.0 => return Some(s),
@@ -230,11 +279,19 @@ impl Model for Variant {
     fn plane_root(&self, ray: &Ray, point: DVec3, normal: DVec3) -> Option<f64> {
         let s = plane_parameter(point, normal, ray);
         if !self.has(Bug::PlanesMissing) {
-            if let Some(taken) = decide(self.self_hit, s, plane_band(ray, point, normal)) {
+            let how = self.rounding.elsewhere();
+            if let Some(taken) = decide(how, s, plane_band(ray, point, normal)) {
                 return taken;
             }
         }
         self.plane_accepts(s).then_some(s)
+    }
+
+    fn self_hits_toward(&self, light: usize) -> SelfHit {
+        match self.rounding {
+            Rounding::OneLight { light: one, how } if usize::from(one) == light => how,
+            _ => SelfHit::Exact,
+        }
     }
 
     fn clamp_r_dot_v(&self, r_dot_v: f64) -> f64 {
@@ -428,7 +485,7 @@ mod tests {
                     parameter,
                     value: parameter.course(),
                 }),
-                self_hit: SelfHit::Exact,
+                rounding: Rounding::Exact,
             };
             assert_eq!(
                 course.illumination(&light, 3.0),
@@ -449,7 +506,7 @@ mod tests {
                 parameter: Parameter::FalloffPower,
                 value: 1.0,
             }),
-            self_hit: SelfHit::Exact,
+            rounding: Rounding::Exact,
         };
         let expected = 100.0 / (std::f64::consts::PI * 4.0 * 3.0);
         assert_eq!(linear.illumination(&light, 3.0), DVec3::splat(expected));

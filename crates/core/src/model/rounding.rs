@@ -21,7 +21,8 @@
 
 use glam::DVec3;
 
-use crate::geometry::Ray;
+use crate::geometry::{plane_parameter, sphere_roots, Ray, SphereTerms};
+use crate::model::Model;
 
 /// How many units of roundoff (2^-53 each) of the scene's coordinates a surface point and
 /// its self-root may be off by, whichever way a program computes them.
@@ -46,7 +47,7 @@ pub fn decide(how: SelfHit, s: f64, band: f64) -> Option<Option<f64>> {
     if how == SelfHit::Exact || !within {
         return None;
     }
-    Some((how == SelfHit::Hit).then(|| s.abs().max(f64::MIN_POSITIVE)))
+    Some((how == SelfHit::Hit).then(|| s.abs().max(TINY)))
 }
 
 /// The band around zero of a root of `ray` on the sphere (`centre`, `radius_squared`): how far
@@ -74,6 +75,60 @@ fn band(scale: f64, across: f64) -> f64 {
         0.0
     } else {
         b
+    }
+}
+
+/// `model` with the roots within the band taken `how` (for one light's shadow rays: a pixel
+/// lit by two lights can self-shadow towards one and not the other). Only the hit search is
+/// changed; the search asks nothing else of a model.
+pub struct TakingSelfHits<'a, M> {
+    pub model: &'a M,
+    pub how: SelfHit,
+}
+
+/// The distance of a self-hit taken as a hit: tiny, positive, nearer than anything else.
+const TINY: f64 = f64::MIN_POSITIVE;
+
+impl<M: Model> Model for TakingSelfHits<'_, M> {
+    fn hierarchy_exact(&self) -> bool {
+        self.model.hierarchy_exact()
+    }
+
+    fn sphere_root(
+        &self,
+        ray: &Ray,
+        terms: &SphereTerms,
+        centre: DVec3,
+        radius_squared: f64,
+    ) -> Option<f64> {
+        let exact = self.model.sphere_root(ray, terms, centre, radius_squared);
+        let band = sphere_band(ray, centre, radius_squared);
+        let within = |s: f64| s.abs() <= band;
+        match self.how {
+            SelfHit::Exact => exact,
+            SelfHit::Hit => {
+                let near = sphere_roots(ray, terms, centre, radius_squared).map(|(n, _)| n);
+                if near.is_some_and(within) || exact.is_some_and(within) {
+                    Some(TINY)
+                } else {
+                    exact
+                }
+            }
+            SelfHit::Miss => exact.filter(|&s| !within(s)),
+        }
+    }
+
+    fn plane_root(&self, ray: &Ray, point: DVec3, normal: DVec3) -> Option<f64> {
+        let exact = self.model.plane_root(ray, point, normal);
+        let s = plane_parameter(point, normal, ray);
+        // A model that never hits a plane (one not written yet) does not start to.
+        let hits_planes = self.model.plane_accepts(TINY);
+        match decide(self.how, s, plane_band(ray, point, normal)) {
+            Some(Some(hit)) if hits_planes => Some(hit),
+            Some(Some(_)) => exact,
+            Some(None) => None,
+            None => exact,
+        }
     }
 }
 
