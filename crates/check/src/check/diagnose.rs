@@ -27,6 +27,9 @@ use whitted_core::numbers::plain;
 pub const FINALISTS: usize = 4;
 const CLOSE: f64 = 2.0;
 
+/// Candidates that hinge on rounding scored every way it can go, per stage of the search.
+const ROUNDED: usize = 3;
+
 /// Pairs extended to triples.
 const BEAM: usize = 6;
 
@@ -93,6 +96,8 @@ pub fn null_cost(case: &Case) -> f64 {
 /// Every candidate scored on the samples, the finalists on whole images, in no set order.
 pub struct Search {
     scored: Vec<Scored>,
+    /// The candidates scored every way their rounding can go.
+    rounded: Vec<Mistakes>,
 }
 
 /// Scores `list` on the samples, on every core.
@@ -119,13 +124,38 @@ impl Search {
     pub fn run(cases: &[Case]) -> Result<Self> {
         let mut search = Search {
             scored: score_all(cases, &singles_and_pairs())?,
+            rounded: Vec::new(),
         };
+        search.every_way(cases)?;
         if !search.exactly_explained(cases)? {
             let triples = search.triples();
             search.scored.extend(score_all(cases, &triples)?);
+            search.every_way(cases)?;
         }
         search.finalise(cases)?;
         Ok(search)
+    }
+
+    /// Scores again, every way its rounding can go, the best `ROUNDED` candidates that hinge
+    /// on rounding and were scored their own way only.
+    fn every_way(&mut self, cases: &[Case]) -> Result<()> {
+        let mut hinging: Vec<usize> = (0..self.scored.len())
+            .filter(|&i| {
+                let s = &self.scored[i];
+                s.variant.hinges_on_rounding() && !self.rounded.contains(&s.variant.mistakes)
+            })
+            .collect();
+        hinging.sort_by(|&a, &b| self.scored[a].cost().total_cmp(&self.scored[b].cost()));
+        hinging.truncate(ROUNDED);
+        let again: Vec<Scored> = hinging
+            .par_iter()
+            .map(|&i| Scored::on_samples_every_way(cases, self.scored[i].variant))
+            .collect::<Result<_>>()?;
+        for (i, s) in hinging.into_iter().zip(again) {
+            self.rounded.push(s.variant.mistakes);
+            self.scored[i] = s;
+        }
+        Ok(())
     }
 
     /// Whether the best candidate so far reproduces every case exactly (it is then made

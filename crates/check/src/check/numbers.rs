@@ -147,6 +147,11 @@ fn with_an_entry(cases: &[Case], best: Option<&Scored>) -> Result<Option<Scored>
     let Some((best, number)) = best.and_then(|b| Some((b, b.variant.number?))) else {
         return Ok(None);
     };
+    // A fit that reproduces every sampled differing pixel leaves nothing for an entry to add.
+    let differing: f64 = cases.iter().map(|c| c.wrong.len() as f64).sum();
+    if best.explained() >= differing {
+        return Ok(None);
+    }
     let base = best.variant.mistakes;
     let candidates: Vec<Mistakes> = Bug::ALL
         .into_iter()

@@ -10,7 +10,7 @@ use std::hash::{Hash, Hasher};
 
 use crate::check::case::{position, Case};
 use crate::check::difference::pixel_difference;
-use crate::mistakes::Variant;
+use crate::mistakes::{Rounding, Variant};
 use whitted_core::error::Result;
 
 /// What a pixel costs on top when a candidate reproduces it only as one of the ways its
@@ -76,20 +76,36 @@ fn rounding_ways(
         .filter(|&i| pixel_difference(exact, student, i) > 1)
         .collect();
     let ways = variant.rounding_ways(lights);
-    for group in [&ways[..2], &ways[2..]] {
+    let render = |way: Rounding, open: &[usize]| -> Result<Vec<u8>> {
+        let at: Vec<(u32, u32)> = open.iter().map(|&i| positions[i]).collect();
+        render_at(&variant.rounded(way), &at)
+    };
+    // Channel difference of rendered pixel k (of `open`) and the student's pixel i.
+    let apart = |bytes: &[u8], k: usize, i: usize| {
+        (0..3)
+            .map(|c| bytes[3 * k + c].abs_diff(student[3 * i + c]))
+            .max()
+            .unwrap_or(0)
+    };
+    // Every root one way, then the other.
+    let (hit, miss) = (render(ways[0], &open)?, render(ways[1], &open)?);
+    let mut uncertain = Vec::new();
+    for (k, &i) in open.iter().enumerate() {
+        best[i] = apart(&hit, k, i).min(apart(&miss, k, i));
+        if best[i] > 1 && hit[3 * k..3 * k + 3] != miss[3 * k..3 * k + 3] {
+            uncertain.push(i);
+        }
+    }
+    // Each light apart, only where the two differ: a pixel both ways render alike does not
+    // hinge on rounding at all.
+    open = uncertain;
+    for &way in &ways[2..] {
         if open.is_empty() {
             break;
         }
-        let at: Vec<(u32, u32)> = open.iter().map(|&i| positions[i]).collect();
-        for &way in group {
-            let bytes = render_at(&variant.rounded(way), &at)?;
-            for (k, &i) in open.iter().enumerate() {
-                let d = (0..3)
-                    .map(|c| bytes[3 * k + c].abs_diff(student[3 * i + c]))
-                    .max()
-                    .unwrap_or(0);
-                best[i] = best[i].min(d);
-            }
+        let bytes = render(way, &open)?;
+        for (k, &i) in open.iter().enumerate() {
+            best[i] = best[i].min(apart(&bytes, k, i));
         }
         open.retain(|&i| best[i] > 1);
     }
@@ -226,6 +242,17 @@ pub struct Scored {
 impl Scored {
     /// Scores `variant` on every case's sample.
     pub fn on_samples(cases: &[Case], variant: Variant) -> Result<Self> {
+        Self::sampled(cases, variant, false)
+    }
+
+    /// Scores `variant` on every case's sample, each way its rounding can go counted too
+    /// (the search does so for its best candidates that hinge on rounding: the other ways
+    /// cost renders, and only a candidate near the top can use them).
+    pub fn on_samples_every_way(cases: &[Case], variant: Variant) -> Result<Self> {
+        Self::sampled(cases, variant, true)
+    }
+
+    fn sampled(cases: &[Case], variant: Variant, every_way: bool) -> Result<Self> {
         let scores = cases
             .iter()
             .map(|case| {
@@ -238,10 +265,13 @@ impl Scored {
                     case.sample.student.as_slice(),
                     &case.sample.positions[..],
                 );
-                let ways = rounding_ways(&variant, lights, looked, |v, at| {
-                    case.renderer
-                        .bytes_at(v, &case.renderer.frame(v.mistakes)?, at)
-                })?;
+                let ways = match every_way {
+                    true => rounding_ways(&variant, lights, looked, |v, at| {
+                        case.renderer
+                            .bytes_at(v, &case.renderer.frame(v.mistakes)?, at)
+                    })?,
+                    false => Vec::new(),
+                };
                 let bytes = Rendered {
                     exact: &exact,
                     ways: &ways,
