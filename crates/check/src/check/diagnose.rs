@@ -137,7 +137,8 @@ impl Search {
     }
 
     /// Scores again, every way its rounding can go, the best `ROUNDED` candidates that hinge
-    /// on rounding and were scored their own way only.
+    /// on rounding and were scored their own way only. Not only those near the top: a
+    /// program's acne can be far from what the model's own arithmetic renders.
     fn every_way(&mut self, cases: &[Case]) -> Result<()> {
         let mut hinging: Vec<usize> = (0..self.scored.len())
             .filter(|&i| {

@@ -140,8 +140,8 @@ fn plainer(parameter: Parameter, x: f64) -> Vec<f64> {
     }
 }
 
-/// The best fit's number together with the one catalogue entry that lowers its cost most,
-/// if one does by more than the sample's noise: `Math.pow(RdotV, 20)` is a doubled exponent
+/// The best fit's number together with the one catalogue entry of its stage that lowers its
+/// cost most, if one does by more than the sample's noise: `Math.pow(RdotV, 20)` is a doubled exponent
 /// *and* an unclamped R.V, and the number alone leaves the second unsaid.
 fn with_an_entry(cases: &[Case], best: Option<&Scored>) -> Result<Option<Scored>> {
     let Some((best, number)) = best.and_then(|b| Some((b, b.variant.number?))) else {
@@ -153,9 +153,10 @@ fn with_an_entry(cases: &[Case], best: Option<&Scored>) -> Result<Option<Scored>
         return Ok(None);
     }
     let base = best.variant.mistakes;
+    // An entry of the number's own stage: what a student wrote in the same lines.
     let candidates: Vec<Mistakes> = Bug::ALL
         .into_iter()
-        .filter(|&b| base.admits(b))
+        .filter(|&b| base.admits(b) && !b.is_unfinished() && b.stage() == number.parameter.stage())
         .map(|b| base.with(b))
         .collect();
     let scored: Vec<Scored> = candidates
