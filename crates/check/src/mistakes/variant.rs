@@ -206,6 +206,32 @@ impl Variant {
                 .is_some_and(|e| e < ROUNDING_EPSILON)
     }
 
+    /// The sphere's root when roots within the band are taken `how` (kept out of line: the
+    /// search's hot path is the model's own arithmetic).
+    #[cold]
+    #[inline(never)]
+    fn sphere_root_rounded(
+        &self,
+        how: SelfHit,
+        ray: &Ray,
+        terms: &SphereTerms,
+        centre: DVec3,
+        radius_squared: f64,
+    ) -> Option<f64> {
+        let (near, far) = sphere_roots(ray, terms, centre, radius_squared)?;
+        let band = sphere_band(ray, centre, radius_squared);
+        let far = self.has(Bug::SphereFarRoot).then_some(far);
+        for s in std::iter::once(near).chain(far) {
+            match decide(how, s, band) {
+                Some(Some(hit)) => return Some(hit),
+                Some(None) => {}
+                None if s > 0.0 => return Some(s),
+                None => {}
+            }
+        }
+        None
+    }
+
     /// This program with its rounding-dependent roots taken as `rounding` says.
     pub fn rounded(&self, rounding: Rounding) -> Variant {
         Variant { rounding, ..*self }
@@ -244,19 +270,9 @@ impl Model for Variant {
         centre: DVec3,
         radius_squared: f64,
     ) -> Option<f64> {
-        if self.rounding.elsewhere() != SelfHit::Exact {
-            let (near, far) = sphere_roots(ray, terms, centre, radius_squared)?;
-            let band = sphere_band(ray, centre, radius_squared);
-            let far = self.has(Bug::SphereFarRoot).then_some(far);
-            for s in std::iter::once(near).chain(far) {
-                match decide(self.rounding.elsewhere(), s, band) {
-                    Some(Some(hit)) => return Some(hit),
-                    Some(None) => {}
-                    None if s > 0.0 => return Some(s),
-                    None => {}
-                }
-            }
-            return None;
+        let how = self.rounding.elsewhere();
+        if how != SelfHit::Exact {
+            return self.sphere_root_rounded(how, ray, terms, centre, radius_squared);
         }
         // The handout read literally: the near root if positive, else the far one.
         if self.has(Bug::SphereFarRoot) {
@@ -278,8 +294,9 @@ impl Model for Variant {
 
     fn plane_root(&self, ray: &Ray, point: DVec3, normal: DVec3) -> Option<f64> {
         let s = plane_parameter(point, normal, ray);
-        if !self.has(Bug::PlanesMissing) {
-            let how = self.rounding.elsewhere();
+        let how = self.rounding.elsewhere();
+        // The band costs two square roots: only a candidate rendered another way needs it.
+        if how != SelfHit::Exact && !self.has(Bug::PlanesMissing) {
             if let Some(taken) = decide(how, s, plane_band(ray, point, normal)) {
                 return taken;
             }
