@@ -66,24 +66,19 @@ pub struct Findings {
 impl Findings {
     /// Whether no catalogued candidate explains `GOOD_EXPLANATION` of the differing pixels.
     pub fn weak(&self) -> bool {
-        self.diagnosis
-            .first()
-            .is_none_or(|d| d.explained < GOOD_EXPLANATION)
+        weak(&self.diagnosis)
     }
 
     /// The number fit that explains the images better than any catalogued candidate, if one
     /// does: then it is the report's story.
     pub fn by_number(&self) -> Option<&NumberFit> {
-        let top = self.diagnosis.first();
-        self.parameters
-            .first()
-            .filter(|n| top.is_none_or(|d| n.explained > d.explained))
+        by_number(&self.diagnosis, &self.parameters)
     }
 
     /// Whether a fit beyond the catalogue explains so much (`SETTLED`) that weak candidates
     /// would only distract.
     pub fn settled_by_fit(&self) -> bool {
-        self.weak() && self.by_number().is_some_and(|n| n.explained >= SETTLED)
+        settled(&self.diagnosis, &self.parameters)
     }
 
     /// Nothing found: no images, or every one identical.
@@ -113,6 +108,20 @@ pub fn find(cases: &[Case], all_pass: bool) -> Result<Findings> {
         return Ok(Findings::nothing(cases.len(), evidence));
     }
     let mut search = Search::run(cases)?;
+    // A number fit that settles the story (`SETTLED`) hides every weak candidate, so their
+    // whole renders are skipped; it is tried first where the sample already says the
+    // catalogue is weak. Otherwise the findings are what finalising first and fitting
+    // after gives: the fit is kept only where the whole renders say weak too, and done
+    // again if they change its bases.
+    let mut fitted = None;
+    if weak(&search.diagnosis(cases)) {
+        let fit = Fitted::on(cases, &search.diagnosis(cases))?;
+        if fit.settles(&search.diagnosis(cases)) {
+            return Ok(fit.findings(cases, search.diagnosis(cases), all_pass));
+        }
+        fitted = Some(fit);
+    }
+    search.finalise(cases)?;
     let mut diagnosis = search.diagnosis(cases);
     if let Some(top) = diagnosis
         .first_mut()
@@ -134,19 +143,92 @@ pub fn find(cases: &[Case], all_pass: bool) -> Result<Findings> {
         progress: Stages::of(&Evidence::Nothing),
     };
     if findings.weak() {
-        findings.terms = fit_terms(cases)?;
-        // A number on top of the best entries too, where they explain a good part: a
-        // half-written program with one wrong number.
+        let fit = match fitted {
+            Some(fit) if fit.bases == Fitted::bases(&findings.diagnosis) => fit,
+            _ => Fitted::on(cases, &findings.diagnosis)?,
+        };
+        fit.tell(&mut findings, cases);
+    }
+    findings.progress = Stages::of(&evidence(&findings, all_pass));
+    Ok(findings)
+}
+
+/// Whether no catalogued candidate in `diagnosis` explains `GOOD_EXPLANATION`.
+fn weak(diagnosis: &[Diagnosis]) -> bool {
+    diagnosis
+        .first()
+        .is_none_or(|d| d.explained < GOOD_EXPLANATION)
+}
+
+/// The best number fit, where it explains more than the best catalogued candidate.
+fn by_number<'a>(diagnosis: &[Diagnosis], parameters: &'a [NumberFit]) -> Option<&'a NumberFit> {
+    let top = diagnosis.first();
+    parameters
+        .first()
+        .filter(|n| top.is_none_or(|d| n.explained > d.explained))
+}
+
+/// Whether the catalogue is weak and a number fit explains `SETTLED`.
+fn settled(diagnosis: &[Diagnosis], parameters: &[NumberFit]) -> bool {
+    weak(diagnosis) && by_number(diagnosis, parameters).is_some_and(|n| n.explained >= SETTLED)
+}
+
+/// What is fitted beyond the catalogue where it explains too little: the model's terms, and
+/// its numbers alone and on top of the best entries.
+struct Fitted {
+    bases: Vec<Mistakes>,
+    terms: Vec<TermFit>,
+    parameters: Vec<NumberFit>,
+}
+
+impl Fitted {
+    /// No entries, and the best entries where they explain a good part: a half-written
+    /// program with one wrong number.
+    fn bases(diagnosis: &[Diagnosis]) -> Vec<Mistakes> {
         let mut bases = vec![Mistakes::NONE];
         bases.extend(
-            findings
-                .diagnosis
+            diagnosis
                 .first()
                 .filter(|d| d.explained >= PART_EXPLAINED)
                 .map(|d| d.mistakes),
         );
-        findings.parameters = numbers::fit(cases, &bases)?;
-        // When a number explains the images best, each case tells its part of that story.
+        bases
+    }
+
+    fn on(cases: &[Case], diagnosis: &[Diagnosis]) -> Result<Fitted> {
+        let bases = Fitted::bases(diagnosis);
+        Ok(Fitted {
+            terms: fit_terms(cases)?,
+            parameters: numbers::fit(cases, &bases)?,
+            bases,
+        })
+    }
+
+    /// Whether the best number settles the story over `diagnosis`.
+    fn settles(&self, diagnosis: &[Diagnosis]) -> bool {
+        settled(diagnosis, &self.parameters)
+    }
+
+    /// Findings whose story is this fit (the candidates in `diagnosis` as the sample
+    /// scored them: none of them is shown).
+    fn findings(self, cases: &[Case], diagnosis: Vec<Diagnosis>, all_pass: bool) -> Findings {
+        let mut findings = Findings {
+            diagnosis,
+            per_case: vec![CaseFinding::default(); cases.len()],
+            terms: Vec::new(),
+            parameters: Vec::new(),
+            progress: Stages::of(&Evidence::Nothing),
+        };
+        self.tell(&mut findings, cases);
+        findings.progress = Stages::of(&evidence(&findings, all_pass));
+        findings
+    }
+
+    /// Puts the fits into `findings`; when a number explains the images best, each case
+    /// tells its part of that story.
+    fn tell(self, findings: &mut Findings, cases: &[Case]) {
+        findings.terms = self.terms;
+        findings.parameters = self.parameters;
         if let Some(fit) = findings.by_number() {
             let labels: Vec<Option<Diagnosis>> = fit
                 .per_case
@@ -162,8 +244,6 @@ pub fn find(cases: &[Case], all_pass: bool) -> Result<Findings> {
             }
         }
     }
-    findings.progress = Stages::of(&evidence(&findings, all_pass));
-    Ok(findings)
 }
 
 /// The best explanation found, for the progress.

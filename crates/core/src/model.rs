@@ -43,6 +43,13 @@ pub trait Model: Sync {
         sphere_hit(ray, terms, centre, radius_squared)
     }
 
+    /// Whether a ray that starts inside a sphere hits it (the far root when the near one is
+    /// not > 0). Only the rounding rule asks (`rounding::sphere_root_taken`): `sphere_root`
+    /// is what the hit search calls.
+    fn far_root(&self) -> bool {
+        false
+    }
+
     /// Whether a plane hit at parameter `s` counts: finite and not behind the ray.
     fn plane_accepts(&self, s: f64) -> bool {
         s.is_finite() && s >= 0.0

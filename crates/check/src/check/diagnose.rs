@@ -120,7 +120,8 @@ fn singles_and_pairs() -> Vec<Mistakes> {
 }
 
 impl Search {
-    /// Runs both stages over `cases` (at least one differs from its reference).
+    /// Runs both stages over `cases` (at least one differs from its reference) on the
+    /// sample; [`Search::finalise`] renders the best whole.
     pub fn run(cases: &[Case]) -> Result<Self> {
         let mut search = Search {
             scored: score_all(cases, &singles_and_pairs())?,
@@ -132,7 +133,6 @@ impl Search {
             search.scored.extend(score_all(cases, &triples)?);
             search.every_way(cases)?;
         }
-        search.finalise(cases)?;
         Ok(search)
     }
 
@@ -232,8 +232,9 @@ impl Search {
         })
     }
 
-    /// Renders whole the best candidates, where the ranking could turn.
-    fn finalise(&mut self, cases: &[Case]) -> Result<()> {
+    /// Renders whole the best candidates, where the ranking could turn (a few whole renders:
+    /// skipped when a number fit settles the story and no candidate is shown).
+    pub fn finalise(&mut self, cases: &[Case]) -> Result<()> {
         let differing: usize = cases.iter().map(|c| c.wrong.len()).sum();
         let mut order: Vec<&Scored> = self.useful().collect();
         order.sort_by(ranking);

@@ -6,10 +6,8 @@
 use glam::DVec3;
 
 use super::{Bug, Mistakes};
-use whitted_core::geometry::{
-    normalise, plane_parameter, sphere_near_else_far_hit, sphere_roots, Ray, SphereTerms, EPSILON,
-};
-use whitted_core::model::rounding::{decide, plane_band, sphere_band, SelfHit};
+use whitted_core::geometry::{normalise, sphere_near_else_far_hit, Ray, SphereTerms, EPSILON};
+use whitted_core::model::rounding::{plane_root_taken, sphere_root_taken, SelfHit};
 use whitted_core::model::{mirror_direction, Model, Tick};
 use whitted_core::scene::PointLight;
 
@@ -218,18 +216,7 @@ impl Variant {
         centre: DVec3,
         radius_squared: f64,
     ) -> Option<f64> {
-        let (near, far) = sphere_roots(ray, terms, centre, radius_squared)?;
-        let band = sphere_band(ray, centre, radius_squared);
-        let far = self.has(Bug::SphereFarRoot).then_some(far);
-        for s in std::iter::once(near).chain(far) {
-            match decide(how, s, band) {
-                Some(Some(hit)) => return Some(hit),
-                Some(None) => {}
-                None if s > 0.0 => return Some(s),
-                None => {}
-            }
-        }
-        None
+        sphere_root_taken(how, ray, terms, centre, radius_squared, self.far_root())
     }
 
     /// This program with its rounding-dependent roots taken as `rounding` says.
@@ -292,16 +279,14 @@ impl Model for Variant {
         }
     }
 
+    fn far_root(&self) -> bool {
+        self.has(Bug::SphereFarRoot)
+    }
+
     fn plane_root(&self, ray: &Ray, point: DVec3, normal: DVec3) -> Option<f64> {
-        let s = plane_parameter(point, normal, ray);
-        let how = self.rounding.elsewhere();
-        // The band costs two square roots: only a candidate rendered another way needs it.
-        if how != SelfHit::Exact && !self.has(Bug::PlanesMissing) {
-            if let Some(taken) = decide(how, s, plane_band(ray, point, normal)) {
-                return taken;
-            }
-        }
-        self.plane_accepts(s).then_some(s)
+        plane_root_taken(self.rounding.elsewhere(), ray, point, normal, |s| {
+            self.plane_accepts(s)
+        })
     }
 
     fn self_hits_toward(&self, light: usize) -> SelfHit {

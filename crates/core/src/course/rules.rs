@@ -42,6 +42,10 @@ impl Model for Rules {
         }
     }
 
+    fn far_root(&self) -> bool {
+        self.far_root
+    }
+
     fn background(&self) -> DVec3 {
         DVec3::splat(self.background)
     }

@@ -78,6 +78,49 @@ fn band(scale: f64, across: f64) -> f64 {
     }
 }
 
+/// The one rule for a sphere's roots under `how`: each root within the band is taken `how`,
+/// every other one as the course's test does (positive). The near root first, then, for a
+/// model that lets a ray from inside hit (`far_root`), the far one.
+pub fn sphere_root_taken(
+    how: SelfHit,
+    ray: &Ray,
+    terms: &SphereTerms,
+    centre: DVec3,
+    radius_squared: f64,
+    far_root: bool,
+) -> Option<f64> {
+    let (near, far) = sphere_roots(ray, terms, centre, radius_squared)?;
+    let band = sphere_band(ray, centre, radius_squared);
+    for s in std::iter::once(near).chain(far_root.then_some(far)) {
+        match decide(how, s, band) {
+            Some(Some(hit)) => return Some(hit),
+            Some(None) => {}
+            None if s > 0.0 => return Some(s),
+            None => {}
+        }
+    }
+    None
+}
+
+/// The one rule for a plane's root under `how`: within the band taken `how` (unless the model
+/// hits no plane at all: one not written yet does not start to), else as `accepts` says.
+/// The band costs two square roots, so it is computed only when `how` is not `Exact`.
+pub fn plane_root_taken(
+    how: SelfHit,
+    ray: &Ray,
+    point: DVec3,
+    normal: DVec3,
+    accepts: impl Fn(f64) -> bool,
+) -> Option<f64> {
+    let s = plane_parameter(point, normal, ray);
+    if how != SelfHit::Exact && accepts(TINY) {
+        if let Some(taken) = decide(how, s, plane_band(ray, point, normal)) {
+            return taken;
+        }
+    }
+    accepts(s).then_some(s)
+}
+
 /// `model` with the roots within the band taken `how` (for one light's shadow rays: a pixel
 /// lit by two lights can self-shadow towards one and not the other). Only the hit search is
 /// changed; the search asks nothing else of a model.
@@ -101,33 +144,31 @@ impl<M: Model> Model for TakingSelfHits<'_, M> {
         centre: DVec3,
         radius_squared: f64,
     ) -> Option<f64> {
-        let exact = self.model.sphere_root(ray, terms, centre, radius_squared);
-        let band = sphere_band(ray, centre, radius_squared);
-        let within = |s: f64| s.abs() <= band;
         match self.how {
-            SelfHit::Exact => exact,
-            SelfHit::Hit => {
-                let near = sphere_roots(ray, terms, centre, radius_squared).map(|(n, _)| n);
-                if near.is_some_and(within) || exact.is_some_and(within) {
-                    Some(TINY)
-                } else {
-                    exact
-                }
-            }
-            SelfHit::Miss => exact.filter(|&s| !within(s)),
+            SelfHit::Exact => self.model.sphere_root(ray, terms, centre, radius_squared),
+            how => sphere_root_taken(
+                how,
+                ray,
+                terms,
+                centre,
+                radius_squared,
+                self.model.far_root(),
+            ),
         }
     }
 
+    fn far_root(&self) -> bool {
+        self.model.far_root()
+    }
+
+    fn plane_accepts(&self, s: f64) -> bool {
+        self.model.plane_accepts(s)
+    }
+
     fn plane_root(&self, ray: &Ray, point: DVec3, normal: DVec3) -> Option<f64> {
-        let exact = self.model.plane_root(ray, point, normal);
-        let s = plane_parameter(point, normal, ray);
-        // A model that never hits a plane (one not written yet) does not start to.
-        let hits_planes = self.model.plane_accepts(TINY);
-        match decide(self.how, s, plane_band(ray, point, normal)) {
-            Some(Some(hit)) if hits_planes => Some(hit),
-            Some(Some(_)) => exact,
-            Some(None) => None,
-            None => exact,
+        match self.how {
+            SelfHit::Exact => self.model.plane_root(ray, point, normal),
+            how => plane_root_taken(how, ray, point, normal, |s| self.model.plane_accepts(s)),
         }
     }
 }
