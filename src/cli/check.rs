@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use clap::Args;
 
 use super::parse::*;
+use super::values::CourseArg;
 use super::ServeArgs;
 
 #[derive(Debug, Clone, Args)]
@@ -62,6 +63,11 @@ pub struct CheckArgs {
     /// diagnosis, and a click's two ray trees (the reference's and the top mistake's)
     #[arg(long, conflicts_with_all = ["program", "json", "heatmap", "report"])]
     pub view: bool,
+
+    /// The year of the course the image or program is of (docs/courses.md) [default: what the
+    /// image's size, the scene or the program's main class says, else 2016-17]
+    #[arg(long = "course", value_name = "YEAR", value_enum)]
+    pub course: Option<CourseArg>,
 
     #[command(flatten)]
     pub serve: ServeArgs,

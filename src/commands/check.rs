@@ -14,6 +14,7 @@ use whitted_check::check::report::{contact_sheet, failing_rows, heat_map, Report
 use whitted_check::check::reproduce::{explain_commands, Reproduce};
 use whitted_check::check::suite;
 use whitted_check::check::summary::{self, candidates_heading, opening};
+use whitted_check::check::which_course::{self, Chosen};
 use whitted_check::check::words;
 use whitted_check::check::{check_image, student_png, CaseReport, Findings};
 use whitted_check::mistakes::Bug;
@@ -75,14 +76,24 @@ fn run_image(args: &CheckArgs, image: &std::path::Path) -> Result<bool> {
     refuse_clashes(&inputs, &outputs)?;
     let mut heatmap = args.heatmap.as_deref().map(Destination::open).transpose()?;
     let mut report = args.report.as_deref().map(Destination::open).transpose()?;
-    let input = scene::input::load_input(args.input.as_deref(), Course::default())?;
     let student = student_png::read(image)?;
+    let scene_bytes = args.input.as_deref().map(scene::read_file).transpose()?;
+    let chosen = which_course::for_image(
+        args.course.map(Course::from),
+        (student.width, student.height),
+        scene_bytes.as_deref(),
+    )?;
+    let input = scene::input::load_input(args.input.as_deref(), chosen.course)?;
+    for warning in &input.warnings {
+        eprintln!("warning: {warning}");
+    }
     let (case, findings) = check_image(
         &input.scene,
         &input.name,
         args.bounces,
         args.tolerance,
         student,
+        chosen.course,
     )?;
     if let Some(out) = heatmap.as_mut() {
         out.write_png(&heat_map(&case.student, &case.reference, args.tolerance))?;
@@ -99,9 +110,14 @@ fn run_image(args: &CheckArgs, image: &std::path::Path) -> Result<bool> {
         out.commit()?;
     }
     let text = if args.json {
-        pretty(&case_json(&case, Some(&findings)))
+        let mut json = case_json(&case, Some(&findings));
+        add_course(&mut json, &chosen);
+        pretty(&json)
     } else {
-        case_text(&case, &findings, args.input.as_deref())
+        with_course_line(
+            case_text(&case, &findings, args.input.as_deref(), chosen.course),
+            &chosen,
+        )
     };
     stdout::print_line(&text)?;
     Ok(case.difference.verdict.passes())
@@ -127,8 +143,9 @@ fn run_program(args: &CheckArgs, program: &str) -> Result<bool> {
     if let Some(dir) = &args.suite_dir {
         suite::write_scenes(dir)?;
     }
+    let chosen = which_course::for_program(args.course.map(Course::from), program)?;
     let mut report = args.report.as_deref().map(Destination::open).transpose()?;
-    let run = run_suite(program, args.tolerance, args.timeout)?;
+    let run = run_suite(program, args.tolerance, args.timeout, chosen.course)?;
     if let Some(out) = report.as_mut() {
         let rows = failing_rows(&run, |_| true);
         out.write_png(&contact_sheet(&rows))?;
@@ -138,12 +155,34 @@ fn run_program(args: &CheckArgs, program: &str) -> Result<bool> {
     }
     let suite_dir = args.suite_dir.as_deref();
     let text = if args.json {
-        pretty(&suite_json(&run, suite_dir))
+        let mut json = suite_json(&run, suite_dir);
+        add_course(&mut json, &chosen);
+        pretty(&json)
     } else {
-        suite_text(&run, suite_dir)
+        with_course_line(suite_text(&run, suite_dir), &chosen)
     };
     stdout::print_line(&text)?;
     Ok(run.passed())
+}
+
+/// The year checked against, in JSON: `"course"`, and `"course_chosen_because"` where it was
+/// not asked for.
+fn add_course(json: &mut Value, chosen: &Chosen) {
+    json["course"] = Value::from(chosen.course.name());
+    if let Some(why) = &chosen.why {
+        json["course_chosen_because"] = Value::from(why.as_str());
+    }
+}
+
+/// The report with the line saying which year was picked and why, after its first line.
+fn with_course_line(text: String, chosen: &Chosen) -> String {
+    let Some(why) = &chosen.why else {
+        return text;
+    };
+    match text.split_once('\n') {
+        Some((first, rest)) => format!("{first}\n{why}\n{rest}"),
+        None => format!("{text}\n{why}"),
+    }
 }
 
 fn pretty(value: &Value) -> String {
@@ -179,7 +218,12 @@ fn findings_text(findings: &Findings) -> String {
     out
 }
 
-fn case_text(case: &CaseReport, findings: &Findings, input: Option<&std::path::Path>) -> String {
+fn case_text(
+    case: &CaseReport,
+    findings: &Findings,
+    input: Option<&std::path::Path>,
+    course: Course,
+) -> String {
     let d = &case.difference;
     let mut out = format!(
         "{}, {}x{}, {} bounces: {} (tolerance: {} of 255 in a channel)\n",
@@ -213,7 +257,7 @@ fn case_text(case: &CaseReport, findings: &Findings, input: Option<&std::path::P
         let scene = input.map(|p| p.display().to_string());
         let top = case.shown_mistakes();
         let size = (d.width, d.height);
-        let commands = explain_commands(scene.as_deref(), case.bounces, size, pixel, top);
+        let commands = explain_commands(scene.as_deref(), case.bounces, size, pixel, top, course);
         out += &format!(
             "the worst pixel, as the reference traces it:\n  {}\n",
             commands[0]

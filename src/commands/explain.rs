@@ -11,7 +11,6 @@ use whitted_check::mistakes::Mistakes;
 use whitted_core::course::Course;
 use whitted_core::error::Error;
 use whitted_core::error::Result;
-use whitted_core::model::Tick;
 use whitted_core::scene::{self, Scene};
 use whitted_core::tonemap::ToneMap;
 use whitted_io::output::stdout;
@@ -19,10 +18,11 @@ use whitted_io::output::stdout;
 pub fn run(args: &ExplainArgs) -> Result<()> {
     let course = args.frame.course.course();
     let mistakes = args.mistakes();
-    if !mistakes.is_empty() && !course.is_default() {
+    if let Some(rule) = mistakes.bugs().into_iter().find(|b| !b.offered_in(course)) {
         return Err(Error::Usage(format!(
-            "--bug traces the mistakes of the 2016-17 Tick 2; with --course {course} leave \
-             --bug out (or use --course 2016-17)"
+            "--bug {} is not a mistake of {course}'s catalogue (it is the year's own rule, or \
+             its code is not in the year's skeleton; docs/courses.md)",
+            rule.id()
         )));
     }
     let input = scene::input::load_input(args.input.as_deref(), course)?;
@@ -33,7 +33,7 @@ pub fn run(args: &ExplainArgs) -> Result<()> {
         explain(&course.rules(), &scene, &args.frame(), x, y)?
     } else {
         explain(
-            &whitted_check::mistakes::Variant::from(mistakes),
+            &whitted_check::mistakes::Variant::from(mistakes).in_course(course),
             &scene,
             &args.frame(),
             x,
@@ -41,7 +41,7 @@ pub fn run(args: &ExplainArgs) -> Result<()> {
         )?
     };
     let text = if args.compare {
-        let reference = explain(&Tick, &scene, &args.reference_frame(), x, y)?;
+        let reference = explain(&course.rules(), &scene, &args.reference_frame(), x, y)?;
         compare::text(
             (x, y),
             &mistakes.name(),

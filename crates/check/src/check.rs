@@ -23,6 +23,7 @@ pub mod student_png;
 pub mod suite;
 pub mod summary;
 pub mod terms;
+pub mod which_course;
 pub mod words;
 
 use crate::check::case::Case;
@@ -34,8 +35,10 @@ use crate::check::renderer::{Renderer, SharedScene};
 use crate::check::student_png::Rgb8;
 use crate::check::terms::{TermCase, TermFit};
 use crate::mistakes::Mistakes;
+use whitted_core::course::Course;
 use whitted_core::error::Result;
 use whitted_core::scene::Scene;
+use whitted_core::tonemap::ToneMap;
 
 /// Below this share of differing pixels explained, the best catalogued candidate is not a
 /// good explanation: the term and number fits run, and the report says so first.
@@ -82,22 +85,22 @@ impl Findings {
     }
 
     /// Nothing found: no images, or every one identical.
-    fn nothing(cases: usize, evidence: Evidence) -> Findings {
+    fn nothing(cases: usize, evidence: Evidence, course: Course) -> Findings {
         Findings {
             diagnosis: Vec::new(),
             per_case: vec![CaseFinding::default(); cases],
             terms: Vec::new(),
             parameters: Vec::new(),
-            progress: Stages::of(&evidence),
+            progress: Stages::of(&evidence, course),
         }
     }
 }
 
-/// Diagnoses `cases` together; `all_pass` says whether every case (of the suite, including
-/// those with no image) passed.
-pub fn find(cases: &[Case], all_pass: bool) -> Result<Findings> {
+/// Diagnoses `cases` (each rendered under `course`) together; `all_pass` says whether every
+/// case (of the suite, including those with no image) passed.
+pub fn find(cases: &[Case], all_pass: bool, course: Course) -> Result<Findings> {
     if cases.is_empty() {
-        return Ok(Findings::nothing(0, Evidence::Nothing));
+        return Ok(Findings::nothing(0, Evidence::Nothing, course));
     }
     if cases.iter().all(Case::identical) {
         let evidence = if all_pass {
@@ -105,7 +108,7 @@ pub fn find(cases: &[Case], all_pass: bool) -> Result<Findings> {
         } else {
             Evidence::Nothing
         };
-        return Ok(Findings::nothing(cases.len(), evidence));
+        return Ok(Findings::nothing(cases.len(), evidence, course));
     }
     let mut search = Search::run(cases)?;
     // A number fit that settles the story (`SETTLED`) hides every weak candidate, so their
@@ -117,7 +120,7 @@ pub fn find(cases: &[Case], all_pass: bool) -> Result<Findings> {
     if weak(&search.diagnosis(cases)) {
         let fit = Fitted::on(cases, &search.diagnosis(cases))?;
         if fit.settles(&search.diagnosis(cases)) {
-            return Ok(fit.findings(cases, search.diagnosis(cases), all_pass));
+            return Ok(fit.findings(cases, search.diagnosis(cases), all_pass, course));
         }
         fitted = Some(fit);
     }
@@ -140,7 +143,7 @@ pub fn find(cases: &[Case], all_pass: bool) -> Result<Findings> {
         per_case,
         terms: Vec::new(),
         parameters: Vec::new(),
-        progress: Stages::of(&Evidence::Nothing),
+        progress: Stages::of(&Evidence::Nothing, course),
     };
     if findings.weak() {
         let fit = match fitted {
@@ -149,7 +152,7 @@ pub fn find(cases: &[Case], all_pass: bool) -> Result<Findings> {
         };
         fit.tell(&mut findings, cases);
     }
-    findings.progress = Stages::of(&evidence(&findings, all_pass));
+    findings.progress = Stages::of(&evidence(&findings, all_pass), course);
     Ok(findings)
 }
 
@@ -211,16 +214,22 @@ impl Fitted {
 
     /// Findings whose story is this fit (the candidates in `diagnosis` as the sample
     /// scored them: none of them is shown).
-    fn findings(self, cases: &[Case], diagnosis: Vec<Diagnosis>, all_pass: bool) -> Findings {
+    fn findings(
+        self,
+        cases: &[Case],
+        diagnosis: Vec<Diagnosis>,
+        all_pass: bool,
+        course: Course,
+    ) -> Findings {
         let mut findings = Findings {
             diagnosis,
             per_case: vec![CaseFinding::default(); cases.len()],
             terms: Vec::new(),
             parameters: Vec::new(),
-            progress: Stages::of(&Evidence::Nothing),
+            progress: Stages::of(&Evidence::Nothing, course),
         };
         self.tell(&mut findings, cases);
-        findings.progress = Stages::of(&evidence(&findings, all_pass));
+        findings.progress = Stages::of(&evidence(&findings, all_pass), course);
         findings
     }
 
@@ -266,7 +275,15 @@ fn evidence(findings: &Findings, all_pass: bool) -> Evidence {
 }
 
 /// The term fit over the sampled differing pixels of every case, a factor shared by all.
+/// Its least squares read a byte as the linear value it clamps: not run for the years whose
+/// PNG is tone-mapped.
 fn fit_terms(cases: &[Case]) -> Result<Vec<TermFit>> {
+    let linear = cases
+        .first()
+        .is_none_or(|c| c.renderer.course().tonemap() == ToneMap::Tick);
+    if !linear {
+        return Ok(Vec::new());
+    }
     let term_cases: Vec<TermCase> = cases
         .iter()
         .filter(|c| !c.identical())
@@ -304,6 +321,7 @@ pub struct CaseReport {
 
 /// One case ready to diagnose, and its report without a diagnosis yet. `shared` names the
 /// scene for the cache of whole images (`image_cache.rs`), when it is one many checks share.
+#[allow(clippy::too_many_arguments)]
 pub fn prepare<'a>(
     scene: &'a Scene,
     scene_name: &str,
@@ -312,9 +330,11 @@ pub fn prepare<'a>(
     student: Rgb8,
     cases: usize,
     shared: Option<SharedScene>,
+    course: Course,
 ) -> Result<(Case<'a>, CaseReport)> {
-    let renderer =
-        Renderer::new(scene, student.width, student.height, bounces)?.remembered_as(shared);
+    let renderer = Renderer::new(scene, student.width, student.height, bounces)?
+        .in_course(course)
+        .remembered_as(shared);
     let case = Case::new(renderer, student, cases)?;
     let report = CaseReport {
         scene_name: scene_name.to_string(),
@@ -329,17 +349,21 @@ pub fn prepare<'a>(
     Ok((case, report))
 }
 
-/// Checks `student` against `scene` rendered at its size with `bounces` bounces.
+/// Checks `student` against `scene` rendered at its size with `bounces` bounces under
+/// `course`'s rules.
 pub fn check_image(
     scene: &Scene,
     scene_name: &str,
     bounces: u32,
     tolerance: u8,
     student: Rgb8,
+    course: Course,
 ) -> Result<(CaseReport, Findings)> {
-    let (case, mut report) = prepare(scene, scene_name, bounces, tolerance, student, 1, None)?;
+    let (case, mut report) = prepare(
+        scene, scene_name, bounces, tolerance, student, 1, None, course,
+    )?;
     let passes = report.difference.verdict.passes();
-    let findings = find(std::slice::from_ref(&case), passes)?;
+    let findings = find(std::slice::from_ref(&case), passes, course)?;
     report.diagnosis = findings.diagnosis.clone();
     report.hidden_mistakes = findings.per_case[0].hidden(passes);
     Ok((report, findings))
@@ -347,3 +371,5 @@ pub fn check_image(
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_courses;

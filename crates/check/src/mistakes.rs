@@ -8,8 +8,9 @@
 mod catalogue;
 mod variant;
 
-pub use variant::{Number, Parameter, Rounding, Variant};
+pub use variant::{Number, Output, Parameter, Rounding, Variant};
 
+use whitted_core::course::Course;
 use whitted_core::frame::limits::MAX_BOUNCES;
 use whitted_core::frame::{Acceleration, FrameSpec};
 
@@ -43,11 +44,23 @@ pub enum Bug {
     LightsMissing,
     ReflectionMissing,
     ReflectionIgnored,
+    ViewToCamera,
+    NoGate,
+    SpecularWhite,
+    ShadowBiasAlongN,
+    ShadowBiasAlongL,
+    ReflectionBiasAlongN,
+    TonemapMissing,
+    TonemapTwice,
+    SpheresMissing,
+    ShadingMissing,
 }
 
 /// A stage of the handout: the code a student writes, in the order they write it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Stage {
+    /// `Sphere.intersectionWith`: a student's own code from 2017-18 on.
+    Spheres,
     /// `Plane.intersectionWith` (and the intersection rules a student can break).
     Planes,
     /// `Renderer.illuminate`: ambient, diffuse and specular per light.
@@ -59,6 +72,7 @@ pub enum Stage {
 }
 
 impl Stage {
+    /// The 2016-17 handout's stages, in its order.
     pub const ALL: [Stage; 4] = [
         Stage::Planes,
         Stage::Lights,
@@ -66,11 +80,33 @@ impl Stage {
         Stage::Reflection,
     ];
 
-    /// The key of the `progress` object (docs/check.md).
-    pub fn key(self) -> &'static str {
+    /// The later years' handout (Tick 1, docs/courses.md "Stages"): spheres, shading, planes,
+    /// shadows, reflection.
+    pub const TICK1: [Stage; 5] = [
+        Stage::Spheres,
+        Stage::Lights,
+        Stage::Planes,
+        Stage::Shadows,
+        Stage::Reflection,
+    ];
+
+    /// The stages of `course`'s handout, in its order.
+    pub fn of(course: Course) -> &'static [Stage] {
+        if course.is_default() {
+            &Stage::ALL
+        } else {
+            &Stage::TICK1
+        }
+    }
+
+    /// The key of the `progress` object (docs/check.md; the later years call the lights'
+    /// stage `shading`, as their handout does).
+    pub fn key(self, course: Course) -> &'static str {
         match self {
+            Stage::Spheres => "spheres",
             Stage::Planes => "planes",
-            Stage::Lights => "lights",
+            Stage::Lights if course.is_default() => "lights",
+            Stage::Lights => "shading",
             Stage::Shadows => "shadows",
             Stage::Reflection => "reflection",
         }
@@ -79,7 +115,7 @@ impl Stage {
 
 impl Bug {
     /// Every entry, in catalogue order: the mistakes, then the unfinished stages.
-    pub const ALL: [Bug; 26] = [
+    pub const ALL: [Bug; 36] = [
         Bug::ReflectUnclamped,
         Bug::SpecularGated,
         Bug::ViewFromRayOrigin,
@@ -106,17 +142,33 @@ impl Bug {
         Bug::LightsMissing,
         Bug::ReflectionMissing,
         Bug::ReflectionIgnored,
+        Bug::ViewToCamera,
+        Bug::NoGate,
+        Bug::SpecularWhite,
+        Bug::ShadowBiasAlongN,
+        Bug::ShadowBiasAlongL,
+        Bug::ReflectionBiasAlongN,
+        Bug::TonemapMissing,
+        Bug::TonemapTwice,
+        Bug::SpheresMissing,
+        Bug::ShadingMissing,
     ];
 
     /// The mistakes in written code, the most common first: the order in which a report
     /// names the ones an image cannot rule out. From the course's students' histories
     /// (docs/check.md): the specular R and its gate, then the offsets, the view vector, the
     /// specular clamp, the light's terms, reflection, and the rarer intersection rules.
-    pub const BY_COMMONNESS: [Bug; 21] = [
+    pub const BY_COMMONNESS: [Bug; 29] = [
         Bug::ReflectUnclamped,
         Bug::SpecularGated,
+        Bug::ReflectionBiasAlongN,
+        Bug::NoGate,
         Bug::NoShadowBias,
         Bug::NoReflectionBias,
+        Bug::ShadowBiasAlongL,
+        Bug::ShadowBiasAlongN,
+        Bug::ViewToCamera,
+        Bug::SpecularWhite,
         Bug::ViewFromRayOrigin,
         Bug::RvUnclamped,
         Bug::ReflectionWrongSign,
@@ -134,7 +186,38 @@ impl Bug {
         Bug::BouncesMinusOne,
         Bug::PlaneBehind,
         Bug::SphereFarRoot,
+        Bug::TonemapMissing,
+        Bug::TonemapTwice,
     ];
+
+    /// The entries `course`'s catalogue offers (docs/courses.md, "The catalogue per
+    /// profile"), in catalogue order: an entry that is the year's own rule, or whose code the
+    /// year's skeleton does not have, is not a mistake there.
+    pub fn offered(course: Course) -> Vec<Bug> {
+        Bug::ALL
+            .into_iter()
+            .filter(|&b| b.offered_in(course))
+            .collect()
+    }
+
+    /// Whether `course`'s catalogue offers this entry.
+    pub fn offered_in(self, course: Course) -> bool {
+        use Bug::*;
+        if course.is_default() {
+            return (self as usize) < 26;
+        }
+        let tone_mapped = course >= Course::Y2018;
+        match self {
+            // The later years' rules, or unknown for 2017-18 (docs/courses.md).
+            ViewFromRayOrigin | ReflectUnclamped | SphereFarRoot | SpecularGated => false,
+            // No such half-written code in the later skeletons.
+            LightsMissing | ReflectionMissing => false,
+            NoGate | TonemapMissing | TonemapTwice => tone_mapped,
+            ShadowBiasAlongN => course < Course::Y2020,
+            ShadowBiasAlongL => course >= Course::Y2020,
+            _ => true,
+        }
+    }
 
     /// The stable id of docs/check.md.
     pub fn id(self) -> &'static str {
@@ -207,22 +290,37 @@ impl Bug {
             ),
             Bug::ReflectionIgnored => b.stage() == Stage::Reflection && b != a,
             Bug::BouncesPlusOne => b == Bug::BouncesMinusOne,
+            // Every lit object its flat colour: no light, so no shadow ray either.
+            Bug::ShadingMissing => {
+                matches!(b.stage(), Stage::Lights | Stage::Shadows)
+                    && !matches!(
+                        b,
+                        Bug::ShadingMissing | Bug::TonemapMissing | Bug::TonemapTwice
+                    )
+            }
+            Bug::SpheresMissing => b.stage() == Stage::Spheres && b != a,
+            // One shadow ray's origin, one reflected ray's, one view vector, one tone map.
+            Bug::ShadowBiasAlongN => matches!(b, Bug::ShadowBiasAlongL | Bug::NoShadowBias),
+            Bug::ShadowBiasAlongL => b == Bug::NoShadowBias,
+            Bug::ReflectionBiasAlongN => b == Bug::NoReflectionBias,
+            Bug::ViewToCamera => matches!(b, Bug::ViewFlipped | Bug::ViewFromRayOrigin),
+            Bug::TonemapMissing => b == Bug::TonemapTwice,
             _ => false,
         };
         one_way(self, other) || one_way(other, self)
     }
 
-    fn bit(self) -> u32 {
-        1 << self as u32
+    fn bit(self) -> u64 {
+        1 << self as u64
     }
 }
 
 // Every entry is one bit of `Mistakes`.
-const _: () = assert!(Bug::ALL.len() <= u32::BITS as usize);
+const _: () = assert!(Bug::ALL.len() <= u64::BITS as usize);
 
 /// A set of catalogue entries. The empty set is the course's program.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, PartialOrd, Ord)]
-pub struct Mistakes(u32);
+pub struct Mistakes(u64);
 
 impl Mistakes {
     pub const NONE: Mistakes = Mistakes(0);

@@ -99,7 +99,9 @@ pub fn mistakes_csv(rows: &[StudentResult]) -> String {
                 "mistake"
             }
             .to_string(),
-            bug.stage().key().to_string(),
+            bug.stage()
+                .key(whitted_core::course::Course::Y2016)
+                .to_string(),
             n.to_string(),
             fraction_of(n, graded),
             bug.description().to_string(),

@@ -62,6 +62,7 @@ pub fn read(dir: &Path) -> Result<Vec<SuiteCase>> {
             file: Cow::Owned(file),
             xml: Cow::Owned(xml),
             role: Role::Hidden,
+            course: whitted_core::course::Course::Y2016,
         });
     }
     Ok(cases)

@@ -136,7 +136,14 @@ fn load_view(image: &Path, reference: Option<&Path>, scene: Option<&Path>) -> Re
 fn load_check(image: &Path, scene: Option<&Path>, bounces: u32, tolerance: u8) -> Result<Content> {
     let input = scene::input::load_input(scene, Course::default())?;
     let student = student_png::read(image)?;
-    let (case, findings) = check_image(&input.scene, &input.name, bounces, tolerance, student)?;
+    let (case, findings) = check_image(
+        &input.scene,
+        &input.name,
+        bounces,
+        tolerance,
+        student,
+        Course::default(),
+    )?;
     let (width, height) = (case.student.width, case.student.height);
     let as_image = |bytes: &[u8]| raster::rgb8(width as usize, height as usize, bytes);
     let mistakes = case

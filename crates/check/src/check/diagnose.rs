@@ -19,6 +19,7 @@ use crate::check::case::Case;
 use crate::check::difference::pixel_difference;
 use crate::check::score::{cost, explained_share, Scored};
 use crate::mistakes::{Bug, Mistakes, Number, Variant};
+use whitted_core::course::Course;
 use whitted_core::error::Result;
 use whitted_core::numbers::plain;
 
@@ -107,11 +108,16 @@ fn score_all(cases: &[Case], list: &[Mistakes]) -> Result<Vec<Scored>> {
         .collect()
 }
 
-/// Every single entry and every pair that a program can have.
-fn singles_and_pairs() -> Vec<Mistakes> {
-    let singles = Bug::ALL.iter().map(|&b| Mistakes::of(&[b]));
-    let pairs = Bug::ALL.iter().enumerate().flat_map(|(i, &a)| {
-        Bug::ALL[i + 1..]
+/// The entries the year of `cases` offers (every case of a check is of one year).
+pub fn catalogue(cases: &[Case]) -> Vec<Bug> {
+    Bug::offered(cases.first().map_or(Course::Y2016, |c| c.renderer.course()))
+}
+
+/// Every single entry of `catalogue` and every pair that a program can have.
+fn singles_and_pairs(catalogue: &[Bug]) -> Vec<Mistakes> {
+    let singles = catalogue.iter().map(|&b| Mistakes::of(&[b]));
+    let pairs = catalogue.iter().enumerate().flat_map(|(i, &a)| {
+        catalogue[i + 1..]
             .iter()
             .filter(move |&&b| !a.excludes(b))
             .map(move |&b| Mistakes::of(&[a, b]))
@@ -124,12 +130,12 @@ impl Search {
     /// sample; [`Search::finalise`] renders the best whole.
     pub fn run(cases: &[Case]) -> Result<Self> {
         let mut search = Search {
-            scored: score_all(cases, &singles_and_pairs())?,
+            scored: score_all(cases, &singles_and_pairs(&catalogue(cases)))?,
             rounded: Vec::new(),
         };
         search.every_way(cases)?;
         if !search.exactly_explained(cases)? {
-            let triples = search.triples();
+            let triples = search.triples(&catalogue(cases));
             search.scored.extend(score_all(cases, &triples)?);
             search.every_way(cases)?;
         }
@@ -189,7 +195,7 @@ impl Search {
 
     /// The best pairs, each extended by every entry it admits, where no triple of the same
     /// entries is scored yet.
-    fn triples(&self) -> Vec<Mistakes> {
+    fn triples(&self, catalogue: &[Bug]) -> Vec<Mistakes> {
         let mut pairs: Vec<&Scored> = self
             .useful()
             .filter(|s| s.variant.mistakes.len() == 2)
@@ -200,8 +206,9 @@ impl Search {
             .take(BEAM)
             .flat_map(|pair| {
                 let set = pair.variant.mistakes;
-                Bug::ALL
-                    .into_iter()
+                catalogue
+                    .iter()
+                    .copied()
                     .filter(move |&b| set.admits(b))
                     .map(move |b| set.with(b))
             })

@@ -10,6 +10,7 @@ use std::sync::{Arc, Mutex, MutexGuard};
 
 use crate::check::student_png::Rgb8;
 use crate::mistakes::{Mistakes, Parameter, Rounding, Variant};
+use whitted_core::course::Course;
 use whitted_core::error::Result;
 
 /// What the cache may hold: about 400 images of 640x480. Past it, new images are not kept
@@ -31,6 +32,8 @@ pub struct ImageKey {
     pub lattice: Option<usize>,
     /// How the program's rounding-dependent roots were taken.
     pub rounding: Rounding,
+    /// The year whose rules rendered it.
+    pub course: Course,
 }
 
 impl ImageKey {
@@ -40,6 +43,7 @@ impl ImageKey {
         (width, height): (u32, u32),
         bounces: u32,
         variant: Option<&Variant>,
+        course: Course,
     ) -> ImageKey {
         ImageKey {
             scene: scene.to_string(),
@@ -52,6 +56,7 @@ impl ImageKey {
                 .map(|n| (n.parameter, n.value.to_bits())),
             lattice: None,
             rounding: variant.map_or(Rounding::Exact, |v| v.rounding),
+            course,
         }
     }
 }

@@ -70,7 +70,7 @@ pub fn progress_json(progress: &Stages) -> Value {
     let object: serde_json::Map<String, Value> = progress
         .stages
         .iter()
-        .map(|(stage, state)| (stage.key().to_string(), json!(state.name())))
+        .map(|(stage, state)| (stage.key(progress.course).to_string(), json!(state.name())))
         .collect();
     Value::Object(object)
 }

@@ -10,7 +10,7 @@ use rayon::prelude::*;
 use crate::check::case::Case;
 use crate::check::diagnose::Diagnosis;
 use crate::check::score::{explained_share, Scored};
-use crate::mistakes::{Bug, Mistakes, Number, Parameter, Variant};
+use crate::mistakes::{Mistakes, Number, Parameter, Variant};
 use whitted_core::error::Result;
 use whitted_core::numbers::plain;
 
@@ -154,7 +154,7 @@ fn with_an_entry(cases: &[Case], best: Option<&Scored>) -> Result<Option<Scored>
     }
     let base = best.variant.mistakes;
     // An entry of the number's own stage: what a student wrote in the same lines.
-    let candidates: Vec<Mistakes> = Bug::ALL
+    let candidates: Vec<Mistakes> = super::diagnose::catalogue(cases)
         .into_iter()
         .filter(|&b| base.admits(b) && !b.is_unfinished() && b.stage() == number.parameter.stage())
         .map(|b| base.with(b))

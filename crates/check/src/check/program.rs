@@ -13,8 +13,9 @@ use std::time::Duration;
 use crate::check::image_cache::ImageCache;
 use crate::check::renderer::SharedScene;
 use crate::check::student_png::{self, Rgb8};
-use crate::check::suite::{cases, SuiteCase};
+use crate::check::suite::{cases_of, SuiteCase};
 use crate::check::{find, prepare, CaseReport, Findings};
+use whitted_core::course::Course;
 use whitted_core::error::{Error, Result};
 use whitted_core::interrupt;
 use whitted_core::scene::{self, Scene};
@@ -166,10 +167,17 @@ impl Launch for Plain {
 }
 
 /// Runs `program` over the suite and checks each image at `tolerance`.
-pub fn run_suite(program: &str, tolerance: u8, timeout: u64) -> Result<SuiteRun> {
+pub fn run_suite(program: &str, tolerance: u8, timeout: u64, course: Course) -> Result<SuiteRun> {
     let plain = Plain(words(program)?);
     let cache = ImageCache::new();
-    run_suite_with(&plain, program, &cases(), tolerance, timeout, &cache)
+    run_suite_with(
+        &plain,
+        program,
+        &cases_of(course),
+        tolerance,
+        timeout,
+        &cache,
+    )
 }
 
 /// Runs the program `launch` starts (shown to the user as `program`) over `suite`, and checks
@@ -192,7 +200,9 @@ pub fn run_suite_with(
         tails.push(stderr_tail);
         match result {
             Ran::Image(image) => {
-                scenes.push((i, scene::parse_str(&case.file, &case.xml)?));
+                let (parsed, _) =
+                    scene::input::parse_for_course(&case.file, case.xml.as_bytes(), case.course)?;
+                scenes.push((i, parsed));
                 images.push(image);
                 statuses.push(None);
             }
@@ -227,6 +237,7 @@ pub fn run_suite_with(
             image,
             count,
             Some(shared),
+            case.course,
         )?;
         interrupt::check()?;
         prepared.push(c);
@@ -234,7 +245,8 @@ pub fn run_suite_with(
     }
     let all_pass = statuses.iter().all(Option::is_none)
         && reports.iter().all(|r| r.difference.verdict.passes());
-    let findings = find(&prepared, all_pass)?;
+    let course = suite.first().map_or(Course::Y2016, |c| c.course);
+    let findings = find(&prepared, all_pass, course)?;
     let mut reports = reports.into_iter().zip(&findings.per_case);
     let outcomes = suite
         .iter()

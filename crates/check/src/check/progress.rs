@@ -3,6 +3,7 @@
 //! for the images best.
 
 use crate::mistakes::{Bug, Mistakes, Parameter, Stage};
+use whitted_core::course::Course;
 
 /// An explanation must reproduce at least this share of the differing pixels for the stages
 /// it leaves out to count as done; below it nothing is known.
@@ -36,6 +37,8 @@ impl StageState {
 /// Every stage's state, in the handout's order.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Stages {
+    /// The year whose handout's stages these are.
+    pub course: Course,
     pub stages: Vec<(Stage, StageState)>,
 }
 
@@ -56,9 +59,13 @@ pub enum Evidence {
 }
 
 impl Stages {
-    pub fn of(evidence: &Evidence) -> Stages {
+    pub fn of(evidence: &Evidence, course: Course) -> Stages {
         let all = |state: StageState| Stages {
-            stages: Stage::ALL.iter().map(|&s| (s, state.clone())).collect(),
+            course,
+            stages: Stage::of(course)
+                .iter()
+                .map(|&s| (s, state.clone()))
+                .collect(),
         };
         match *evidence {
             Evidence::Nothing | Evidence::Unexplained => all(StageState::Unknown),
@@ -69,7 +76,8 @@ impl Stages {
             Evidence::Explained {
                 mistakes, number, ..
             } => Stages {
-                stages: Stage::ALL
+                course,
+                stages: Stage::of(course)
                     .iter()
                     .map(|&stage| (stage, state_of(stage, mistakes, number)))
                     .collect(),
@@ -83,7 +91,7 @@ impl Stages {
             .stages
             .iter()
             .map(|(stage, state)| {
-                let key = stage.key();
+                let key = stage.key(self.course);
                 match state {
                     StageState::Done => format!("{key} done"),
                     StageState::Missing => format!("{key} not written yet"),
@@ -126,15 +134,18 @@ mod tests {
 
     #[test]
     fn each_stage_is_read_from_the_explanation() {
-        let p = Stages::of(&Evidence::Explained {
-            mistakes: Mistakes::of(&[
-                Bug::ReflectUnclamped,
-                Bug::NoShadows,
-                Bug::ReflectionMissing,
-            ]),
-            number: None,
-            explained: 1.0,
-        });
+        let p = Stages::of(
+            &Evidence::Explained {
+                mistakes: Mistakes::of(&[
+                    Bug::ReflectUnclamped,
+                    Bug::NoShadows,
+                    Bug::ReflectionMissing,
+                ]),
+                number: None,
+                explained: 1.0,
+            },
+            Course::Y2016,
+        );
         assert_eq!(
             p.sentence(),
             "progress: planes done; lights done, with a mistake (reflect-unclamped); \
@@ -142,22 +153,28 @@ mod tests {
         );
         let states: Vec<&str> = p.stages.iter().map(|(_, s)| s.name()).collect();
         assert_eq!(states, ["done", "mistaken", "missing", "missing"]);
-        let unknown = Stages::of(&Evidence::Nothing);
+        let unknown = Stages::of(&Evidence::Nothing, Course::Y2016);
         assert!(unknown
             .stages
             .iter()
             .all(|(_, s)| *s == StageState::Unknown));
-        let weak = Stages::of(&Evidence::Explained {
-            mistakes: Mistakes::of(&[Bug::NoAmbient]),
-            number: None,
-            explained: 0.03,
-        });
+        let weak = Stages::of(
+            &Evidence::Explained {
+                mistakes: Mistakes::of(&[Bug::NoAmbient]),
+                number: None,
+                explained: 0.03,
+            },
+            Course::Y2016,
+        );
         assert!(weak.stages.iter().all(|(_, s)| *s == StageState::Unknown));
-        let number = Stages::of(&Evidence::Explained {
-            mistakes: Mistakes::NONE,
-            number: Some(Parameter::Epsilon),
-            explained: 0.99,
-        });
+        let number = Stages::of(
+            &Evidence::Explained {
+                mistakes: Mistakes::NONE,
+                number: Some(Parameter::Epsilon),
+                explained: 0.99,
+            },
+            Course::Y2016,
+        );
         assert_eq!(
             number.stages[2].1,
             StageState::Mistaken(vec!["epsilon".into()])

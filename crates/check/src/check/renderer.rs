@@ -10,8 +10,9 @@ use rayon::prelude::*;
 use crate::check::image_cache::{ImageCache, ImageKey};
 use crate::check::pixel_sample::PixelSample;
 use crate::check::student_png::Rgb8;
-use crate::mistakes::{Mistakes, Variant};
+use crate::mistakes::{Mistakes, Output, Variant};
 use whitted_core::accel::Accelerator;
+use whitted_core::course::Course;
 use whitted_core::error::Result;
 use whitted_core::frame::{Acceleration, Frame, FrameSpec};
 use whitted_core::interrupt;
@@ -20,7 +21,8 @@ use whitted_core::model::Model;
 use whitted_core::render::{trace_pixels, trace_pixels_at_bounces};
 use whitted_core::sample::Sample;
 use whitted_core::scene::Scene;
-use whitted_io::output::png::tick_bytes;
+use whitted_core::tonemap::ToneMap;
+use whitted_io::output::png::bytes_with;
 
 /// Rows rendered together on one core for a whole image.
 const ROWS_PER_TASK: u32 = 4;
@@ -53,6 +55,19 @@ pub struct Renderer<'a> {
     spec: FrameSpec,
     bvh: Accelerator,
     brute: Accelerator,
+}
+
+/// The bytes a program writing `output` under `course` makes of linear `beauty`.
+fn program_bytes(course: Course, output: Output, beauty: &[glam::DVec3]) -> Vec<u8> {
+    let tonemap = course.tonemap();
+    match output {
+        Output::Course => bytes_with(tonemap, beauty),
+        Output::Untonemapped => bytes_with(ToneMap::Tick, beauty),
+        Output::Twice => {
+            let once: Vec<glam::DVec3> = beauty.iter().map(|&v| tonemap.apply(v)).collect();
+            bytes_with(tonemap, &once)
+        }
+    }
 }
 
 impl<'a> Renderer<'a> {
@@ -97,6 +112,18 @@ impl<'a> Renderer<'a> {
         self
     }
 
+    /// This renderer for `course`: its rules, camera and tone map (every candidate is
+    /// rendered under them).
+    pub fn in_course(mut self, course: Course) -> Self {
+        self.spec.course = course;
+        self
+    }
+
+    /// The year whose rules this renderer follows.
+    pub fn course(&self) -> Course {
+        self.spec.course
+    }
+
     fn size(&self) -> (u32, u32) {
         (self.spec.width, self.spec.height)
     }
@@ -131,15 +158,16 @@ impl<'a> Renderer<'a> {
     /// candidates side by side); an error when the user stopped the run half-way.
     pub fn bytes_at(
         &self,
-        model: &impl Model,
+        variant: &Variant,
         frame: &Frame,
         pixels: &[(u32, u32)],
     ) -> Result<Vec<u8>> {
         let accel = self.accelerator(frame);
+        let model = variant.in_course(self.course());
         let beauty =
-            trace_pixels::<false, _>(model, self.scene, accel, frame, pixels, |s| s.beauty);
+            trace_pixels::<false, _>(&model, self.scene, accel, frame, pixels, |s| s.beauty);
         interrupt::check()?;
-        Ok(tick_bytes(&beauty))
+        Ok(program_bytes(self.course(), variant.output(), &beauty))
     }
 
     /// `variant`'s bytes at `sample`'s positions: the wrong pixels rendered, the right ones
@@ -175,7 +203,13 @@ impl<'a> Renderer<'a> {
         };
         let key = ImageKey {
             lattice: Some(lattice.len()),
-            ..ImageKey::of(scene, self.size(), self.spec.bounces, Some(variant))
+            ..ImageKey::of(
+                scene,
+                self.size(),
+                self.spec.bounces,
+                Some(variant),
+                self.course(),
+            )
         };
         let render = || {
             Ok(Rgb8 {
@@ -189,7 +223,13 @@ impl<'a> Renderer<'a> {
 
     /// The whole images under `model` in `frame` at each of `bounces` (each at most the
     /// frame's), from one trace per pixel, on every core.
-    fn images_with(&self, model: &impl Model, frame: &Frame, bounces: &[u32]) -> Result<Vec<Rgb8>> {
+    fn images_with(
+        &self,
+        model: &impl Model,
+        output: Output,
+        frame: &Frame,
+        bounces: &[u32],
+    ) -> Result<Vec<Rgb8>> {
         let (width, height) = (self.spec.width, self.spec.height);
         let accel = self.accelerator(frame);
         let starts: Vec<u32> = (0..height).step_by(ROWS_PER_TASK as usize).collect();
@@ -205,7 +245,7 @@ impl<'a> Renderer<'a> {
                 interrupt::check()?;
                 let n = pixels.len();
                 Ok((0..bounces.len())
-                    .map(|i| tick_bytes(&beauty[i * n..(i + 1) * n]))
+                    .map(|i| program_bytes(self.course(), output, &beauty[i * n..(i + 1) * n]))
                     .collect())
             })
             .collect::<Result<_>>()?;
@@ -232,9 +272,13 @@ impl<'a> Renderer<'a> {
         let deepest = bounces.last().copied().unwrap_or(self.spec.bounces);
         let frame = Frame::new(self.scene, &asked(deepest))?;
         let traced: Vec<u32> = bounces.iter().map(|&b| asked(b).bounces).collect();
+        let course = self.course();
         match variant {
-            None => self.images_with(&whitted_core::model::Tick, &frame, &traced),
-            Some(v) => self.images_with(v, &frame, &traced),
+            None if course.is_default() => {
+                self.images_with(&whitted_core::model::Tick, Output::Course, &frame, &traced)
+            }
+            None => self.images_with(&course.rules(), Output::Course, &frame, &traced),
+            Some(v) => self.images_with(&v.in_course(course), v.output(), &frame, &traced),
         }
     }
 
@@ -249,7 +293,7 @@ impl<'a> Renderer<'a> {
             let mut images = self.images_at(variant, &[self.spec.bounces])?;
             return Ok(images.swap_remove(0));
         };
-        let key = |bounces| ImageKey::of(scene, self.size(), bounces, variant);
+        let key = |bounces| ImageKey::of(scene, self.size(), bounces, variant, self.course());
         cache.get_or_render_family(key(self.spec.bounces), || {
             // The others are worth their deeper trace only if the cache can keep them.
             let family_bytes = (3 * self.bounce_family.len())
@@ -287,7 +331,7 @@ impl<'a> Renderer<'a> {
         let frame = self.frame(Mistakes::NONE)?;
         let accel = self.accelerator(&frame);
         let samples = trace_pixels::<true, _>(
-            &whitted_core::model::Tick,
+            &self.course().rules(),
             self.scene,
             accel,
             &frame,

@@ -10,6 +10,7 @@ use serde_json::{json, Value};
 use crate::check::suite::SuiteCase;
 use crate::check::CaseReport;
 use crate::mistakes::Mistakes;
+use whitted_core::course::Course;
 
 /// The commands that reproduce one case.
 pub struct Reproduce {
@@ -36,13 +37,18 @@ pub fn explain_commands(
     size: (u32, u32),
     (x, y): (u32, u32),
     mistakes: Mistakes,
+    course: Course,
 ) -> Vec<String> {
     let scene = scene.map_or(String::new(), |s| format!(" -i {}", shell_word(s)));
     let size = match size {
-        (640, 480) => String::new(),
+        size if size == course.size() => String::new(),
         (w, h) => format!(" --width {w} --height {h}"),
     };
-    let base = format!("whitted explain{scene} -b {bounces}{size} --pixel {x},{y}");
+    let year = match course {
+        Course::Y2016 => String::new(),
+        other => format!(" --course {other}"),
+    };
+    let base = format!("whitted explain{scene} -b {bounces}{size}{year} --pixel {x},{y}");
     let mut commands = vec![base.clone()];
     if !mistakes.is_empty() {
         let bugs: String = mistakes
@@ -73,7 +79,14 @@ impl Reproduce {
                 let d = &r.difference;
                 let top = r.shown_mistakes();
                 d.worst_pixel.map(|pixel| {
-                    explain_commands(Some(&scene), case.bounces, (d.width, d.height), pixel, top)
+                    explain_commands(
+                        Some(&scene),
+                        case.bounces,
+                        (d.width, d.height),
+                        pixel,
+                        top,
+                        case.course,
+                    )
                 })
             })
             .unwrap_or_default();

@@ -75,20 +75,22 @@ fn suite_findings(images: &[(SuiteCase, Scene, Rgb8)]) -> Findings {
                 image.clone(),
                 images.len(),
                 None,
+                Course::Y2016,
             )
             .expect("case")
         })
         .unzip();
     let all_pass = reports.iter().all(|r| r.difference.verdict.passes());
-    find(&prepared, all_pass).expect("findings")
+    find(&prepared, all_pass, Course::Y2016).expect("findings")
 }
 
 #[test]
 fn every_entry_is_named_first_on_its_own_render() {
-    for bug in Bug::ALL {
+    for bug in Bug::offered(Course::Y2016) {
         let wanted = Mistakes::of(&[bug]);
         let (case, scene, image) = failing_case(wanted);
-        let (_, findings) = check_image(&scene, &case.file, case.bounces, 2, image).expect("check");
+        let (_, findings) =
+            check_image(&scene, &case.file, case.bounces, 2, image, Course::Y2016).expect("check");
         assert!(
             named_first(&findings.diagnosis, wanted),
             "{}: {:?}",
@@ -121,7 +123,8 @@ fn pairs_with_stages_are_found_in_the_top_three() {
     for pair in pairs {
         let wanted = Mistakes::of(&pair);
         let (case, scene, image) = failing_case(wanted);
-        let (_, findings) = check_image(&scene, &case.file, case.bounces, 2, image).expect("check");
+        let (_, findings) =
+            check_image(&scene, &case.file, case.bounces, 2, image, Course::Y2016).expect("check");
         assert_in_top_three(&findings.diagnosis, wanted);
     }
 }
@@ -190,7 +193,8 @@ fn rounding_noise_is_not_a_mistake() {
     for i in (0..image.bytes.len()).step_by(9973) {
         image.bytes[i] = image.bytes[i].saturating_add(1);
     }
-    let (report, findings) = check_image(&scene, "tick2.xml", 2, 2, image).expect("check");
+    let (report, findings) =
+        check_image(&scene, "tick2.xml", 2, 2, image, Course::Y2016).expect("check");
     assert_eq!(report.difference.verdict, Verdict::WithinTolerance);
     assert!(
         findings.diagnosis.is_empty(),
@@ -218,7 +222,8 @@ fn the_model_s_numbers_are_fitted() {
             ..Variant::default()
         };
         let image = r.variant_image(&variant).expect("image");
-        let (_, findings) = check_image(&scene, "tick2.xml", bounces, 2, image).expect("check");
+        let (_, findings) =
+            check_image(&scene, "tick2.xml", bounces, 2, image, Course::Y2016).expect("check");
         let fit = findings
             .parameters
             .iter()
@@ -253,12 +258,14 @@ fn mistakes_beyond_the_catalogue_are_located_in_the_terms() {
         bytes: whitted_io::output::png::tick_bytes(&samples.iter().map(f).collect::<Vec<_>>()),
     };
     let half_ambient = render(&|s| s.beauty - s.ambient * 0.5);
-    let (_, findings) = check_image(&scene, "tick2.xml", 0, 2, half_ambient).expect("check");
+    let (_, findings) =
+        check_image(&scene, "tick2.xml", 0, 2, half_ambient, Course::Y2016).expect("check");
     let top = findings.terms.first().expect("a term");
     assert_eq!(top.layer, "ambient");
     assert!((top.factor - 0.5).abs() < 0.05, "{top:?}");
     let unshadowed = render(&|s| s.beauty - s.lights[1].shadowed + s.lights[1].unshadowed);
-    let (_, findings) = check_image(&scene, "tick2.xml", 0, 2, unshadowed).expect("check");
+    let (_, findings) =
+        check_image(&scene, "tick2.xml", 0, 2, unshadowed, Course::Y2016).expect("check");
     let top = findings.terms.first().expect("a term");
     assert_eq!(
         (top.layer.as_str(), top.replaces.as_deref()),
@@ -274,12 +281,20 @@ fn a_passing_image_that_is_exactly_a_mistake_says_so() {
     let r = Renderer::new(&scene, 640, 480, 2).expect("renderer");
     let gated = Mistakes::of(&[Bug::SpecularGated]);
     let image = r.image(gated).expect("image");
-    let (report, findings) = check_image(&scene, "tick2.xml", 2, 2, image).expect("check");
+    let (report, findings) =
+        check_image(&scene, "tick2.xml", 2, 2, image, Course::Y2016).expect("check");
     assert_eq!(report.difference.verdict, Verdict::WithinTolerance);
     assert_eq!(report.hidden_mistakes, gated, "{:?}", findings.diagnosis);
     // A reference is hiding nothing.
-    let (report, _) =
-        check_image(&scene, "tick2.xml", 2, 2, r.reference().expect("reference")).expect("check");
+    let (report, _) = check_image(
+        &scene,
+        "tick2.xml",
+        2,
+        2,
+        r.reference().expect("reference"),
+        Course::Y2016,
+    )
+    .expect("check");
     assert!(report.hidden_mistakes.is_empty());
 }
 
@@ -296,7 +311,8 @@ fn no_implausible_term_factor_is_a_finding() {
     ] {
         let r = Renderer::new(&scene, 640, 480, bounces).expect("renderer");
         let image = r.image(Mistakes::of(&bugs)).expect("image");
-        let (_, findings) = check_image(&scene, "tick2.xml", bounces, 2, image).expect("check");
+        let (_, findings) =
+            check_image(&scene, "tick2.xml", bounces, 2, image, Course::Y2016).expect("check");
         for t in &findings.terms {
             assert!((-0.05..=4.0).contains(&t.factor), "{t:?}");
             assert!(!t.sentence().contains("x as strong") || t.factor >= 0.0);
@@ -311,7 +327,11 @@ fn a_scene_s_bounce_counts_rendered_together_are_each_one_s_own_render() {
         let scene = whitted_core::scene::parse_str(&case.file, &case.xml).expect("scene");
         let mut variants: Vec<Variant> = [Mistakes::NONE]
             .into_iter()
-            .chain(Bug::ALL.iter().map(|&b| Mistakes::of(&[b])))
+            .chain(
+                Bug::offered(Course::Y2016)
+                    .iter()
+                    .map(|&b| Mistakes::of(&[b])),
+            )
             .chain([Mistakes::of(&[Bug::BouncesMinusOne, Bug::NoShadows])])
             .map(Variant::from)
             .collect();

@@ -48,11 +48,34 @@ const fn unfinished(id: &'static str, stage: Stage, description: &'static str, w
 }
 
 const ILLUMINATE: &str = "Renderer.illuminate";
+/// The later years' names (docs/courses.md): `illuminate(scene, object, P, N, O)`.
+const ILLUMINATE_O: &str = "Renderer.illuminate(..., O)";
+const RENDER: &str = "Renderer.render";
 const TRACE: &str = "Renderer.trace";
 
 pub(super) fn entry(bug: Bug) -> Entry {
     use Stage::*;
     match bug {
+        Bug::ViewToCamera => mistake("view-to-camera", Lights, "V = normalise(-P), towards the camera, not towards the origin O of the ray that found P (wrong for reflected rays)",
+            Where(ILLUMINATE_O, "Vector3 V = P.scale(-1).normalised();", "V = normalise(O - P): Vector3 V = O.subtract(P).normalised();")),
+        Bug::NoGate => mistake("no-gate", Lights, "a light adds its terms where N.L < 0 (the light is behind the surface)",
+            Where(ILLUMINATE_O, "no test of N.dot(L) before adding the light's terms", "skip the light where N.L < 0: if (N.dot(L) < 0) continue;")),
+        Bug::SpecularWhite => mistake("specular-white", Lights, "specular term without the light's colour: I kS (R.V)^n instead of C_light I kS (R.V)^n",
+            Where(ILLUMINATE_O, "ColorRGB specular = I.scale(kS * Math.pow(...));", "multiply by the light's colour too: ColorRGB specular = light.getColour().scale(I).scale(kS * Math.pow(Math.max(0, R.dot(V)), object.getPhong_alpha()));")),
+        Bug::ShadowBiasAlongN => mistake("shadow-bias-along-n", Shadows, "shadow ray moved off the surface along N, not along L",
+            Where(ILLUMINATE_O, "Ray shadowRay = new Ray(P.add(N.scale(EPSILON)), L);", "move it along L: Ray shadowRay = new Ray(P.add(L.scale(EPSILON)), L);")),
+        Bug::ShadowBiasAlongL => mistake("shadow-bias-along-l", Shadows, "shadow ray moved off the surface along L, not along N as this year's course does",
+            Where(ILLUMINATE_O, "Ray shadowRay = new Ray(P.add(L.scale(EPSILON)), L);", "move it along N: Ray shadowRay = new Ray(P.add(N.scale(EPSILON)), L);")),
+        Bug::ReflectionBiasAlongN => mistake("reflection-bias-along-n", Reflection, "reflected ray moved off the surface along N (as the handout's words suggest), not along R",
+            Where(TRACE, "Ray reflectedRay = new Ray(P.add(N.scale(EPSILON)), R);", "move it along R: Ray reflectedRay = new Ray(P.add(R.scale(EPSILON)), R);")),
+        Bug::TonemapMissing => mistake("tonemap-missing", Lights, "the linear colour written without the tone map: each channel clamped to [0, 1] and scaled to 255",
+            Where(RENDER, "image.setRGB(x, y, colour.toRGB());  // without tonemap", "tone-map each pixel before writing it: ColorRGB mapped = tonemap(colour);")),
+        Bug::TonemapTwice => mistake("tonemap-twice", Lights, "the tone map applied twice: to the linear colour, then again to its result",
+            Where(RENDER, "tonemap(tonemap(colour))", "tone-map the linear colour once, just before writing the pixel")),
+        Bug::SpheresMissing => unfinished("spheres-missing", Spheres, "Sphere.intersectionWith still returns the empty hit: no sphere is ever hit",
+            Where("Sphere.intersectionWith", "the intersection (it returns new RaycastHit(), no hit)", "solve |O + sD - C|^2 = r^2; the near root if > 0, else the far one if > 0; a hit there with normal (P - C)/r")),
+        Bug::ShadingMissing => unfinished("shading-missing", Lights, "Renderer.illuminate still returns object.getColour(): every lit object is flat, without ambient, diffuse, specular or shadows",
+            Where(ILLUMINATE_O, "the shading (it returns object.getColour())", "ambient I_a C plus, per light, C I kD max(0, N.L) + C_light I kS max(0, R.V)^n, as the handout's Phong model")),
         Bug::ReflectUnclamped => mistake("reflect-unclamped", Lights, "specular mirror direction R built from the unclamped N.L (the plain reflection of L)",
             Where(ILLUMINATE, "Vector3 R = L.reflectIn(N);", "R = 2 max(0, N.L) N - L: Vector3 R = N.scale(2 * Math.max(0, N.dot(L))).subtract(L);")),
         Bug::SpecularGated => mistake("specular-gated", Lights, "specular added only where N.L > 0",

@@ -6,6 +6,7 @@
 use glam::DVec3;
 
 use super::{Bug, Mistakes};
+use whitted_core::course::{Course, Rules, ShadowBias};
 use whitted_core::geometry::{normalise, sphere_near_else_far_hit, Ray, SphereTerms, EPSILON};
 use whitted_core::model::rounding::{plane_root_taken, sphere_root_taken, SelfHit};
 use whitted_core::model::{mirror_direction, Model, Tick};
@@ -156,27 +157,61 @@ impl Rounding {
 
 /// A candidate program: the course's model with `mistakes` and perhaps one number changed;
 /// `rounding` says how roots that hinge on rounding are taken (exactly as the model's own
-/// arithmetic has them, except when the diagnosis asks for the other ways).
+/// arithmetic has them, except when the diagnosis asks for the other ways). `course` is the
+/// year whose rules every rule not broken follows (the renderer sets it to its case's).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Variant {
     pub mistakes: Mistakes,
     pub number: Option<Number>,
     pub rounding: Rounding,
+    pub course: Course,
 }
 
 impl From<Mistakes> for Variant {
     fn from(mistakes: Mistakes) -> Self {
         Variant {
             mistakes,
-            number: None,
-            rounding: Rounding::Exact,
+            ..Variant::default()
         }
     }
+}
+
+/// How a program turns its linear colour into the PNG's bytes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Output {
+    /// The year's own tone map.
+    Course,
+    /// Clamped and scaled, without a tone map (2016-17's output).
+    Untonemapped,
+    /// The year's tone map applied to its own result once more.
+    Twice,
 }
 
 impl Variant {
     fn has(&self, bug: Bug) -> bool {
         self.mistakes.has(bug)
+    }
+
+    /// The year's rules, for every rule this program does not break.
+    #[inline]
+    fn rules(&self) -> Rules {
+        self.course.rules()
+    }
+
+    /// How this program writes its bytes.
+    pub fn output(&self) -> Output {
+        if self.has(Bug::TonemapMissing) {
+            Output::Untonemapped
+        } else if self.has(Bug::TonemapTwice) {
+            Output::Twice
+        } else {
+            Output::Course
+        }
+    }
+
+    /// This program under `course`'s rules.
+    pub fn in_course(self, course: Course) -> Variant {
+        Variant { course, ..self }
     }
 
     /// The changed value of `parameter`, if this variant changes it.
@@ -257,16 +292,23 @@ impl Model for Variant {
         centre: DVec3,
         radius_squared: f64,
     ) -> Option<f64> {
+        if self.has(Bug::SpheresMissing) {
+            return None;
+        }
         let how = self.rounding.elsewhere();
         if how != SelfHit::Exact {
             return self.sphere_root_rounded(how, ray, terms, centre, radius_squared);
         }
         // The handout read literally: the near root if positive, else the far one.
-        if self.has(Bug::SphereFarRoot) {
+        if self.far_root() {
             sphere_near_else_far_hit(ray, terms, centre, radius_squared)
         } else {
             Tick.sphere_root(ray, terms, centre, radius_squared)
         }
+    }
+
+    fn far_root(&self) -> bool {
+        self.has(Bug::SphereFarRoot) || self.rules().far_root
     }
 
     fn plane_accepts(&self, s: f64) -> bool {
@@ -277,10 +319,6 @@ impl Model for Variant {
         } else {
             Tick.plane_accepts(s)
         }
-    }
-
-    fn far_root(&self) -> bool {
-        self.has(Bug::SphereFarRoot)
     }
 
     fn plane_root(&self, ray: &Ray, point: DVec3, normal: DVec3) -> Option<f64> {
@@ -304,8 +342,16 @@ impl Model for Variant {
         }
     }
 
+    fn background(&self) -> DVec3 {
+        self.rules().background()
+    }
+
+    fn reaches(&self, n_dot_l: f64) -> bool {
+        self.has(Bug::NoGate) || self.rules().reaches(n_dot_l)
+    }
+
     fn lights<'a>(&self, lights: &'a [PointLight]) -> &'a [PointLight] {
-        if self.has(Bug::LightsMissing) {
+        if self.has(Bug::LightsMissing) || self.has(Bug::ShadingMissing) {
             &[]
         } else if self.has(Bug::FirstLightOnly) {
             &lights[..lights.len().min(1)]
@@ -337,8 +383,10 @@ impl Model for Variant {
             normalise(p)
         } else if self.has(Bug::ViewFromRayOrigin) {
             normalise(ray_origin - p)
-        } else {
+        } else if self.has(Bug::ViewToCamera) {
             Tick.view(p, ray_origin)
+        } else {
+            self.rules().view(p, ray_origin)
         }
     }
 
@@ -346,7 +394,7 @@ impl Model for Variant {
         if self.has(Bug::ReflectUnclamped) {
             n * (2.0 * n.dot(l)) - l
         } else {
-            Tick.specular_mirror(n, l, n_dot_l)
+            self.rules().specular_mirror(n, l, n_dot_l)
         }
     }
 
@@ -367,7 +415,10 @@ impl Model for Variant {
     }
 
     fn ambient(&self, ambient_light: DVec3, colour: DVec3) -> DVec3 {
-        if self.has(Bug::NoAmbient) {
+        if self.has(Bug::ShadingMissing) {
+            // The skeleton's illuminate: the object's own colour, flat.
+            colour
+        } else if self.has(Bug::NoAmbient) {
             DVec3::ZERO
         } else {
             let ambient = Tick.ambient(ambient_light, colour);
@@ -398,8 +449,11 @@ impl Model for Variant {
         let gated = self.has(Bug::SpecularGated) && !lit;
         let specular = if gated {
             DVec3::ZERO
-        } else {
+        } else if self.has(Bug::SpecularWhite) {
             Tick.specular(light, illumination, ks, phong, colour, n_dot_l)
+        } else {
+            self.rules()
+                .specular(light, illumination, ks, phong, colour, n_dot_l)
         };
         if self.has(Bug::SpecularObjectColour) {
             specular * colour
@@ -408,11 +462,19 @@ impl Model for Variant {
         }
     }
 
-    fn shadow_ray(&self, p: DVec3, l: DVec3, _n: DVec3) -> Ray {
-        if self.has(Bug::NoShadowBias) {
-            Ray::new(p, l)
+    fn shadow_ray(&self, p: DVec3, l: DVec3, n: DVec3) -> Ray {
+        let along = if self.has(Bug::NoShadowBias) {
+            return Ray::new(p, l);
+        } else if self.has(Bug::ShadowBiasAlongN) {
+            ShadowBias::AlongN
+        } else if self.has(Bug::ShadowBiasAlongL) {
+            ShadowBias::AlongL
         } else {
-            Ray::offset_by(p, l, self.epsilon())
+            self.rules().shadow_bias
+        };
+        match along {
+            ShadowBias::AlongL => Ray::offset_by(p, l, self.epsilon()),
+            ShadowBias::AlongN => Ray::new(p + n * self.epsilon(), l),
         }
     }
 
@@ -441,6 +503,8 @@ impl Model for Variant {
         };
         if self.has(Bug::NoReflectionBias) {
             Ray::new(p, direction)
+        } else if self.has(Bug::ReflectionBiasAlongN) {
+            Ray::new(p + n * self.epsilon(), direction)
         } else {
             Ray::offset_by(p, direction, self.epsilon())
         }
@@ -488,6 +552,7 @@ mod tests {
                     value: parameter.course(),
                 }),
                 rounding: Rounding::Exact,
+                course: Course::Y2016,
             };
             assert_eq!(
                 course.illumination(&light, 3.0),
@@ -509,6 +574,7 @@ mod tests {
                 value: 1.0,
             }),
             rounding: Rounding::Exact,
+            course: Course::Y2016,
         };
         let expected = 100.0 / (std::f64::consts::PI * 4.0 * 3.0);
         assert_eq!(linear.illumination(&light, 3.0), DVec3::splat(expected));

@@ -63,8 +63,18 @@ pub fn encode(pixels: &[DVec3], width: u32, height: u32, encoding: &PngEncoding)
 /// The course's PNG bytes (`tick`, 8 bits, three per pixel) of linear `pixels` in any order:
 /// the one tick quantisation, for code that compares bytes rather than writing a file.
 pub fn tick_bytes(pixels: &[DVec3]) -> Vec<u8> {
+    bytes_with(ToneMap::Tick, pixels)
+}
+
+/// The 8-bit bytes of linear `pixels` in any order under one of the course's own tone maps
+/// (`tick` or the later years' `sigmoid`): what a year's program writes.
+pub fn bytes_with(tonemap: ToneMap, pixels: &[DVec3]) -> Vec<u8> {
     let width = u32::try_from(pixels.len()).unwrap_or(u32::MAX).max(1);
-    match encode_rows(pixels, width, 0, &PngEncoding::default()) {
+    let encoding = PngEncoding {
+        tonemap,
+        ..PngEncoding::default()
+    };
+    match encode_rows(pixels, width, 0, &encoding) {
         PngPixels::Eight(bytes) => bytes,
         PngPixels::Sixteen(_) => unreachable!("the default encoding has 8 bits"),
     }

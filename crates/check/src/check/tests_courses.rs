@@ -1,0 +1,146 @@
+//! The diagnosis under the later years' rules (docs/courses.md): each year's own expected
+//! images check as identical, and each entry the year's catalogue offers, rendered over the
+//! year's suite, is named first wherever the year's scenes show it.
+
+use super::*;
+use crate::check::suite::{cases_of, SuiteCase};
+use crate::mistakes::{Bug, Mistakes, Variant};
+use whitted_core::scene::input::parse_for_course;
+
+/// The size the tests render at: the year's aspect, a quarter of its width, so that the
+/// whole catalogue runs in seconds.
+fn size(course: Course) -> (u32, u32) {
+    let (w, h) = course.size();
+    (w / 4, h / 4)
+}
+
+fn scene_of(case: &SuiteCase) -> Scene {
+    parse_for_course(&case.file, case.xml.as_bytes(), case.course)
+        .expect("the course's scene")
+        .0
+}
+
+/// The findings over `course`'s suite for a program with `mistakes`, and whether any case
+/// fails.
+fn suite_findings(course: Course, mistakes: Mistakes) -> (Findings, bool) {
+    let (w, h) = size(course);
+    let suite = cases_of(course);
+    let scenes: Vec<Scene> = suite.iter().map(scene_of).collect();
+    let mut prepared = Vec::new();
+    let mut all_pass = true;
+    for (case, scene) in suite.iter().zip(&scenes) {
+        let r = Renderer::new(scene, w, h, case.bounces)
+            .expect("renderer")
+            .in_course(course);
+        let image = r.variant_image(&Variant::from(mistakes)).expect("image");
+        let (c, report) = prepare(
+            scene,
+            &case.file,
+            case.bounces,
+            2,
+            image,
+            suite.len(),
+            None,
+            course,
+        )
+        .expect("case");
+        all_pass &= report.difference.verdict.passes();
+        prepared.push(c);
+    }
+    (
+        find(&prepared, all_pass, course).expect("findings"),
+        !all_pass,
+    )
+}
+
+#[test]
+fn each_year_s_expected_images_check_identical() {
+    let years = [
+        (Course::Y2019, "2019-20", "test1"),
+        (Course::Y2019, "2019-20", "test2"),
+        (Course::Y2020, "2020-21", "test1"),
+        (Course::Y2021, "2021-24", "test1"),
+        (Course::Y2023, "2021-24", "test2"),
+    ];
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../../reference/courses");
+    for (course, dir, test) in years {
+        let png = std::path::PathBuf::from(format!("{root}/{dir}/{test}_reference.png"));
+        let student = student_png::read(&png).expect("the course's image");
+        let case = cases_of(course)
+            .into_iter()
+            .find(|c| c.file.starts_with(test) && c.bounces == 2)
+            .expect("in the suite");
+        let scene = scene_of(&case);
+        let (report, findings) =
+            check_image(&scene, &case.file, 2, 2, student, course).expect("check");
+        assert_eq!(report.difference.differing_pixels, 0, "{course} {test}");
+        assert!(findings.diagnosis.is_empty());
+        let keys: Vec<&str> = findings
+            .progress
+            .stages
+            .iter()
+            .map(|(s, _)| s.key(course))
+            .collect();
+        assert_eq!(
+            keys,
+            ["spheres", "shading", "planes", "shadows", "reflection"]
+        );
+    }
+}
+
+#[test]
+fn every_offered_entry_that_shows_is_named_first_in_each_year() {
+    for course in [Course::Y2019, Course::Y2020, Course::Y2021] {
+        let mut named = 0;
+        for bug in Bug::offered(course) {
+            let wanted = Mistakes::of(&[bug]);
+            let (findings, fails) = suite_findings(course, wanted);
+            if !fails {
+                continue;
+            }
+            let top = findings.diagnosis.first().expect("a diagnosis");
+            assert!(
+                top.mistakes == wanted || top.indistinguishable_from.contains(&wanted),
+                "{course}: {} named as {}",
+                bug.id(),
+                top.mistakes.name()
+            );
+            named += 1;
+        }
+        assert!(
+            named >= 15,
+            "{course}: only {named} entries show on the year's scenes"
+        );
+    }
+}
+
+#[test]
+fn the_common_variant_of_2021_24_is_named_as_both_mistakes() {
+    // Reflection moved along N and no N.L gate: most finished projects (docs/courses.md).
+    let wanted = Mistakes::of(&[Bug::ReflectionBiasAlongN, Bug::NoGate]);
+    let (findings, fails) = suite_findings(Course::Y2021, wanted);
+    assert!(fails);
+    let top = findings.diagnosis.first().expect("a diagnosis");
+    assert!(
+        top.mistakes == wanted || top.indistinguishable_from.contains(&wanted),
+        "{}",
+        top.mistakes.name()
+    );
+}
+
+#[test]
+fn the_years_rules_are_not_offered_as_mistakes() {
+    let later = Bug::offered(Course::Y2021);
+    for rule in [
+        Bug::ViewFromRayOrigin,
+        Bug::SpecularGated,
+        Bug::SphereFarRoot,
+        Bug::ShadowBiasAlongN,
+    ] {
+        assert!(!later.contains(&rule), "{}", rule.id());
+    }
+    assert!(later.contains(&Bug::ShadowBiasAlongL));
+    assert!(Bug::offered(Course::Y2019).contains(&Bug::ShadowBiasAlongN));
+    assert_eq!(Bug::offered(Course::Y2016).len(), 26);
+    assert!(!Bug::offered(Course::Y2016).contains(&Bug::ViewToCamera));
+}
