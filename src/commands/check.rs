@@ -130,6 +130,7 @@ fn view(args: &CheckArgs, image: &std::path::Path) -> Result<bool> {
         scene: args.input.clone(),
         bounces: args.bounces,
         tolerance: args.tolerance,
+        course: args.course.map(Course::from),
     };
     let serve = &args.serve;
     whitted_view::serve(source, serve.port, serve.no_browser, serve.watch)?;

@@ -135,7 +135,15 @@ fn a_later_year_s_tree_is_that_year_s_render() {
     }
     // Light 0 sits above the ceiling plane: the ceiling's lower side never sees it.
     assert!(gated > 0);
-    // The mistakes are 2016-17's: asked for under a later year, a clear refusal.
+    // A mistake of the year's catalogue is traced under the year's rules; one that is the
+    // year's own rule is refused, clearly.
+    let traced = whitted(
+        d,
+        &[
+            "explain", "--pixel", "400,300", "--course", "2020-21", "--bug", "no-gate", "--json",
+        ],
+    );
+    assert!(traced.status.success(), "{}", stderr(&traced));
     let refused = whitted(
         d,
         &[
@@ -145,9 +153,14 @@ fn a_later_year_s_tree_is_that_year_s_render() {
             "--course",
             "2020-21",
             "--bug",
-            "no-ambient",
+            "view-from-ray-origin",
         ],
     );
     assert_eq!(refused.status.code(), Some(2));
-    assert!(stderr(&refused).contains("--bug"), "{}", stderr(&refused));
+    let message = stderr(&refused);
+    assert!(
+        message.contains("--bug view-from-ray-origin") && message.contains("2020-21"),
+        "{message}"
+    );
+    assert_eq!(message.trim().lines().count(), 1);
 }

@@ -2,6 +2,7 @@
 //! user runs it, and the library rendered against its references.
 
 mod check;
+mod check_courses;
 mod cli_errors;
 mod common;
 mod courses;

@@ -206,7 +206,7 @@ fn trees(content: &Content, x: usize, y: usize) -> Reply {
     } else {
         let frame = tracer.mistakes.frame_spec(&tracer.frame);
         match explain(
-            &whitted_check::mistakes::Variant::from(tracer.mistakes),
+            &whitted_check::mistakes::Variant::from(tracer.mistakes).in_course(tracer.frame.course),
             &tracer.scene,
             &frame,
             x,

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use serde_json::Value;
 
-use whitted_check::check::{check_image, json::case_json, student_png, words};
+use whitted_check::check::{check_image, json::case_json, student_png, which_course, words};
 use whitted_check::mistakes::Mistakes;
 use whitted_core::course::Course;
 use whitted_core::error::{Error, Result};
@@ -32,6 +32,8 @@ pub enum Source {
         scene: Option<PathBuf>,
         bounces: u32,
         tolerance: u8,
+        /// `--course` (None: read from the image's size and the scene, as `check` does).
+        course: Option<Course>,
     },
 }
 
@@ -99,7 +101,8 @@ impl Source {
                 scene,
                 bounces,
                 tolerance,
-            } => load_check(image, scene.as_deref(), *bounces, *tolerance),
+                course,
+            } => load_check(image, scene.as_deref(), *bounces, *tolerance, *course),
         }
     }
 }
@@ -133,16 +136,25 @@ fn load_view(image: &Path, reference: Option<&Path>, scene: Option<&Path>) -> Re
     })
 }
 
-fn load_check(image: &Path, scene: Option<&Path>, bounces: u32, tolerance: u8) -> Result<Content> {
-    let input = scene::input::load_input(scene, Course::default())?;
+fn load_check(
+    image: &Path,
+    scene: Option<&Path>,
+    bounces: u32,
+    tolerance: u8,
+    course: Option<Course>,
+) -> Result<Content> {
     let student = student_png::read(image)?;
+    let scene_bytes = scene.map(scene::read_file).transpose()?;
+    let size = (student.width, student.height);
+    let chosen = which_course::for_image(course, size, scene_bytes.as_deref())?;
+    let input = scene::input::load_input(scene, chosen.course)?;
     let (case, findings) = check_image(
         &input.scene,
         &input.name,
         bounces,
         tolerance,
         student,
-        Course::default(),
+        chosen.course,
     )?;
     let (width, height) = (case.student.width, case.student.height);
     let as_image = |bytes: &[u8]| raster::rgb8(width as usize, height as usize, bytes);
@@ -159,6 +171,10 @@ fn load_check(image: &Path, scene: Option<&Path>, bounces: u32, tolerance: u8) -
         .map(|b| (b.id().to_string(), Value::from(b.description())))
         .collect();
     report["descriptions"] = Value::Object(named);
+    report["course"] = Value::from(chosen.course.name());
+    if let Some(why) = chosen.why {
+        report["course_chosen_because"] = Value::from(why);
+    }
     // The check's own sentence for a passing image that hides a mistake.
     if let Some(line) = words::passes_but_hidden(&case) {
         report["hidden_text"] = Value::from(line);
@@ -169,7 +185,10 @@ fn load_check(image: &Path, scene: Option<&Path>, bounces: u32, tolerance: u8) -
         check: Some(report),
         tracer: Some(Tracer {
             scene: input.scene,
-            frame: FrameSpec::tick(width, height, bounces, true),
+            frame: FrameSpec {
+                course: chosen.course,
+                ..FrameSpec::tick(width, height, bounces, true)
+            },
             mistakes,
             origin: [0, 0],
         }),

@@ -107,7 +107,8 @@ pub fn cases() -> Vec<SuiteCase> {
 /// `course`'s suite, in the order it runs and is reported. 2016-17: the course's tick2.xml at
 /// 0 to 3 bounces and specular_test.xml, and two scenes of ours that separate mistakes the
 /// course's scenes render alike. Later years: the year's own test1 at 0, 1 and 2 bounces (the
-/// unfinished reflection renders as 0 does) and test2 at the default 2.
+/// unfinished reflection renders as 0 does), test2 at the default 2, and the same two scenes
+/// of ours.
 pub fn cases_of(course: Course) -> Vec<SuiteCase> {
     let case = |file, xml, bounces, role| SuiteCase {
         file: Cow::Borrowed(file),
@@ -133,6 +134,10 @@ pub fn cases_of(course: Course) -> Vec<SuiteCase> {
         case("test1.xml", test1, 2, Role::Course),
     ];
     suite.extend(test2.map(|xml| case("test2.xml", xml, 2, Role::Course)));
+    // Ours, in the attributes every year's loader reads alike: what the year's own scenes
+    // cannot show (a plane behind the camera, acne, a mirror's self-reflection).
+    suite.push(case("shadows.xml", SHADOWS, 1, Role::Diagnostic));
+    suite.push(case("mirrors.xml", MIRRORS, 3, Role::Diagnostic));
     suite
 }
 

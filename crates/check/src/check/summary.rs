@@ -31,6 +31,9 @@ pub fn fits(findings: &Findings) -> Vec<String> {
 /// The progress line, then, when the catalogue explains little, what explains most.
 pub fn opening(findings: &Findings) -> Vec<String> {
     let mut lines = vec![findings.progress.sentence()];
+    if let Some(line) = common_variant(findings) {
+        lines.push(line);
+    }
     if !findings.weak() {
         return lines;
     }
@@ -49,6 +52,23 @@ pub fn opening(findings: &Findings) -> Vec<String> {
         None => {}
     }
     lines
+}
+
+/// The image most finished projects of 2021-24 render (docs/courses.md, "A variant the
+/// course's tester may accept"): the reflected ray moved along N and no N.L gate. Said when
+/// the top explanation is exactly that pair in a year whose rules make both mistakes.
+fn common_variant(findings: &Findings) -> Option<String> {
+    let pair = Mistakes::of(&[Bug::NoGate, Bug::ReflectionBiasAlongN]);
+    let course = findings.progress.course;
+    let offered = pair.bugs().iter().all(|b| b.offered_in(course));
+    let top = findings.diagnosis.first()?;
+    let is_pair = top.mistakes == pair || top.indistinguishable_from.contains(&pair);
+    (offered && is_pair && top.explained >= GOOD_EXPLANATION).then(|| {
+        "this is the common variant: the image most finished projects of 2021-24 render \
+         (the reflected ray moved along N, as the handout's words suggest, and no N.L gate); \
+         the course's own tester may accept it, but both differ from the course's rules"
+            .to_string()
+    })
 }
 
 /// The heading of the candidate list: plain when the best is good, marked weak otherwise.

@@ -16,7 +16,8 @@ import org.w3c.dom.NodeList;
  * {@code -Dcourse=2020-21}, for the tests that `whitted render --course YEAR` renders what a
  * correct program of that year renders. Run as
  * {@code java -Dcourse=Y -cp out uk.ac.cam.cl.gfxintro.whitted.tick1.Tick1 -i S.xml -o O.png
- * -b N -r WxH}.
+ * -b N -r WxH}. {@code -Dbug=id,id} makes the catalogue's mistakes the way a student writes
+ * them, for the tests of `whitted check --course`.
  */
 public final class Tick1 {
     static final double EPSILON = 0.0001;
@@ -49,6 +50,11 @@ public final class Tick1 {
     }
 
     static Year year;
+
+    /** Catalogue entries (whitted check --list-bugs) this run makes, from -Dbug=a,b. */
+    static final java.util.Set<String> BUGS = new java.util.HashSet<>();
+
+    static boolean bug(String id) { return BUGS.contains(id); }
 
     record Vector3(double x, double y, double z) {
         Vector3 add(Vector3 o) { return new Vector3(x + o.x, y + o.y, z + o.z); }
@@ -90,7 +96,8 @@ public final class Tick1 {
             double b = 2 * d.dot(oc);
             double c = oc.dot(oc) - radius * radius;
             double disc = b * b - 4 * a * c;
-            if (disc < 0) return null;
+            // The skeleton's TODO: no sphere is hit yet.
+            if (bug("spheres-missing") || disc < 0) return null;
             double near = (-b - Math.sqrt(disc)) / (2 * a);
             if (near > 0) return near;
             if (year.farRoot()) {
@@ -109,8 +116,10 @@ public final class Tick1 {
         Plane(Vector3 point, Vector3 normal) { this.point = point; this.normal = normal; }
 
         Double intersectionWith(Ray ray) {
+            if (bug("planes-missing")) return null;
             double s = point.subtract(ray.origin()).dot(normal) / ray.direction().dot(normal);
-            if (Double.isNaN(s) || Double.isInfinite(s) || s < 0) return null;
+            if (Double.isNaN(s) || Double.isInfinite(s)) return null;
+            if (s < 0 && !bug("plane-behind")) return null;
             return s;
         }
 
@@ -119,6 +128,7 @@ public final class Tick1 {
 
     record PointLight(Vector3 position, ColorRGB colour, double intensity) {
         ColorRGB getIlluminationAt(double d) {
+            if (bug("no-falloff")) return colour.scale(intensity);
             return colour.scale(intensity / (Math.PI * 4 * d * d));
         }
     }
@@ -198,26 +208,40 @@ public final class Tick1 {
 
     ColorRGB illuminate(SceneObject object, Vector3 P, Vector3 N, Vector3 O) {
         ColorRGB C = object.colour;
-        ColorRGB colour = ambient.scale(C);
-        Vector3 V = year.viewFromRayOrigin() ? O.subtract(P).normalised() : P.negated().normalised();
-        for (PointLight light : lights) {
+        // The skeleton's TODO: every object flat in its own colour.
+        if (bug("shading-missing")) return C;
+        ColorRGB colour = bug("no-ambient") ? new ColorRGB(0, 0, 0) : ambient.scale(C);
+        boolean fromOrigin = year.viewFromRayOrigin() && !bug("view-to-camera");
+        Vector3 V = bug("view-flipped") ? P.normalised()
+                : fromOrigin ? O.subtract(P).normalised() : P.negated().normalised();
+        List<PointLight> used = bug("first-light-only") ? lights.subList(0, Math.min(1, lights.size())) : lights;
+        for (PointLight light : used) {
             Vector3 toLight = light.position().subtract(P);
             double d = toLight.magnitude();
             ColorRGB I = light.getIlluminationAt(d);
-            Vector3 L = toLight.normalised();
+            Vector3 L = bug("light-unnormalised") ? toLight : toLight.normalised();
             double NdotL = N.dot(L);
-            if (year.gate() && NdotL < 0) continue;
+            if (year.gate() && !bug("no-gate") && NdotL < 0) continue;
             Vector3 R = year.reflectUnclamped() ? N.scale(2 * NdotL).subtract(L)
                     : N.scale(2 * Math.max(0, NdotL)).subtract(L);
-            ColorRGB diffuse = C.scale(I).scale(object.kD).scale(Math.max(0, NdotL));
-            double phong = Math.pow(Math.max(0, R.dot(V)), object.alphaS);
-            ColorRGB specular = year.lightColouredSpecular()
+            ColorRGB diffuse = bug("diffuse-no-colour") ? I.scale(object.kD).scale(Math.max(0, NdotL))
+                    : C.scale(I).scale(object.kD).scale(Math.max(0, NdotL));
+            double RdotV = bug("rv-unclamped") ? R.dot(V) : Math.max(0, R.dot(V));
+            double phong = Math.pow(RdotV, object.alphaS);
+            ColorRGB specular = year.lightColouredSpecular() && !bug("specular-white")
                     ? light.colour().scale(I).scale(object.kS).scale(phong)
                     : I.scale(object.kS).scale(phong);
-            Vector3 origin = P.add((year.shadowAlongN() ? N : L).scale(EPSILON));
-            Hit blocker = closest(new Ray(origin, L));
-            if (blocker == null || blocker.distance() >= d) {
-                colour = colour.add(diffuse).add(specular);
+            if (bug("specular-object-colour")) specular = specular.scale(C);
+            boolean alongN = bug("shadow-bias-along-n") || year.shadowAlongN() && !bug("shadow-bias-along-l");
+            Vector3 origin = bug("no-shadow-bias") ? P : P.add((alongN ? N : L).scale(EPSILON));
+            boolean inShadow = false;
+            if (!bug("no-shadows")) {
+                Hit blocker = closest(new Ray(origin, L));
+                inShadow = blocker != null && (bug("shadow-any-hit") || blocker.distance() < d);
+            }
+            if (!inShadow) {
+                ColorRGB base = bug("last-light-wins") ? (bug("no-ambient") ? new ColorRGB(0, 0, 0) : ambient.scale(C)) : colour;
+                colour = base.add(diffuse).add(specular);
             }
         }
         return colour;
@@ -231,10 +255,18 @@ public final class Tick1 {
         Vector3 P = ray.evaluateAt(hit.distance());
         Vector3 N = o.getNormalAt(P);
         ColorRGB direct = illuminate(o, P, N, ray.origin());
+        // The skeleton's trace has no reflection code yet.
+        if (bug("reflection-ignored")) return direct;
         if (bouncesLeft <= 0 || o.reflectivity == 0) return direct;
         Vector3 toEye = ray.direction().negated();
-        Vector3 R = N.scale(2 * N.dot(toEye)).subtract(toEye).normalised();
-        ColorRGB reflected = trace(new Ray(P.add(R.scale(EPSILON)), R), bouncesLeft - 1);
+        Vector3 R = bug("reflection-wrong-sign")
+                ? N.scale(2 * N.dot(ray.direction())).subtract(ray.direction()).normalised()
+                : N.scale(2 * N.dot(toEye)).subtract(toEye).normalised();
+        // The handout's words: "as for the shadow ray", i.e. along N.
+        Vector3 start = bug("no-reflection-bias") ? P
+                : bug("reflection-bias-along-n") ? P.add(N.scale(EPSILON)) : P.add(R.scale(EPSILON));
+        ColorRGB reflected = trace(new Ray(start, R), bouncesLeft - 1);
+        if (bug("reflection-unweighted")) return direct.add(reflected.scale(o.reflectivity));
         return direct.scale(1 - o.reflectivity).add(reflected.scale(o.reflectivity));
     }
 
@@ -245,13 +277,17 @@ public final class Tick1 {
     }
 
     static int toByte(double v) {
-        double g = year.toneMapped() ? toneMap(v) : v;
+        boolean mapped = year.toneMapped() && !bug("tonemap-missing");
+        double g = mapped ? toneMap(v) : v;
+        if (mapped && bug("tonemap-twice")) g = toneMap(g);
         if (Double.isNaN(g)) return 0;
         return (int) (255 * Math.min(1, Math.max(0, g)));
     }
 
     public static void main(String[] args) throws Exception {
         year = new Year(System.getProperty("course", "2021-22"));
+        String bugs = System.getProperty("bug", "");
+        if (!bugs.isEmpty()) BUGS.addAll(java.util.Arrays.asList(bugs.split(",")));
         String input = "tick1.xml", output = "output.png";
         int bounces = 2, width = 640, height = 480;
         for (int i = 0; i + 1 < args.length; i += 2) {

@@ -1,0 +1,222 @@
+//! `whitted check --course YEAR --program` against a real Java Tick 1 of the later years
+//! (`tests/java/.../tick1/Tick1.java`, written from docs/courses.md; its year is
+//! `-Dcourse=YEAR`, its mistakes `-Dbug=ID`, written as students write them): the correct
+//! program passes, each mistake is named first with the year's progress keys, the common
+//! variant is named as both its mistakes, and a Tick 1 program is never checked as 2016-17's
+//! in silence.
+
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
+
+use serde_json::Value;
+
+use crate::common::*;
+
+fn classes() -> &'static Path {
+    static CLASSES: OnceLock<PathBuf> = OnceLock::new();
+    CLASSES.get_or_init(|| {
+        javac(
+            "tests/java/uk/ac/cam/cl/gfxintro/whitted/tick1/Tick1.java",
+            "tick1-check",
+        )
+    })
+}
+
+fn program(course: &str, bugs: &[&str]) -> String {
+    let flag = if bugs.is_empty() {
+        String::new()
+    } else {
+        format!("-Dbug={} ", bugs.join(","))
+    };
+    format!(
+        "java -Dcourse={course} {flag}-cp '{}' uk.ac.cam.cl.gfxintro.whitted.tick1.Tick1",
+        classes().to_str().expect("utf-8")
+    )
+}
+
+/// The JSON of `check --course course --program ...` and its exit status.
+fn check(course: &str, bugs: &[&str]) -> (Value, Option<i32>) {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let program = program(course, bugs);
+    let out = whitted(
+        dir.path(),
+        &["check", "--course", course, "--program", &program, "--json"],
+    );
+    let json: Value = serde_json::from_slice(&out.stdout)
+        .unwrap_or_else(|_| panic!("{course} {bugs:?}: {}", stderr(&out)));
+    (json, out.status.code())
+}
+
+/// The ids of the top diagnosis and of its twins.
+fn top(json: &Value) -> Vec<Vec<String>> {
+    let Some(first) = json["diagnosis"].get(0) else {
+        return Vec::new();
+    };
+    let ids = |v: &Value| -> Vec<String> {
+        v.as_array()
+            .map(|a| {
+                a.iter()
+                    .filter_map(|s| s.as_str().map(String::from))
+                    .collect()
+            })
+            .unwrap_or_default()
+    };
+    let mut all = vec![ids(&first["bugs"])];
+    if let Some(twins) = first["indistinguishable_from"].as_array() {
+        all.extend(twins.iter().map(ids));
+    }
+    all
+}
+
+fn assert_named_first(course: &str, bugs: &[&str]) {
+    let (json, status) = check(course, bugs);
+    assert_eq!(status, Some(1), "{course} {bugs:?} fails the suite");
+    let mut wanted: Vec<String> = bugs.iter().map(|s| s.to_string()).collect();
+    wanted.sort();
+    let named = top(&json);
+    let found = named.iter().any(|ids| {
+        let mut ids = ids.clone();
+        ids.sort();
+        ids == wanted
+    });
+    assert!(found, "{course} {bugs:?}: named {named:?}");
+    assert_eq!(json["course"], course);
+    let keys: Vec<&String> = json["progress"]
+        .as_object()
+        .expect("progress")
+        .keys()
+        .collect();
+    for key in ["spheres", "shading", "planes", "shadows", "reflection"] {
+        assert!(keys.iter().any(|k| *k == key), "{key} in {keys:?}");
+    }
+}
+
+/// Every mistake the Java program makes (each shows on the year's suite).
+const SHOWN: [&str; 27] = [
+    "view-flipped",
+    "no-shadow-bias",
+    "no-reflection-bias",
+    "plane-behind",
+    "light-unnormalised",
+    "no-falloff",
+    "no-ambient",
+    "diffuse-no-colour",
+    "specular-object-colour",
+    "first-light-only",
+    "last-light-wins",
+    "no-shadows",
+    "shadow-any-hit",
+    "reflection-wrong-sign",
+    "reflection-unweighted",
+    "rv-unclamped",
+    "planes-missing",
+    "reflection-ignored",
+    "view-to-camera",
+    "no-gate",
+    "specular-white",
+    "shadow-bias-along-l",
+    "reflection-bias-along-n",
+    "tonemap-missing",
+    "tonemap-twice",
+    "spheres-missing",
+    "shading-missing",
+];
+
+#[test]
+fn a_correct_program_of_each_later_year_passes() {
+    for course in ["2017-18", "2019-20", "2020-21", "2021-22"] {
+        let (json, status) = check(course, &[]);
+        assert_eq!(status, Some(0), "{course}: {json}");
+        assert_eq!(json["passed"], true);
+        assert_eq!(json["progress"]["reflection"], "done");
+    }
+}
+
+#[test]
+fn each_mistake_of_2021_22_is_named_first_first_half() {
+    for bug in &SHOWN[..14] {
+        assert_named_first("2021-22", &[bug]);
+    }
+}
+
+#[test]
+fn each_mistake_of_2021_22_is_named_first_second_half() {
+    for bug in &SHOWN[14..] {
+        assert_named_first("2021-22", &[bug]);
+    }
+}
+
+#[test]
+fn the_mistakes_that_differ_between_years_are_named_in_their_year() {
+    for bug in [
+        "shadow-bias-along-n",
+        "no-gate",
+        "tonemap-twice",
+        "view-to-camera",
+    ] {
+        assert_named_first("2019-20", &[bug]);
+    }
+    for bug in [
+        "view-to-camera",
+        "specular-white",
+        "reflection-bias-along-n",
+    ] {
+        assert_named_first("2017-18", &[bug]);
+    }
+}
+
+#[test]
+fn the_common_variant_is_named_as_both_its_mistakes() {
+    assert_named_first("2021-22", &["no-gate", "reflection-bias-along-n"]);
+    let (json, _) = check("2021-22", &["no-gate", "reflection-bias-along-n"]);
+    let summary = json["summary"].to_string();
+    assert!(
+        summary.contains("common variant") && summary.contains("may accept"),
+        "{summary}"
+    );
+    let (alone, _) = check("2021-22", &["no-gate"]);
+    assert!(!alone["summary"].to_string().contains("common variant"));
+}
+
+#[test]
+fn a_tick1_program_is_not_checked_as_2016_17_in_silence() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let program = program("2021-22", &[]);
+    let out = whitted(dir.path(), &["check", "--program", &program]);
+    assert_eq!(out.status.code(), Some(2));
+    let message = stderr(&out);
+    assert!(
+        message.contains("Tick 1") && message.contains("2017-18") && message.contains("2023-24"),
+        "{message}"
+    );
+    assert_eq!(message.trim().lines().count(), 1, "{message}");
+}
+
+#[test]
+fn an_800x600_image_is_checked_as_2021_22_and_says_why() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let reference = root().join("reference/courses/2021-24/test1_reference.png");
+    let out = whitted(dir.path(), &["check", reference.to_str().expect("utf-8")]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.lines()
+            .nth(1)
+            .is_some_and(|l| l.starts_with("course: 2021-22") && l.contains("800x600")),
+        "{text}"
+    );
+    // A scene two years with different rules ship, at their shared size: refused.
+    let scene = root().join("scenes/courses/2019-20/test2.xml");
+    let image = root().join("reference/courses/2019-20/test2_reference.png");
+    let out = whitted(
+        dir.path(),
+        &[
+            "check",
+            image.to_str().expect("utf-8"),
+            "-i",
+            scene.to_str().expect("utf-8"),
+        ],
+    );
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("--course with one of 2019-20 and 2020-21"));
+}
