@@ -3,7 +3,7 @@
 //! `-Dcourse=YEAR`, its mistakes `-Dbug=ID`, written as students write them): the correct
 //! program passes, each mistake is named first with the year's progress keys, the common
 //! variant is named as both its mistakes, and a Tick 1 program is never checked as 2016-17's
-//! in silence.
+//! in silence, and Tick 1*'s random soft shadows are called noise, not mistakes.
 
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
@@ -219,4 +219,32 @@ fn an_800x600_image_is_checked_as_2021_22_and_says_why() {
     );
     assert_eq!(out.status.code(), Some(2));
     assert!(stderr(&out).contains("--course with one of 2019-20 and 2020-21"));
+}
+
+#[test]
+fn tick1_star_s_random_soft_shadows_are_noise_not_mistakes() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let program = format!(
+        "java -Dcourse=2021-22 -Dstar=soft-shadows -cp '{}' uk.ac.cam.cl.gfxintro.whitted.tick1.Tick1",
+        classes().to_str().expect("utf-8")
+    );
+    let out = whitted(
+        dir.path(),
+        &[
+            "check",
+            "--course",
+            "2021-22",
+            "--program",
+            &program,
+            "--json",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    let json: Value = serde_json::from_slice(&out.stdout).expect("json");
+    assert_eq!(
+        json["not_reproducible"]["seen"], "two-runs-differ",
+        "{json}"
+    );
+    assert!(json["diagnosis"].as_array().is_some_and(|d| d.is_empty()));
+    assert!(json["summary"].to_string().contains("not reproducible"));
 }

@@ -11,6 +11,7 @@ pub mod diagnose;
 pub mod difference;
 pub mod image_cache;
 pub mod json;
+pub mod noise;
 pub mod numbers;
 pub mod pixel_sample;
 pub mod program;
@@ -29,6 +30,7 @@ pub mod words;
 use crate::check::case::Case;
 use crate::check::diagnose::{CaseFinding, Diagnosis, Search};
 use crate::check::difference::{difference, Difference};
+use crate::check::noise::Noise;
 use crate::check::numbers::NumberFit;
 use crate::check::progress::{Evidence, Stages};
 use crate::check::renderer::{Renderer, SharedScene};
@@ -64,6 +66,8 @@ pub struct Findings {
     /// Where no candidate explains the images well: the model's numbers that do.
     pub parameters: Vec<NumberFit>,
     pub progress: Stages,
+    /// Some case is noisy as random sampling makes it (Tick 1*): nothing is diagnosed.
+    pub not_reproducible: Option<Noise>,
 }
 
 impl Findings {
@@ -84,6 +88,13 @@ impl Findings {
         settled(&self.diagnosis, &self.parameters)
     }
 
+    /// Nothing diagnosed because the images are noisy (`noise.rs`).
+    pub fn not_reproducible(cases: usize, course: Course, noise: Noise) -> Findings {
+        let mut findings = Findings::nothing(cases, Evidence::Unexplained, course);
+        findings.not_reproducible = Some(noise);
+        findings
+    }
+
     /// Nothing found: no images, or every one identical.
     fn nothing(cases: usize, evidence: Evidence, course: Course) -> Findings {
         Findings {
@@ -92,6 +103,7 @@ impl Findings {
             terms: Vec::new(),
             parameters: Vec::new(),
             progress: Stages::of(&evidence, course),
+            not_reproducible: None,
         }
     }
 }
@@ -109,6 +121,13 @@ pub fn find(cases: &[Case], all_pass: bool, course: Course) -> Result<Findings> 
             Evidence::Nothing
         };
         return Ok(Findings::nothing(cases.len(), evidence, course));
+    }
+    // Noise is not a mistake: a Tick 1* image is compared blurred and not diagnosed.
+    if let Some(noise) = cases
+        .iter()
+        .find_map(|c| noise::noise(&c.student, &c.reference))
+    {
+        return Ok(Findings::not_reproducible(cases.len(), course, noise));
     }
     let mut search = Search::run(cases)?;
     // A number fit that settles the story (`SETTLED`) hides every weak candidate, so their
@@ -144,6 +163,7 @@ pub fn find(cases: &[Case], all_pass: bool, course: Course) -> Result<Findings> 
         terms: Vec::new(),
         parameters: Vec::new(),
         progress: Stages::of(&Evidence::Nothing, course),
+        not_reproducible: None,
     };
     if findings.weak() {
         let fit = match fitted {
@@ -227,6 +247,7 @@ impl Fitted {
             terms: Vec::new(),
             parameters: Vec::new(),
             progress: Stages::of(&Evidence::Nothing, course),
+            not_reproducible: None,
         };
         self.tell(&mut findings, cases);
         findings.progress = Stages::of(&evidence(&findings, all_pass), course);

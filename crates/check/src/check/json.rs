@@ -86,6 +86,18 @@ pub fn add_findings(object: &mut Value, findings: &Findings) {
         object["parameters"] = parameters_json(&findings.parameters);
     }
     object["summary"] = json!(summary::opening(findings));
+    object["not_reproducible"] = match findings.not_reproducible {
+        Some(noise) => json!({
+            "seen": match noise.seen {
+                crate::check::noise::Seen::TwoRuns => "two-runs-differ",
+                crate::check::noise::Seen::Scattered { .. } => "scattered-difference",
+            },
+            "blurred_max_difference": noise.blurred_max,
+            "noise_tolerance": crate::check::noise::NOISE_TOLERANCE,
+            "within_noise_tolerance": noise.within_tolerance(),
+        }),
+        None => Value::Null,
+    };
     object["diagnosis_heading"] = json!(summary::candidates_heading(findings));
 }
 

@@ -10,7 +10,9 @@ use std::process::{Command, ExitStatus, Stdio};
 use std::sync::Arc;
 use std::time::Duration;
 
+use crate::check::case::Case;
 use crate::check::image_cache::ImageCache;
+use crate::check::noise::{self, Noise, Seen};
 use crate::check::renderer::SharedScene;
 use crate::check::student_png::{self, Rgb8};
 use crate::check::suite::{cases_of, SuiteCase};
@@ -246,7 +248,10 @@ pub fn run_suite_with(
     let all_pass = statuses.iter().all(Option::is_none)
         && reports.iter().all(|r| r.difference.verdict.passes());
     let course = suite.first().map_or(Course::Y2016, |c| c.course);
-    let findings = find(&prepared, all_pass, course)?;
+    let findings = match rerun_differs(launch, suite, &scenes, &prepared, &reports, timeout)? {
+        Some(noise) => Findings::not_reproducible(prepared.len(), course, noise),
+        None => find(&prepared, all_pass, course)?,
+    };
     let mut reports = reports.into_iter().zip(&findings.per_case);
     let outcomes = suite
         .iter()
@@ -294,6 +299,37 @@ struct Running {
 
 /// Runs every case's program, `AT_ONCE` at a time, and returns each one's result and standard
 /// error tail in suite order.
+/// The first failing case run once more: a program that writes another image the second time
+/// samples at random (Tick 1*), and its images are compared as noise, not diagnosed. One
+/// extra run, and only when a case fails.
+fn rerun_differs(
+    launch: &dyn Launch,
+    suite: &[SuiteCase],
+    scenes: &[(usize, Scene)],
+    prepared: &[Case],
+    reports: &[CaseReport],
+    timeout: u64,
+) -> Result<Option<Noise>> {
+    let Some(k) = reports.iter().position(|r| !r.difference.verdict.passes()) else {
+        return Ok(None);
+    };
+    let case = &suite[scenes[k].0];
+    let again = run_programs(
+        launch,
+        std::slice::from_ref(case),
+        Duration::from_secs(timeout),
+    )?;
+    let first = &prepared[k];
+    Ok(match again.into_iter().next() {
+        Some((Ran::Image(image), _)) if image != first.student => Some(noise::compared(
+            Seen::TwoRuns,
+            &first.student,
+            &first.reference,
+        )),
+        _ => None,
+    })
+}
+
 fn run_programs(
     launch: &dyn Launch,
     suite: &[SuiteCase],

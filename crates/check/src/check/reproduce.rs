@@ -96,7 +96,14 @@ impl Reproduce {
                 "{program} --input {quoted} --output {output} --bounces {}",
                 case.bounces
             ),
-            check: format!("whitted check {output} -i {quoted} -b {}", case.bounces),
+            check: format!(
+                "whitted check {output} -i {quoted} -b {}{}",
+                case.bounces,
+                match case.course {
+                    Course::Y2016 => String::new(),
+                    other => format!(" --course {other}"),
+                }
+            ),
             explain,
             scene,
         }

@@ -31,6 +31,10 @@ pub fn fits(findings: &Findings) -> Vec<String> {
 /// The progress line, then, when the catalogue explains little, what explains most.
 pub fn opening(findings: &Findings) -> Vec<String> {
     let mut lines = vec![findings.progress.sentence()];
+    if let Some(noise) = findings.not_reproducible {
+        lines.push(noise.sentence());
+        return lines;
+    }
     if let Some(line) = common_variant(findings) {
         lines.push(line);
     }

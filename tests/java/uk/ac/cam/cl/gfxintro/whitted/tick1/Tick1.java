@@ -56,6 +56,9 @@ public final class Tick1 {
 
     static boolean bug(String id) { return BUGS.contains(id); }
 
+    /** Tick 1*'s soft shadows (-Dstar=soft-shadows): random, so never the same image twice. */
+    static final boolean SOFT_SHADOWS = "soft-shadows".equals(System.getProperty("star", ""));
+
     record Vector3(double x, double y, double z) {
         Vector3 add(Vector3 o) { return new Vector3(x + o.x, y + o.y, z + o.z); }
         Vector3 subtract(Vector3 o) { return new Vector3(x - o.x, y - o.y, z - o.z); }
@@ -235,7 +238,18 @@ public final class Tick1 {
             boolean alongN = bug("shadow-bias-along-n") || year.shadowAlongN() && !bug("shadow-bias-along-l");
             Vector3 origin = bug("no-shadow-bias") ? P : P.add((alongN ? N : L).scale(EPSILON));
             boolean inShadow = false;
-            if (!bug("no-shadows")) {
+            if (SOFT_SHADOWS) {
+                // Tick 1*: ten shadow rays towards random points of a sphere around the light.
+                int lit = 0;
+                for (int k = 0; k < 10; k++) {
+                    Vector3 jitter = new Vector3(Math.random() - 0.5, Math.random() - 0.5, Math.random() - 0.5).scale(0.4);
+                    Vector3 to = light.position().add(jitter).subtract(P);
+                    Hit blocker = closest(new Ray(origin, to.normalised()));
+                    if (blocker == null || blocker.distance() >= to.magnitude()) lit++;
+                }
+                diffuse = diffuse.scale(lit / 10.0);
+                specular = specular.scale(lit / 10.0);
+            } else if (!bug("no-shadows")) {
                 Hit blocker = closest(new Ray(origin, L));
                 inShadow = blocker != null && (bug("shadow-any-hit") || blocker.distance() < d);
             }
