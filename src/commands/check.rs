@@ -46,14 +46,25 @@ pub fn run(args: &CheckArgs) -> Result<bool> {
     }
 }
 
-/// The catalogue: each entry's id and statement on a line, then where and how to fix it.
+/// The catalogue: each entry's id and statement on a line (with the years that offer it,
+/// where not every year does), then where and how to fix it.
 fn catalogue() -> String {
     Bug::ALL
         .iter()
         .map(|b| {
             let [place, fix] = b.advice();
+            let years: Vec<&str> = Course::ALL
+                .into_iter()
+                .filter(|&c| b.offered_in(c))
+                .map(Course::name)
+                .collect();
+            let years = if years.len() == Course::ALL.len() {
+                String::new()
+            } else {
+                format!(" [--course {}]", years.join(", "))
+            };
             format!(
-                "{:<24} {}\n{:25}{place}\n{:25}{fix}",
+                "{:<24} {}{years}\n{:25}{place}\n{:25}{fix}",
                 b.id(),
                 b.description(),
                 "",
