@@ -122,13 +122,6 @@ pub fn find(cases: &[Case], all_pass: bool, course: Course) -> Result<Findings> 
         };
         return Ok(Findings::nothing(cases.len(), evidence, course));
     }
-    // Noise is not a mistake: a Tick 1* image is compared blurred and not diagnosed.
-    if let Some(noise) = cases
-        .iter()
-        .find_map(|c| noise::noise(&c.student, &c.reference))
-    {
-        return Ok(Findings::not_reproducible(cases.len(), course, noise));
-    }
     let mut search = Search::run(cases)?;
     // A number fit that settles the story (`SETTLED`) hides every weak candidate, so their
     // whole renders are skipped; it is tried first where the sample already says the

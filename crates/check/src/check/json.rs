@@ -90,7 +90,6 @@ pub fn add_findings(object: &mut Value, findings: &Findings) {
         Some(noise) => json!({
             "seen": match noise.seen {
                 crate::check::noise::Seen::TwoRuns => "two-runs-differ",
-                crate::check::noise::Seen::Scattered { .. } => "scattered-difference",
             },
             "blurred_max_difference": noise.blurred_max,
             "noise_tolerance": crate::check::noise::NOISE_TOLERANCE,
@@ -136,9 +135,16 @@ fn outcome_json(run: &SuiteRun, outcome: &CaseOutcome, suite_dir: Option<&Path>)
     object["case"] = json!(outcome.name);
     object["status"] = json!(outcome.status.name());
     object["stderr_tail"] = json!(outcome.stderr_tail);
-    if let RunStatus::WrongSize { width, height } = outcome.status {
+    if let RunStatus::WrongSize {
+        width,
+        height,
+        expected,
+    } = outcome.status
+    {
         object["width"] = json!(width);
         object["height"] = json!(height);
+        object["expected_width"] = json!(expected.0);
+        object["expected_height"] = json!(expected.1);
     }
     if let RunStatus::Crashed(message)
     | RunStatus::NoOutput(message)

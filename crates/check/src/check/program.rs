@@ -24,10 +24,6 @@ use whitted_core::scene::{self, Scene};
 use whitted_process::orphans;
 use whitted_process::{Capture, Process};
 
-/// The image size the course's program always writes.
-pub const WIDTH: u32 = 640;
-pub const HEIGHT: u32 = 480;
-
 /// Cases running at once.
 const AT_ONCE: usize = 2;
 
@@ -40,7 +36,7 @@ const STDERR_TAIL: usize = 4096;
 /// How one case ended.
 #[derive(Debug, Clone)]
 pub enum RunStatus {
-    /// It wrote a 640x480 PNG, which was checked.
+    /// It wrote a PNG of its year's size (640x480; 800x600 from 2021-22), which was checked.
     Ok(Box<CaseReport>),
     /// It exited with a failure status or was killed by a signal.
     Crashed(String),
@@ -49,7 +45,12 @@ pub enum RunStatus {
     /// It exited successfully but wrote no readable PNG.
     NoOutput(String),
     /// It wrote a PNG of another size.
-    WrongSize { width: u32, height: u32 },
+    WrongSize {
+        width: u32,
+        height: u32,
+        /// The year's size (docs/courses.md).
+        expected: (u32, u32),
+    },
     /// It ran out of the memory it may use (Java's OutOfMemoryError).
     OutOfMemory(String),
     /// It wrote more than a file may hold (the sandbox's file size limit).
@@ -73,9 +74,11 @@ impl RunStatus {
     pub fn failure_line(&self) -> Option<String> {
         Some(match self {
             RunStatus::Ok(_) => return None,
-            RunStatus::WrongSize { width, height } => {
-                format!("wrong-size: wrote {width}x{height}, expected {WIDTH}x{HEIGHT}")
-            }
+            RunStatus::WrongSize {
+                width,
+                height,
+                expected: (w, h),
+            } => format!("wrong-size: wrote {width}x{height}, expected {w}x{h}"),
             RunStatus::Crashed(message)
             | RunStatus::NoOutput(message)
             | RunStatus::OutOfMemory(message)
@@ -295,6 +298,8 @@ struct Running {
     process: Process,
     /// Holds the scene and the output; removed when dropped (after `process`).
     dir: tempfile::TempDir,
+    /// The size the case's year renders.
+    expected: (u32, u32),
 }
 
 /// Runs every case's program, `AT_ONCE` at a time, and returns each one's result and standard
@@ -432,6 +437,7 @@ fn start(launch: &dyn Launch, case: &SuiteCase, index: usize) -> Result<Running>
         .arg(&output)
         .arg("--bounces")
         .arg(case.bounces.to_string())
+        .args(case.size_option().into_iter().flatten())
         .stdin(Stdio::null())
         .stdout(Stdio::null());
     let program = command.get_program().to_string_lossy().into_owned();
@@ -441,6 +447,7 @@ fn start(launch: &dyn Launch, case: &SuiteCase, index: usize) -> Result<Running>
         index,
         process,
         dir,
+        expected: case.course.size(),
     })
 }
 
@@ -481,9 +488,13 @@ fn finish(
             format!("{}: killed at its memory limit", describe(s)),
         )),
         (Some(s), _) if !s.success() => Ran::Failed(failure(s, &tail)),
-        (Some(_), _) => match read_output(&output_path(r.dir.path())) {
+        (Some(_), _) => match read_output(&output_path(r.dir.path()), r.expected) {
             Ok(Ok(image)) => Ran::Image(image),
-            Ok(Err((width, height))) => Ran::Failed(RunStatus::WrongSize { width, height }),
+            Ok(Err((width, height))) => Ran::Failed(RunStatus::WrongSize {
+                width,
+                height,
+                expected: r.expected,
+            }),
             Err(message) => Ran::Failed(RunStatus::NoOutput(message)),
         },
     };
@@ -522,13 +533,16 @@ fn describe(status: ExitStatus) -> String {
 
 /// The program's PNG, checked as any image is, or its size when it is not the course's (read
 /// from its header, nothing decoded); the message says why there is none.
-fn read_output(path: &Path) -> Result<std::result::Result<Rgb8, (u32, u32)>, String> {
+fn read_output(
+    path: &Path,
+    (width, height): (u32, u32),
+) -> Result<std::result::Result<Rgb8, (u32, u32)>, String> {
     match std::fs::symlink_metadata(path) {
         Err(_) => return Err("the program wrote no output file".into()),
         Ok(m) if !m.is_file() => return Err("the output is not a regular file".into()),
         Ok(_) => {}
     }
-    student_png::read_expecting(path, WIDTH, HEIGHT).map_err(|e| match e {
+    student_png::read_expecting(path, width, height).map_err(|e| match e {
         Error::Raster { msg, .. } => format!("the output {msg}"),
         other => other.to_string(),
     })

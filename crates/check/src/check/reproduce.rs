@@ -93,8 +93,10 @@ impl Reproduce {
         Reproduce {
             written: suite_dir.is_some(),
             run: format!(
-                "{program} --input {quoted} --output {output} --bounces {}",
-                case.bounces
+                "{program} --input {quoted} --output {output} --bounces {}{}",
+                case.bounces,
+                case.size_option()
+                    .map_or(String::new(), |[option, size]| format!(" {option} {size}"))
             ),
             check: format!(
                 "whitted check {output} -i {quoted} -b {}{}",

@@ -49,6 +49,15 @@ pub struct SuiteCase {
 }
 
 impl SuiteCase {
+    /// The size option the year's program takes, `--resolution WxH` (2023-24's `-r`): the
+    /// year's own size, asked for explicitly where the program has the option.
+    pub fn size_option(&self) -> Option<[String; 2]> {
+        (self.course == Course::Y2023).then(|| {
+            let (w, h) = self.course.size();
+            ["--resolution".to_string(), format!("{w}x{h}")]
+        })
+    }
+
     /// `tick2.xml -b 2`.
     pub fn name(&self) -> String {
         format!("{} -b {}", self.file, self.bounces)

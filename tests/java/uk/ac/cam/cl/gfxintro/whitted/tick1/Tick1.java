@@ -303,7 +303,9 @@ public final class Tick1 {
         String bugs = System.getProperty("bug", "");
         if (!bugs.isEmpty()) BUGS.addAll(java.util.Arrays.asList(bugs.split(",")));
         String input = "tick1.xml", output = "output.png";
-        int bounces = 2, width = 640, height = 480;
+        int bounces = 2;
+        // The year's own size: 800x600 from 2021-22 (fixed then, 2023-24's default).
+        int width = year.start >= 2021 ? 800 : 640, height = year.start >= 2021 ? 600 : 480;
         for (int i = 0; i + 1 < args.length; i += 2) {
             switch (args[i]) {
                 case "-i", "--input" -> input = args[i + 1];
