@@ -251,9 +251,19 @@ pub fn run_suite_with(
     let all_pass = statuses.iter().all(Option::is_none)
         && reports.iter().all(|r| r.difference.verdict.passes());
     let course = suite.first().map_or(Course::Y2016, |c| c.course);
-    let findings = match rerun_differs(launch, suite, &scenes, &prepared, &reports, timeout)? {
-        Some(noise) => Findings::not_reproducible(prepared.len(), course, noise),
-        None => find(&prepared, all_pass, course)?,
+    let findings = find(&prepared, all_pass, course)?;
+    // Noise is never reproduced exactly: a program the diagnosis renders exactly needs no
+    // second run.
+    let exact = findings
+        .diagnosis
+        .first()
+        .is_some_and(|d| d.exact && d.unexplained_pixels == 0);
+    let findings = match exact {
+        true => findings,
+        false => match rerun_differs(launch, suite, &scenes, &prepared, &reports, timeout)? {
+            Some(noise) => Findings::not_reproducible(prepared.len(), course, noise),
+            None => findings,
+        },
     };
     let mut reports = reports.into_iter().zip(&findings.per_case);
     let outcomes = suite
@@ -306,7 +316,7 @@ struct Running {
 /// error tail in suite order.
 /// The first failing case run once more: a program that writes another image the second time
 /// samples at random (Tick 1*), and its images are compared as noise, not diagnosed. One
-/// extra run, and only when a case fails.
+/// extra run, and only when a case fails and no candidate renders every case exactly.
 fn rerun_differs(
     launch: &dyn Launch,
     suite: &[SuiteCase],
