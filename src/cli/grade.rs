@@ -25,10 +25,14 @@ pub struct GradeArgs {
     #[arg(long)]
     pub list: bool,
 
-    /// The course's gfx/tick2 sources to compile against [default: whitted's clean-room
-    /// skeleton, with the same API]
+    /// The course's sources to compile against: 2016-17's gfx/tick2, or from 2017-18 the
+    /// year's tick1 folder (found anywhere under DIR; required then) [default: whitted's
+    /// clean-room 2016-17 skeleton, with the same API]
     #[arg(long, value_name = "DIR")]
     pub skeleton: Option<PathBuf>,
+
+    #[command(flatten)]
+    pub course: super::CourseArgs,
 
     /// A folder of the course's hidden scenes (*.xml), added to the suite, each at the bounces
     /// its name says (`hidden_b2.xml`; 2 when it says none)

@@ -94,7 +94,7 @@ fn run_image(args: &CheckArgs, image: &std::path::Path) -> Result<bool> {
         (student.width, student.height),
         scene_bytes.as_deref(),
     )?;
-    let input = scene::input::load_input(args.input.as_deref(), chosen.course)?;
+    let input = scene::input::input_of(args.input.as_deref(), scene_bytes, chosen.course)?;
     for warning in &input.warnings {
         eprintln!("warning: {warning}");
     }

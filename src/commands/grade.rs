@@ -13,6 +13,7 @@ pub fn run(args: &GradeArgs) -> Result<()> {
         submissions: args.submissions.clone(),
         outdir: args.output.clone(),
         skeleton: args.skeleton.clone(),
+        course: args.course.course(),
         scenes: args.scenes.clone(),
         jobs: args.jobs.unwrap_or(cores),
         limits: Limits {

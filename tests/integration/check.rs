@@ -5,7 +5,6 @@
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use std::sync::OnceLock;
 
 use whitted_check::check::difference::difference;
 use whitted_check::check::renderer::Renderer;
@@ -15,23 +14,9 @@ use whitted_core::course::Course;
 
 use crate::common::*;
 
-/// The compiled Java program's class directory, built once for every test here.
-fn classes() -> &'static Path {
-    static CLASSES: OnceLock<PathBuf> = OnceLock::new();
-    CLASSES.get_or_init(|| javac("tests/java/gfx/tick2/Tick2.java", "java"))
-}
-
-/// `java -Dbug=... -cp CLASSES gfx.tick2.Tick2` as one --program string.
+/// Our Java Tick 2 with the mistakes `bugs`, as one --program string.
 fn program(bugs: &[&str]) -> String {
-    let flag = if bugs.is_empty() {
-        String::new()
-    } else {
-        format!("-Dbug={} ", bugs.join(","))
-    };
-    format!(
-        "java {flag}-cp '{}' gfx.tick2.Tick2",
-        classes().to_str().expect("utf-8")
-    )
+    java_program(None, bugs)
 }
 
 /// Runs the Java program on one case, returning the PNG it wrote.
@@ -45,7 +30,7 @@ fn java_render(dir: &Path, case: &SuiteCase, bugs: &[&str], name: &str) -> PathB
     }
     let run = java
         .arg("-cp")
-        .arg(classes())
+        .arg(tick2_classes())
         .arg("gfx.tick2.Tick2")
         .args(["--input", scene.to_str().expect("utf-8")])
         .args(["--output", out.to_str().expect("utf-8")])

@@ -5,33 +5,13 @@
 //! variant is named as both its mistakes, and a Tick 1 program is never checked as 2016-17's
 //! in silence, and Tick 1*'s random soft shadows are called noise, not mistakes.
 
-use std::path::{Path, PathBuf};
-use std::sync::OnceLock;
-
 use serde_json::Value;
 
 use crate::common::*;
 
-fn classes() -> &'static Path {
-    static CLASSES: OnceLock<PathBuf> = OnceLock::new();
-    CLASSES.get_or_init(|| {
-        javac(
-            "tests/java/uk/ac/cam/cl/gfxintro/whitted/tick1/Tick1.java",
-            "tick1-check",
-        )
-    })
-}
-
+/// Our Java Tick 1 of `course` with the mistakes `bugs`, as one --program string.
 fn program(course: &str, bugs: &[&str]) -> String {
-    let flag = if bugs.is_empty() {
-        String::new()
-    } else {
-        format!("-Dbug={} ", bugs.join(","))
-    };
-    format!(
-        "java -Dcourse={course} {flag}-cp '{}' uk.ac.cam.cl.gfxintro.whitted.tick1.Tick1",
-        classes().to_str().expect("utf-8")
-    )
+    java_program(Some(course), bugs)
 }
 
 /// The JSON of `check --course course --program ...` and its exit status.
@@ -92,7 +72,7 @@ fn assert_named_first(course: &str, bugs: &[&str]) {
 }
 
 /// Every mistake the Java program makes (each shows on the year's suite).
-const SHOWN: [&str; 27] = [
+const SHOWN: [&str; 28] = [
     "view-flipped",
     "no-shadow-bias",
     "no-reflection-bias",
@@ -120,6 +100,7 @@ const SHOWN: [&str; 27] = [
     "tonemap-twice",
     "spheres-missing",
     "shading-missing",
+    "background-changed",
 ];
 
 #[test]
@@ -226,7 +207,7 @@ fn tick1_star_s_random_soft_shadows_are_noise_not_mistakes() {
     let dir = tempfile::tempdir().expect("tempdir");
     let program = format!(
         "java -Dcourse=2021-22 -Dstar=soft-shadows -cp '{}' uk.ac.cam.cl.gfxintro.whitted.tick1.Tick1",
-        classes().to_str().expect("utf-8")
+        tick1_classes().to_str().expect("utf-8")
     );
     let out = whitted(
         dir.path(),

@@ -243,6 +243,45 @@ impl Lcg {
     }
 }
 
+/// Our Java Tick 2 (2016-17, `gfx.tick2.Tick2`), compiled once per test process.
+pub fn tick2_classes() -> &'static Path {
+    static CLASSES: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+    CLASSES.get_or_init(|| javac("tests/java/gfx/tick2/Tick2.java", "tick2"))
+}
+
+/// Our Java Tick 1 of the later years (`-Dcourse=YEAR`), compiled once per test process.
+pub fn tick1_classes() -> &'static Path {
+    static CLASSES: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+    CLASSES.get_or_init(|| {
+        javac(
+            "tests/java/uk/ac/cam/cl/gfxintro/whitted/tick1/Tick1.java",
+            "tick1",
+        )
+    })
+}
+
+/// One `--program` string running our Java program with the mistakes `bugs` (`-Dbug=`):
+/// 2016-17's Tick 2 without a course, the later years' Tick 1 under `-Dcourse=` with one.
+pub fn java_program(course: Option<&str>, bugs: &[&str]) -> String {
+    let flag = if bugs.is_empty() {
+        String::new()
+    } else {
+        format!("-Dbug={} ", bugs.join(","))
+    };
+    let (course, classes, main) = match course {
+        None => (String::new(), tick2_classes(), "gfx.tick2.Tick2"),
+        Some(year) => (
+            format!("-Dcourse={year} "),
+            tick1_classes(),
+            "uk.ac.cam.cl.gfxintro.whitted.tick1.Tick1",
+        ),
+    };
+    format!(
+        "java {course}{flag}-cp '{}' {main}",
+        classes.to_str().expect("utf-8")
+    )
+}
+
 /// `javac -d DIR SOURCE` for a Java program under `tests/java/`, into a fresh class
 /// directory of this process named for `tag`; the directory.
 pub fn javac(source: &str, tag: &str) -> PathBuf {

@@ -6,22 +6,10 @@
 //! N.L gate), mirrors (the reflected ray), planes with materials of their own, coloured lights
 //! (the specular colour) and an ambient intensity.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
-use std::sync::OnceLock;
 
 use crate::common::*;
-
-/// The compiled program's class directory, built once.
-fn classes() -> &'static Path {
-    static CLASSES: OnceLock<PathBuf> = OnceLock::new();
-    CLASSES.get_or_init(|| {
-        javac(
-            "tests/java/uk/ac/cam/cl/gfxintro/whitted/tick1/Tick1.java",
-            "tick1",
-        )
-    })
-}
 
 /// Whether the year's loader reads material attributes and an ambient intensity.
 fn reads_materials(course: &str) -> bool {
@@ -128,7 +116,7 @@ fn every_year_renders_what_a_correct_program_of_that_year_renders() {
             let java = Command::new("java")
                 .arg(format!("-Dcourse={course}"))
                 .arg("-cp")
-                .arg(classes())
+                .arg(tick1_classes())
                 .arg("uk.ac.cam.cl.gfxintro.whitted.tick1.Tick1")
                 .args(["-i", s(&file), "-o", "java.png", "-r", "96x72"])
                 .args(["-b", &bounces.to_string()])

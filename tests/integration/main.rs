@@ -15,6 +15,7 @@ mod fuzz_corpus;
 mod golden_exr;
 mod golden_png;
 mod grade;
+mod grade_courses;
 mod grade_hostile;
 mod hostile;
 mod inspect;

@@ -52,6 +52,7 @@ pub enum Bug {
     ReflectionBiasAlongN,
     TonemapMissing,
     TonemapTwice,
+    BackgroundChanged,
     SpheresMissing,
     ShadingMissing,
 }
@@ -115,7 +116,7 @@ impl Stage {
 
 impl Bug {
     /// Every entry, in catalogue order: the mistakes, then the unfinished stages.
-    pub const ALL: [Bug; 36] = [
+    pub const ALL: [Bug; 37] = [
         Bug::ReflectUnclamped,
         Bug::SpecularGated,
         Bug::ViewFromRayOrigin,
@@ -150,6 +151,7 @@ impl Bug {
         Bug::ReflectionBiasAlongN,
         Bug::TonemapMissing,
         Bug::TonemapTwice,
+        Bug::BackgroundChanged,
         Bug::SpheresMissing,
         Bug::ShadingMissing,
     ];
@@ -158,7 +160,7 @@ impl Bug {
     /// names the ones an image cannot rule out. From the course's students' histories
     /// (docs/check.md): the specular R and its gate, then the offsets, the view vector, the
     /// specular clamp, the light's terms, reflection, and the rarer intersection rules.
-    pub const BY_COMMONNESS: [Bug; 29] = [
+    pub const BY_COMMONNESS: [Bug; 30] = [
         Bug::ReflectUnclamped,
         Bug::SpecularGated,
         Bug::ReflectionBiasAlongN,
@@ -188,6 +190,7 @@ impl Bug {
         Bug::SphereFarRoot,
         Bug::TonemapMissing,
         Bug::TonemapTwice,
+        Bug::BackgroundChanged,
     ];
 
     /// The entries `course`'s catalogue offers (docs/courses.md, "The catalogue per
@@ -203,8 +206,22 @@ impl Bug {
     /// Whether `course`'s catalogue offers this entry.
     pub fn offered_in(self, course: Course) -> bool {
         use Bug::*;
+        let later_only = matches!(
+            self,
+            ViewToCamera
+                | NoGate
+                | SpecularWhite
+                | ShadowBiasAlongN
+                | ShadowBiasAlongL
+                | ReflectionBiasAlongN
+                | TonemapMissing
+                | TonemapTwice
+                | BackgroundChanged
+                | SpheresMissing
+                | ShadingMissing
+        );
         if course.is_default() {
-            return (self as usize) < 26;
+            return !later_only;
         }
         let tone_mapped = course >= Course::Y2018;
         match self {

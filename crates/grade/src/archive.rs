@@ -1,4 +1,4 @@
-//! The two files a submission gives (`Plane.java`, `Renderer.java`), found in a zip, a folder or
+//! The files a submission gives (`Plane.java`, `Renderer.java`, and `Sphere.java` from 2017-18), found in a zip, a folder or
 //! a zip inside either, without unpacking anything to disk: nothing a submission names is ever
 //! a path we write to, so `../` and absolute names, links and devices cannot reach outside
 //! OUTDIR (they are not even looked at as files). What is read is capped while it is
@@ -7,8 +7,20 @@
 use std::io::{Cursor, Read, Seek};
 use std::path::Path;
 
-/// The files a submission gives, by name.
-pub const WANTED: [&str; 2] = ["Plane.java", "Renderer.java"];
+use whitted_core::course::Course;
+
+/// Every file a submission of some year gives, by name.
+pub const WANTED: [&str; 3] = ["Plane.java", "Renderer.java", "Sphere.java"];
+
+/// The files a submission of `course` gives (docs/courses.md, "The student's program"):
+/// `Sphere.java` too from 2017-18, when students write the sphere's intersection.
+pub fn submitted(course: Course) -> &'static [&'static str] {
+    match course.is_default() {
+        true => &WANTED[..2],
+        false => &WANTED,
+    }
+}
+
 /// Which wanted file `name` is, and whether it is that name exactly: a near miss is a
 /// browser's second download (`Renderer (1).java`), another case (`renderer.java`) or an
 /// editor's extension (`Renderer.java.txt`), which a student means as the file.

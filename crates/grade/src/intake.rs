@@ -1,15 +1,18 @@
 //! The class, read from what `SUBMISSIONS` is (docs/grade.md, "Inputs"): Moodle's zip of every
 //! submission, a folder with a folder per student, or one student's project. Each student's
-//! `Plane.java` and `Renderer.java` are taken, wherever they are in what they handed in;
-//! nothing else of a submission is used.
+//! `Plane.java` and `Renderer.java` (and `Sphere.java` from 2017-18) are taken, wherever they
+//! are in what they handed in, with the package they declare; nothing else of a submission is
+//! used.
 
 use std::collections::BTreeMap;
 use std::fs::File;
 use std::path::Path;
 
-use super::archive::{self, Holdings, WANTED};
+use super::archive::{self, Holdings};
 use super::moodle;
+use super::package;
 use super::status::StudentStatus;
+use whitted_core::course::Course;
 use whitted_core::error::{Error, Result};
 
 /// A student as the class lists them.
@@ -22,7 +25,7 @@ pub struct Submission {
     /// The folder it came in (Moodle's `Full Name_<id>_assignsubmission_file`), which Moodle's
     /// feedback upload reads the participant from.
     pub folder: String,
-    /// The two files, or why they cannot be had.
+    /// The files, or why they cannot be had.
     pub files: std::result::Result<Files, Refusal>,
     /// What was ignored on the way (links, a second copy, a file too large, a folder that is
     /// not a file submission), for the report.
@@ -32,11 +35,13 @@ pub struct Submission {
     pub warnings: Vec<String>,
 }
 
-/// A submission's two files.
+/// A submission's files, in the order of `archive::submitted`, and the package they are in.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Files {
-    pub plane: Vec<u8>,
-    pub renderer: Vec<u8>,
+    pub sources: Vec<(&'static str, Vec<u8>)>,
+    /// The package `Renderer.java` declares (None: the default package). Read for the later
+    /// years only, whose package carries the student's user id; 2016-17's is `gfx.tick2`.
+    pub package: Option<String>,
 }
 
 /// Why a student cannot be graded: the status of docs/grade.md and a sentence.
@@ -47,13 +52,14 @@ pub struct Refusal {
     pub message: String,
 }
 
-/// Every student of `submissions`, sorted by id.
-pub fn read(submissions: &Path) -> Result<Vec<Submission>> {
+/// Every student of `submissions`, sorted by id, with the files a submission of `course`
+/// gives.
+pub fn read(submissions: &Path, course: Course) -> Result<Vec<Submission>> {
     let metadata = std::fs::metadata(submissions)
         .map_err(|e| Error::io(submissions, "cannot read the submissions", e))?;
     let students = if metadata.is_file() {
         from_zip(submissions)?
-    } else if metadata.is_dir() && is_project(submissions) {
+    } else if metadata.is_dir() && is_project(submissions, course) {
         let name = folder_name(submissions);
         let mut holdings = Holdings {
             folder: name.clone(),
@@ -77,14 +83,19 @@ pub fn read(submissions: &Path) -> Result<Vec<Submission>> {
             submissions.display()
         )));
     }
-    Ok(settle(students))
+    Ok(settle(students, course))
 }
 
-/// One project: the sources at `gfx/tick2/` or `src/gfx/tick2/`.
-fn is_project(dir: &Path) -> bool {
-    ["gfx/tick2", "src/gfx/tick2"]
+/// One project: the sources at `gfx/tick2/` or `src/gfx/tick2/`; from 2017-18 a tree under
+/// `uk/ac/cam/cl/gfxintro/` or `src/uk/ac/cam/cl/gfxintro/`.
+fn is_project(dir: &Path, course: Course) -> bool {
+    let later = ["uk/ac/cam/cl/gfxintro", "src/uk/ac/cam/cl/gfxintro"];
+    let tick2 = ["gfx/tick2", "src/gfx/tick2"];
+    let wanted = archive::submitted(course);
+    tick2
         .iter()
-        .any(|sub| WANTED.iter().any(|f| dir.join(sub).join(f).is_file()))
+        .any(|sub| wanted.iter().any(|f| dir.join(sub).join(f).is_file()))
+        || !course.is_default() && later.iter().any(|sub| dir.join(sub).is_dir())
 }
 
 fn folder_name(dir: &Path) -> String {
@@ -235,7 +246,7 @@ pub fn safe_id(id: &str) -> String {
 }
 
 /// Each student's two files chosen, ids made safe, and two students of one id refused both.
-fn settle(students: Vec<(String, String, Holdings)>) -> Vec<Submission> {
+fn settle(students: Vec<(String, String, Holdings)>, course: Course) -> Vec<Submission> {
     let mut count: BTreeMap<String, usize> = BTreeMap::new();
     for (id, ..) in &students {
         *count.entry(safe_id(id)).or_default() += 1;
@@ -255,7 +266,7 @@ fn settle(students: Vec<(String, String, Holdings)>) -> Vec<Submission> {
                     ),
                 })
             } else {
-                choose(&holdings, &mut notes, &mut warnings)
+                choose(&holdings, &mut notes, &mut warnings, course)
             };
             Submission {
                 id: safe,
@@ -272,23 +283,28 @@ fn settle(students: Vec<(String, String, Holdings)>) -> Vec<Submission> {
 }
 
 /// The copy of each wanted file to grade: one of that exact name before a near miss
-/// (`Renderer (1).java`, taken with a warning), the one under `gfx/tick2/` first, else the one
-/// nearest the top; the others are noted.
+/// (`Renderer (1).java`, taken with a warning), the one under the course's package folder
+/// (`gfx/tick2/`, `tick1/`) first, else the one nearest the top; the others are noted.
 fn choose(
     holdings: &Holdings,
     notes: &mut Vec<String>,
     warnings: &mut Vec<String>,
+    course: Course,
 ) -> std::result::Result<Files, Refusal> {
     let mut chosen = Vec::new();
     let name_of = |f: &archive::Found| archive::wanted(f.path.rsplit(['/', '\\']).next()?);
-    for wanted in WANTED {
+    let package_folder = match course.is_default() {
+        true => "gfx/tick2/",
+        false => "tick1/",
+    };
+    for &wanted in archive::submitted(course) {
         let mut copies: Vec<&archive::Found> = holdings
             .found
             .iter()
             .filter(|f| name_of(f).is_some_and(|(w, _)| w == wanted))
             .collect();
         copies.sort_by_key(|f| {
-            let in_package = f.path.replace('\\', "/").contains("gfx/tick2/");
+            let in_package = f.path.replace('\\', "/").contains(package_folder);
             let exact = name_of(f).is_some_and(|(_, exact)| exact);
             (
                 !exact,
@@ -317,7 +333,7 @@ fn choose(
             ));
         }
         match &first.bytes {
-            Ok(bytes) => chosen.push(bytes.clone()),
+            Ok(bytes) => chosen.push((wanted, bytes.clone())),
             Err(e) => {
                 return Err(Refusal {
                     status: StudentStatus::NoFiles,
@@ -326,9 +342,21 @@ fn choose(
             }
         }
     }
-    let renderer = chosen.pop().unwrap_or_default();
-    let plane = chosen.pop().unwrap_or_default();
-    Ok(Files { plane, renderer })
+    let package = match course.is_default() {
+        true => None,
+        false => {
+            let renderer = chosen.iter().find(|(name, _)| *name == "Renderer.java");
+            let declared = renderer.map_or(Ok(None), |(_, bytes)| package::declared(bytes));
+            declared.map_err(|why| Refusal {
+                status: StudentStatus::Error,
+                message: format!("Renderer.java: {why}"),
+            })?
+        }
+    };
+    Ok(Files {
+        sources: chosen,
+        package,
+    })
 }
 
 #[cfg(test)]

@@ -26,6 +26,7 @@ mod intake;
 mod jvm;
 mod memory_cgroup;
 mod moodle;
+mod package;
 mod policy;
 mod report;
 mod result;
@@ -54,7 +55,8 @@ use status::StudentStatus;
 use student::{Outcome, Setup};
 use warm_javac::WarmJavac;
 use whitted_check::check::image_cache::ImageCache;
-use whitted_check::check::suite::{cases, SuiteCase};
+use whitted_check::check::suite::{cases_of, SuiteCase};
+use whitted_core::course::Course;
 use whitted_core::error::{Error, Result};
 use whitted_core::fingerprint::fingerprint;
 use whitted_io::output::atomic::AtomicFile;
@@ -74,6 +76,9 @@ pub struct Options {
     pub submissions: PathBuf,
     pub outdir: PathBuf,
     pub skeleton: Option<PathBuf>,
+    /// The year of the course the class is of (docs/courses.md): its submitted files, its
+    /// skeleton's package and main class, its suite and its catalogue.
+    pub course: Course,
     /// The course's hidden scenes, added to the suite.
     pub scenes: Option<PathBuf>,
     pub jobs: usize,
@@ -111,8 +116,8 @@ pub struct Summary {
 /// Grades the class of `options`.
 pub fn run(options: &Options) -> Result<Summary> {
     refuse_outdir_inside(&options.submissions, &options.outdir)?;
-    let submissions = intake::read(&options.submissions)?;
     let (skeleton, suite, policy) = course(options)?;
+    let submissions = intake::read(&options.submissions, options.course)?;
     let only = only(options, &submissions)?;
     let java = jdk_tool("java")?;
     let javac = jdk_tool("javac")?;
@@ -132,6 +137,7 @@ pub fn run(options: &Options) -> Result<Summary> {
         java,
         javac,
         skeleton,
+        course: options.course,
         suite,
         limits: options.limits,
         tolerance: options.tolerance,
@@ -175,6 +181,7 @@ pub fn run(options: &Options) -> Result<Summary> {
     };
     if options.part.is_none() {
         let settings = [
+            format!("Course: {}.", options.course),
             format!("Skeleton: {}.", setup.skeleton.source),
             format!("Grading: {}.", policy.describe()),
             match setup.sandbox.is_none() {
@@ -182,7 +189,8 @@ pub fn run(options: &Options) -> Result<Summary> {
                 false => "Every program ran in the sandbox (docs/grade.md).".to_string(),
             },
         ];
-        summary.index = Some(write_class(&options.outdir, &rows, &settings)?);
+        let title = format!("{}: the class", tick(options.course));
+        summary.index = Some(write_class(&options.outdir, &rows, &title, &settings)?);
     }
     Ok(summary)
 }
@@ -207,8 +215,8 @@ fn only(options: &Options, submissions: &[Submission]) -> Result<Vec<String>> {
 /// Every student in class order, and whether OUTDIR holds their finished result: what a farm
 /// needs to share the class out and to resume it. Needs neither a JDK nor a sandbox.
 pub fn list(options: &Options) -> Result<Vec<(String, bool)>> {
-    let submissions = intake::read(&options.submissions)?;
     let (skeleton, suite, policy) = course(options)?;
+    let submissions = intake::read(&options.submissions, options.course)?;
     let students_dir = options.outdir.join("students");
     Ok(submissions
         .iter()
@@ -220,16 +228,22 @@ pub fn list(options: &Options) -> Result<Vec<(String, bool)>> {
         .collect())
 }
 
-/// What every student is graded against: the skeleton, the suite (with `--scenes`) and the
-/// grading policy.
+/// The exercise's name in reports and on the class page: 2016-17's Tick 2, the later years'
+/// Tick 1 with its year.
+pub fn tick(course: Course) -> String {
+    match course.is_default() {
+        true => "Tick 2".into(),
+        false => format!("Tick 1 ({course})"),
+    }
+}
+
+/// What every student is graded against: the year's skeleton, its suite (with `--scenes`)
+/// and the grading policy.
 fn course(options: &Options) -> Result<(Skeleton, Vec<SuiteCase>, Policy)> {
-    let skeleton = match &options.skeleton {
-        Some(dir) => Skeleton::from_dir(dir)?,
-        None => Skeleton::clean_room(),
-    };
-    let mut suite = cases();
+    let skeleton = Skeleton::of(options.course, options.skeleton.as_deref())?;
+    let mut suite = cases_of(options.course);
     if let Some(dir) = &options.scenes {
-        for case in scenes::read(dir)? {
+        for case in scenes::read(dir, options.course)? {
             if suite.iter().any(|c| c.name() == case.name()) {
                 return Err(Error::Usage(format!(
                     "--scenes {}: {} has the name of a case of the suite; rename it",
@@ -291,7 +305,7 @@ fn jdk_tool(name: &str) -> Result<PathBuf> {
     })
 }
 
-/// What decides a student's result, hashed: their two files, the skeleton, the suite,
+/// What decides a student's result, hashed: their files, the skeleton, the year, the suite,
 /// whitted's version and the settings that change a verdict or a grade. The limits are not in
 /// it: they change only the results that hit one, which `--rerun failed` grades again.
 fn key(
@@ -302,10 +316,13 @@ fn key(
     submission: &Submission,
 ) -> String {
     let mut parts: Vec<Vec<u8>> = vec![env!("CARGO_PKG_VERSION").as_bytes().to_vec()];
+    parts.push(options.course.name().as_bytes().to_vec());
     match &submission.files {
         Ok(files) => {
-            parts.push(files.plane.clone());
-            parts.push(files.renderer.clone());
+            for (name, bytes) in &files.sources {
+                parts.push(name.as_bytes().to_vec());
+                parts.push(bytes.clone());
+            }
         }
         Err(refusal) => parts.push(refusal.message.as_bytes().to_vec()),
     }
@@ -443,10 +460,12 @@ fn grade_one(
     let dir = setup.students_dir.join(&submission.id);
     std::fs::create_dir_all(&dir).map_err(|e| Error::io(&dir, "cannot create", e))?;
     let mut png = Vec::new();
+    let tick = tick(setup.course);
     let shown = report::Shown {
         hidden: setup.show_hidden,
         policy: &setup.policy,
         images: &setup.report_images,
+        tick: &tick,
     };
     whitted_io::output::png::write_png(&mut png, &report::sheet(&outcome, feedback, &shown))
         .map_err(|e| Error::Environment(format!("cannot encode a report: {e}")))?;
@@ -499,7 +518,12 @@ fn count_statuses(rows: &[StudentResult]) -> Vec<(String, usize)> {
 }
 
 /// The class files; returns the path of index.html.
-fn write_class(outdir: &Path, rows: &[StudentResult], settings: &[String]) -> Result<PathBuf> {
+fn write_class(
+    outdir: &Path,
+    rows: &[StudentResult],
+    title: &str,
+    settings: &[String],
+) -> Result<PathBuf> {
     let now = moodle::modified_now();
     write_atomic(&outdir.join("class.csv"), class::class_csv(rows).as_bytes())?;
     write_atomic(
@@ -515,9 +539,6 @@ fn write_class(outdir: &Path, rows: &[StudentResult], settings: &[String]) -> Re
         write_atomic(&zip, &feedback_zip::build(&students, rows)?)?;
     }
     let index = outdir.join("index.html");
-    write_atomic(
-        &index,
-        class::index_html(rows, "Tick 2: the class", settings).as_bytes(),
-    )?;
+    write_atomic(&index, class::index_html(rows, title, settings).as_bytes())?;
     Ok(index)
 }

@@ -23,6 +23,8 @@ pub struct Shown<'a> {
     pub policy: &'a Policy,
     /// The run's encoded references.
     pub images: &'a SharedImages,
+    /// The exercise's name (`Tick 2`, `Tick 1 (2021-22)`).
+    pub tick: &'a str,
 }
 
 impl Shown<'_> {
@@ -41,7 +43,8 @@ pub fn page(
     shown: &Shown,
 ) -> String {
     let mut body = format!(
-        "<h1>Tick 2: {}</h1>\n<p class=\"feedback\">{}</p>\n",
+        "<h1>{}: {}</h1>\n<p class=\"feedback\">{}</p>\n",
+        escape(shown.tick),
         escape(&submission.name),
         escape(feedback)
     );
@@ -82,7 +85,8 @@ pub fn page(
     format!(
         "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
          <meta name=\"viewport\" content=\"width=device-width\">\
-         <title>Tick 2 report: {}</title><style>{STYLE}</style></head><body>\n{body}</body></html>\n",
+         <title>{} report: {}</title><style>{STYLE}</style></head><body>\n{body}</body></html>\n",
+        escape(shown.tick),
         escape(&submission.name)
     )
 }

@@ -5,7 +5,9 @@ use std::borrow::Cow;
 use std::path::Path;
 
 use whitted_check::check::suite::{Role, SuiteCase};
+use whitted_core::course::Course;
 use whitted_core::error::{Error, Result};
+use whitted_core::scene::input::parse_for_course;
 
 /// Scenes read from one folder at most.
 const MAX_SCENES: usize = 64;
@@ -21,8 +23,9 @@ pub fn bounces_of(file: &str) -> u32 {
         .unwrap_or(2)
 }
 
-/// The `*.xml` scenes of `dir`, by name, each parsed to make sure the course's loader can too.
-pub fn read(dir: &Path) -> Result<Vec<SuiteCase>> {
+/// The `*.xml` scenes of `dir`, by name, each parsed as `course`'s loader reads them (to make
+/// sure it can).
+pub fn read(dir: &Path, course: Course) -> Result<Vec<SuiteCase>> {
     let entries = std::fs::read_dir(dir).map_err(|e| Error::io(dir, "cannot read", e))?;
     let mut paths: Vec<_> = entries
         .flatten()
@@ -56,13 +59,13 @@ pub fn read(dir: &Path) -> Result<Vec<SuiteCase>> {
             .file_name()
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_default();
-        whitted_core::scene::parse_str(&path.display().to_string(), &xml)?;
+        parse_for_course(&path.display().to_string(), xml.as_bytes(), course)?;
         cases.push(SuiteCase {
             bounces: bounces_of(&file),
             file: Cow::Owned(file),
             xml: Cow::Owned(xml),
             role: Role::Hidden,
-            course: whitted_core::course::Course::Y2016,
+            course,
         });
     }
     Ok(cases)

@@ -6,13 +6,24 @@
 
 use super::intake::Files;
 
-/// The fingerprint of a submission's two files, comments and whitespace aside.
+/// The fingerprint of a submission's files, comments and whitespace aside (and the package,
+/// which carries each student's own user id from 2017-18).
 pub fn fingerprint(files: &Files) -> String {
     let bare = |s: &[u8]| normalised(s.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(s));
-    let plane = bare(&files.plane);
-    let renderer = bare(&files.renderer);
-    let length = (plane.len() as u64).to_le_bytes();
-    whitted_core::fingerprint::fingerprint(&[&length, &plane, &renderer])
+    let mut parts: Vec<Vec<u8>> = Vec::new();
+    for (_, source) in &files.sources {
+        let mut source = bare(source);
+        if let Some(package) = &files.package {
+            source = String::from_utf8_lossy(&source)
+                .replacen(&format!("package{package};"), "", 1)
+                .into_bytes();
+        }
+        // Each file's length first, so that moving code from one file to the next changes it.
+        parts.push((source.len() as u64).to_le_bytes().to_vec());
+        parts.push(source);
+    }
+    let slices: Vec<&[u8]> = parts.iter().map(Vec::as_slice).collect();
+    whitted_core::fingerprint::fingerprint(&slices)
 }
 
 /// `source` without Java's comments and without whitespace outside string and character

@@ -1,10 +1,18 @@
 //! The course's classes a submission compiles against: by default whitted's clean-room
 //! `skeleton/gfx/tick2` (compiled into the binary), or the course's own sources with
-//! `--skeleton DIR`. Never a submission's: only Plane.java and Renderer.java come from there.
+//! `--skeleton DIR`. Never a submission's: only the files the year's handout says to submit
+//! (`archive::submitted`) come from there.
+//!
+//! The later years' skeleton (2017-18 on, `uk.ac.cam.cl.gfxintro.<crsid>.tick1`) is read from
+//! `--skeleton DIR` only: docs/grade.md gives the API of 2016-17's classes, from which the
+//! clean-room one is written, and no such facts of the later classes, so whitted has no
+//! clean-room Tick 1 skeleton to offer (docs/grade.md, "Every year of the course").
 
 use std::path::{Path, PathBuf};
 
-use super::archive::{MAX_SOURCE, WANTED};
+use super::archive::{self, MAX_SOURCE};
+use super::package;
+use whitted_core::course::Course;
 use whitted_core::error::{Error, Result};
 
 /// The skeleton's files: (name, bytes), sorted by name.
@@ -13,7 +21,17 @@ pub struct Skeleton {
     pub files: Vec<(String, Vec<u8>)>,
     /// Where it came from, for the reports.
     pub source: String,
+    /// The package its files declare (`gfx.tick2`; a later year's with the course's own
+    /// placeholder for the user id), which each student's package replaces.
+    pub package: Option<String>,
+    /// The main class's simple name: `Tick2`, or `Tick1` from 2017-18.
+    pub main: &'static str,
 }
+
+/// Folders a search for the later skeleton's `Tick1.java` looks into, at most.
+const MAX_FOLDERS: usize = 10_000;
+/// How deep it goes.
+const MAX_DEPTH: usize = 16;
 
 macro_rules! ours {
     ($($name:literal),*) => {
@@ -43,22 +61,50 @@ impl Skeleton {
                 .map(|(name, bytes)| (name.to_string(), bytes.to_vec()))
                 .collect(),
             source: "whitted's clean-room skeleton".into(),
+            package: Some("gfx.tick2".into()),
+            main: "Tick2",
         }
     }
 
-    /// The `.java` files of `dir` (or of its `gfx/tick2` or `src/gfx/tick2`), but the two a
-    /// submission gives.
-    pub fn from_dir(dir: &Path) -> Result<Skeleton> {
-        let package = ["src/gfx/tick2", "gfx/tick2", ""]
-            .iter()
-            .map(|sub| dir.join(sub))
-            .find(|d| d.join("Tick2.java").is_file())
-            .ok_or_else(|| {
-                Error::Usage(format!(
-                    "--skeleton {}: no Tick2.java there, nor in gfx/tick2 or src/gfx/tick2",
-                    dir.display()
-                ))
-            })?;
+    /// The skeleton `course` is graded against: `--skeleton DIR` when given, else the
+    /// clean-room one (2016-17's only).
+    pub fn of(course: Course, dir: Option<&Path>) -> Result<Skeleton> {
+        match (dir, course.is_default()) {
+            (Some(dir), _) => Skeleton::from_dir(dir, course),
+            (None, true) => Ok(Skeleton::clean_room()),
+            (None, false) => Err(Error::Usage(format!(
+                "grade --course {course} needs --skeleton DIR, the course's tick1 sources of that                  year: whitted's clean-room skeleton is 2016-17's gfx.tick2 (docs/grade.md,                  \"Every year of the course\")"
+            ))),
+        }
+    }
+
+    /// The `.java` files of the folder holding the main class (`Tick2.java` in `dir`, its
+    /// `gfx/tick2` or `src/gfx/tick2`; `Tick1.java` anywhere under `dir` from 2017-18), but
+    /// those a submission gives.
+    fn from_dir(dir: &Path, course: Course) -> Result<Skeleton> {
+        let main = if course.is_default() {
+            "Tick2"
+        } else {
+            "Tick1"
+        };
+        let found = match course.is_default() {
+            true => ["src/gfx/tick2", "gfx/tick2", ""]
+                .iter()
+                .map(|sub| dir.join(sub))
+                .find(|d| d.join("Tick2.java").is_file()),
+            false => find_folder_of(dir, "Tick1.java"),
+        };
+        let package = found.ok_or_else(|| {
+            let where_ = match course.is_default() {
+                true => "there, nor in gfx/tick2 or src/gfx/tick2",
+                false => "anywhere under it",
+            };
+            Error::Usage(format!(
+                "--skeleton {}: no {main}.java {where_}",
+                dir.display()
+            ))
+        })?;
+        let submitted = archive::submitted(course);
         let mut files = Vec::new();
         let entries =
             std::fs::read_dir(&package).map_err(|e| Error::io(&package, "cannot read", e))?;
@@ -69,7 +115,7 @@ impl Skeleton {
                 .file_name()
                 .map(|n| n.to_string_lossy().into_owned())
                 .unwrap_or_default();
-            if !name.ends_with(".java") || WANTED.contains(&name.as_str()) || !path.is_file() {
+            if !name.ends_with(".java") || submitted.contains(&name.as_str()) || !path.is_file() {
                 continue;
             }
             let len = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
@@ -82,9 +128,57 @@ impl Skeleton {
             let bytes = std::fs::read(&path).map_err(|e| Error::io(&path, "cannot read", e))?;
             files.push((name, bytes));
         }
+        let declared = files
+            .iter()
+            .find(|(name, _)| *name == format!("{main}.java"))
+            .map_or(Ok(None), |(_, bytes)| package::declared(bytes))
+            .map_err(|why| Error::Usage(format!("{}/{main}.java: {why}", package.display())))?;
         Ok(Skeleton {
             files,
             source: package.display().to_string(),
+            package: declared,
+            main,
         })
     }
+
+    /// The skeleton's files moved into `to`, each at its path under the source root: what is
+    /// compiled with a student's files in that package.
+    pub fn sources_in(&self, to: Option<&str>) -> Vec<(String, Vec<u8>)> {
+        let folder = package::folder(to);
+        self.files
+            .iter()
+            .map(|(name, bytes)| {
+                let bytes = package::moved(bytes, self.package.as_deref(), to);
+                (format!("{folder}{name}"), bytes)
+            })
+            .collect()
+    }
+}
+
+/// The folder under `dir` (breadth first, links not followed) that holds a file `name`.
+fn find_folder_of(dir: &Path, name: &str) -> Option<PathBuf> {
+    let mut queue = std::collections::VecDeque::from([(dir.to_path_buf(), 0)]);
+    let mut seen = 0;
+    while let Some((folder, depth)) = queue.pop_front() {
+        seen += 1;
+        if seen > MAX_FOLDERS {
+            return None;
+        }
+        if folder.join(name).is_file() {
+            return Some(folder);
+        }
+        let Ok(entries) = std::fs::read_dir(&folder) else {
+            continue;
+        };
+        let mut subfolders: Vec<PathBuf> = entries
+            .flatten()
+            .filter(|e| e.file_type().is_ok_and(|t| t.is_dir()))
+            .map(|e| e.path())
+            .collect();
+        subfolders.sort();
+        if depth < MAX_DEPTH {
+            queue.extend(subfolders.into_iter().map(|f| (f, depth + 1)));
+        }
+    }
+    None
 }

@@ -1,5 +1,6 @@
-//! One student graded: their two files beside the skeleton's in a work folder, compiled and
-//! run over the suite in the sandbox, checked as `check --program` checks.
+//! One student graded: their files beside the skeleton's in a work folder (from 2017-18 in
+//! the student's own package, the skeleton moved into it), compiled and run over the year's
+//! suite in the sandbox, checked as `check --program` checks.
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -18,6 +19,7 @@ use super::warm_javac::WarmJavac;
 use whitted_check::check::image_cache::ImageCache;
 use whitted_check::check::program::{run_suite_with, Launch, LimitHit, SuiteRun};
 use whitted_check::check::suite::SuiteCase;
+use whitted_core::course::Course;
 use whitted_core::error::{Error, Result};
 
 /// What a class is graded with: the same for every student.
@@ -26,6 +28,8 @@ pub struct Setup {
     pub java: PathBuf,
     pub javac: PathBuf,
     pub skeleton: Skeleton,
+    /// The year of the course the class is of (docs/courses.md).
+    pub course: Course,
     pub suite: Vec<SuiteCase>,
     pub limits: Limits,
     pub tolerance: u8,
@@ -79,7 +83,12 @@ pub fn grade(
     };
     let work = setup.work.join("students").join(&submission.id);
     let _cleanup = WorkFolder(work.clone());
-    let sources = sources(setup, files);
+    let package = package_of(setup, files);
+    let owned = sources(setup, files, package);
+    let sources: Vec<(&str, &[u8])> = owned
+        .iter()
+        .map(|(path, bytes)| (path.as_str(), bytes.as_slice()))
+        .collect();
     let classes = work.join("classes");
     // The lock is held for the warm compilation only, not a fallback's; a compiler another
     // student holds for longer than `PATIENCE` (a source that makes javac slow) is left to
@@ -104,35 +113,42 @@ pub fn grade(
     };
     match compiled {
         Compiled::Ok => {}
-        Compiled::Errors(messages) => return Ok(Outcome::CompileError(messages)),
+        Compiled::Errors(messages) => {
+            return Ok(Outcome::CompileError(skeleton_named(
+                &setup.skeleton,
+                messages,
+            )))
+        }
         Compiled::Timeout => return Ok(Outcome::CompileTimeout),
     }
+    let main = super::package::qualified(package, setup.skeleton.main);
     let launch = SandboxedJava {
         setup,
         classes,
+        main: main.clone(),
         slot,
         runs: Mutex::default(),
     };
     let run = run_suite_with(
         &launch,
-        "java gfx.tick2.Tick2",
+        &format!("java {main}"),
         &setup.suite,
         setup.tolerance,
         setup.limits.seconds,
         &setup.images,
     )?;
     let mut run = run;
-    offer_only_their_files(&mut run);
+    offer_only_their_files(&mut run, setup.course);
     Ok(Outcome::Ran(Box::new(run)))
 }
 
 /// The candidates after the first keep only mistakes in the files a student hands in: one in
 /// the skeleton's classes (`Sphere.intersectionWith`) cannot be theirs, since grade compiles
 /// the skeleton's own. The first stays whatever it is: the per-case labels are its.
-fn offer_only_their_files(run: &mut SuiteRun) {
+fn offer_only_their_files(run: &mut SuiteRun, course: Course) {
     let theirs = |bug: whitted_check::mistakes::Bug| {
         let class = bug.place().split('.').next().unwrap_or("");
-        super::archive::WANTED
+        super::archive::submitted(course)
             .iter()
             .any(|file| file.strip_suffix(".java") == Some(class))
     };
@@ -142,6 +158,24 @@ fn offer_only_their_files(run: &mut SuiteRun) {
         first = false;
         keep
     });
+}
+
+/// javac's messages, with a first line saying so when the first error is in one of the
+/// skeleton's files rather than the student's: the skeleton given to grade may not compile
+/// (2023-24's `BumpySphere` as shipped lacks a return), which is the grader's to mend.
+fn skeleton_named(skeleton: &Skeleton, messages: String) -> String {
+    let first_error = messages.lines().find(|l| l.contains(": error:"));
+    let file = first_error
+        .and_then(|l| l.split(':').next())
+        .and_then(|path| path.rsplit('/').next());
+    match file {
+        Some(file) if skeleton.files.iter().any(|(name, _)| name == file) => format!(
+            "The first error is in the skeleton's {file}, not in a file the student hands in: \
+             the skeleton given to grade may not compile (2023-24's BumpySphere.java as \
+             shipped does not; give --skeleton one that does).\n{messages}"
+        ),
+        _ => messages,
+    }
 }
 
 /// How long a student waits for the warm compiler its slot shares before compiling with a
@@ -174,19 +208,29 @@ impl Drop for WorkFolder {
     }
 }
 
-/// What is compiled: the skeleton's files and the student's two, by name.
-fn sources<'a>(setup: &'a Setup, files: &'a Files) -> Vec<(&'a str, &'a [u8])> {
-    let ours = setup
-        .skeleton
-        .files
+/// The package the student's program is compiled in: 2016-17's is the skeleton's
+/// (`gfx.tick2`); from 2017-18 the one their files declare, their own user id in it.
+fn package_of<'a>(setup: &'a Setup, files: &'a Files) -> Option<&'a str> {
+    match setup.course.is_default() {
+        true => setup.skeleton.package.as_deref(),
+        false => files.package.as_deref(),
+    }
+}
+
+/// What is compiled, each at its path under the source root: the skeleton's files moved
+/// into `package`, and the student's.
+fn sources(setup: &Setup, files: &Files, package: Option<&str>) -> Vec<(String, Vec<u8>)> {
+    let folder = super::package::folder(package);
+    let theirs = files
+        .sources
         .iter()
-        .map(|(name, bytes)| (name.as_str(), bytes.as_slice()));
-    let theirs = [
-        ("Plane.java", files.plane.as_slice()),
-        ("Renderer.java", files.renderer.as_slice()),
-    ];
-    ours.chain(theirs)
-        .map(|(name, bytes)| (name, without_bom(bytes)))
+        .map(|(name, bytes)| (format!("{folder}{name}"), bytes.clone()));
+    setup
+        .skeleton
+        .sources_in(package)
+        .into_iter()
+        .chain(theirs)
+        .map(|(path, bytes)| (path, without_bom(&bytes).to_vec()))
         .collect()
 }
 
@@ -196,29 +240,38 @@ fn without_bom(source: &[u8]) -> &[u8] {
     source.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(source)
 }
 
-/// `work/src/gfx/tick2/` with `sources` and an empty `work/classes`; returns the sources'
-/// paths.
+/// `work/src/` with `sources` at their paths and an empty `work/classes`; returns the
+/// sources' paths.
 fn lay_out(sources: &[(&str, &[u8])], work: &Path) -> Result<Vec<String>> {
     let _ = std::fs::remove_dir_all(work);
-    let package = work.join("src/gfx/tick2");
     let classes = work.join("classes");
-    for dir in [&package, &classes] {
-        std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, "cannot create", e))?;
-    }
+    std::fs::create_dir_all(&classes).map_err(|e| Error::io(&classes, "cannot create", e))?;
+    let src = work.join("src");
+    write_sources(&src, sources)
+}
+
+/// Writes `sources` (paths under the source root, as [`sources`] makes them: a package's
+/// folders, never `..`) under `src`; returns their paths.
+pub fn write_sources(src: &Path, sources: &[(&str, &[u8])]) -> Result<Vec<String>> {
     let mut paths = Vec::new();
     for (name, bytes) in sources {
-        let path = package.join(name);
+        let path = src.join(name);
+        if let Some(folder) = path.parent() {
+            std::fs::create_dir_all(folder).map_err(|e| Error::io(folder, "cannot create", e))?;
+        }
         std::fs::write(&path, bytes).map_err(|e| Error::io(&path, "cannot write", e))?;
         paths.push(path.display().to_string());
     }
     Ok(paths)
 }
 
-/// The student's compiled program, run in the sandbox: `java gfx.tick2.Tick2` with the case's
-/// arguments appended.
+/// The student's compiled program, run in the sandbox: `java gfx.tick2.Tick2` (from 2017-18
+/// `java <their package>.Tick1`) with the case's arguments appended.
 struct SandboxedJava<'a> {
     setup: &'a Setup,
     classes: PathBuf,
+    /// The main class, qualified.
+    main: String,
     slot: usize,
     /// Each running case's guard (its cgroup, its filter), by its folder (removed when dropped).
     runs: Mutex<HashMap<PathBuf, RunGuard>>,
@@ -233,7 +286,7 @@ impl Launch for SandboxedJava<'_> {
             "-Djava.awt.headless=true".into(),
             "-cp".into(),
             self.classes.display().to_string(),
-            "gfx.tick2.Tick2".into(),
+            self.main.clone(),
         ]);
         let classes = self.classes.as_path();
         let (command, run) = self.setup.sandbox.command(

@@ -126,12 +126,7 @@ impl<'a> WarmJavac<'a> {
             std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, "cannot create", e))?;
             empty(dir)?;
         }
-        let package = src.join("gfx/tick2");
-        std::fs::create_dir_all(&package).map_err(|e| Error::io(&package, "cannot create", e))?;
-        for (name, bytes) in sources {
-            let path = package.join(name);
-            std::fs::write(&path, bytes).map_err(|e| Error::io(&path, "cannot write", e))?;
-        }
+        super::student::write_sources(&src, sources)?;
         Ok(())
     }
 
@@ -350,10 +345,14 @@ mod tests {
         let bad = b"package gfx.tick2; public class A { int f() { return 1 } }";
         for round in 0..3 {
             let into = root.path().join(format!("out{round}"));
-            let compiled = javac.compile(&[("A.java", good)], &into).expect("compile");
+            let compiled = javac
+                .compile(&[("gfx/tick2/A.java", good)], &into)
+                .expect("compile");
             assert_eq!(compiled, Some(Compiled::Ok));
             assert!(into.join("gfx/tick2/A.class").is_file());
-            let refused = javac.compile(&[("A.java", bad)], &into).expect("compile");
+            let refused = javac
+                .compile(&[("gfx/tick2/A.java", bad)], &into)
+                .expect("compile");
             let Some(Compiled::Errors(messages)) = refused else {
                 panic!("{refused:?}");
             };
@@ -373,7 +372,9 @@ mod tests {
         let good = b"package gfx.tick2; public class A {}";
         let into = root.path().join("out");
         assert_eq!(
-            javac.compile(&[("A.java", good)], &into).expect("compile"),
+            javac
+                .compile(&[("gfx/tick2/A.java", good)], &into)
+                .expect("compile"),
             Some(Compiled::Ok)
         );
         if let Some(server) = &mut javac.running {
@@ -381,12 +382,16 @@ mod tests {
         }
         // The dead one cannot answer: the caller is told to compile this student itself.
         assert_eq!(
-            javac.compile(&[("A.java", good)], &into).expect("compile"),
+            javac
+                .compile(&[("gfx/tick2/A.java", good)], &into)
+                .expect("compile"),
             None
         );
         // The next student gets a new one.
         assert_eq!(
-            javac.compile(&[("A.java", good)], &into).expect("compile"),
+            javac
+                .compile(&[("gfx/tick2/A.java", good)], &into)
+                .expect("compile"),
             Some(Compiled::Ok)
         );
     }

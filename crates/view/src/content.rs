@@ -147,7 +147,7 @@ fn load_check(
     let scene_bytes = scene.map(scene::read_file).transpose()?;
     let size = (student.width, student.height);
     let chosen = which_course::for_image(course, size, scene_bytes.as_deref())?;
-    let input = scene::input::load_input(scene, chosen.course)?;
+    let input = scene::input::input_of(scene, scene_bytes, chosen.course)?;
     let (case, findings) = check_image(
         &input.scene,
         &input.name,

@@ -55,22 +55,14 @@ fn scene_years(xml: &[u8]) -> Option<(Vec<Course>, String)> {
             "the scene is the course's own test scene of".into(),
         ));
     }
-    let text = String::from_utf8_lossy(xml);
-    // Attributes only the loaders of 2019-20 on read: materials, and the ambient light's
-    // intensity (whitted's own format has neither).
-    let later = ["alphaS=", "kS=", "kD=", "reflectivity="]
-        .iter()
-        .any(|a| text.contains(a))
-        || text
-            .split('<')
-            .any(|element| element.starts_with("ambient-light") && element.contains("intensity="));
+    let later = whitted_core::scene::xml::has_later_year_attributes(xml);
     later.then(|| {
         (
             Course::ALL
                 .into_iter()
                 .filter(|c| c.dialect().materials)
                 .collect(),
-            "the scene has attributes (materials, the ambient light's intensity) only the loader of"
+            "the scene has attributes (alphaS, the ambient light's intensity) only the loader of"
                 .into(),
         )
     })
@@ -247,6 +239,10 @@ mod tests {
         let unknown = r##"<scene><ambient-light colour="#010101" intensity="2"/></scene>"##;
         let chosen = for_image(None, (800, 600), Some(unknown.as_bytes())).expect("fits");
         assert_eq!(chosen.course, Course::Y2021);
+        // Materials are whitted's own format too: they point at no year.
+        let own = r##"<scene><sphere x="0" y="0" z="5" radius="1" colour="#ff0000" kD="0.5" kS="0.2" reflectivity="0"/></scene>"##;
+        let chosen = for_image(None, (640, 480), Some(own.as_bytes())).expect("whitted's own");
+        assert_eq!(chosen, Chosen::asked(Course::Y2016));
     }
 
     #[test]

@@ -72,6 +72,8 @@ pub(super) fn entry(bug: Bug) -> Entry {
             Where(RENDER, "image.setRGB(x, y, colour.toRGB());  // without tonemap", "tone-map each pixel before writing it: ColorRGB mapped = tonemap(colour);")),
         Bug::TonemapTwice => mistake("tonemap-twice", Lights, "the tone map applied twice: to the linear colour, then again to its result",
             Where(RENDER, "tonemap(tonemap(colour))", "tone-map the linear colour once, just before writing the pixel")),
+        Bug::BackgroundChanged => mistake("background-changed", Lights, "a ray that hits nothing returns another background than the course's (0.001 from 2018-19, 0.1 before); the entry renders the other value (0.1, or 0.001 where the course's is 0.1)",
+            Where(TRACE, "return new ColorRGB(0.1);  // when the ray hits nothing", "the course's background for a ray that hits nothing: 0.001 on every channel from 2018-19 (byte 9 after the tone map), 0.1 in 2017-18")),
         Bug::SpheresMissing => unfinished("spheres-missing", Spheres, "Sphere.intersectionWith still returns the empty hit: no sphere is ever hit",
             Where("Sphere.intersectionWith", "the intersection (it returns new RaycastHit(), no hit)", "solve |O + sD - C|^2 = r^2; the near root if > 0, else the far one if > 0; a hit there with normal (P - C)/r")),
         Bug::ShadingMissing => unfinished("shading-missing", Lights, "Renderer.illuminate still returns object.getColour(): every lit object is flat, without ambient, diffuse, specular or shadows",

@@ -343,7 +343,13 @@ impl Model for Variant {
     }
 
     fn background(&self) -> DVec3 {
-        self.rules().background()
+        let course = self.rules().background;
+        match self.has(Bug::BackgroundChanged) {
+            // The other era's value: a later student writing 2016-17's grey, or the reverse.
+            true if course == 0.1 => DVec3::splat(0.001),
+            true => DVec3::splat(0.1),
+            false => DVec3::splat(course),
+        }
     }
 
     fn reaches(&self, n_dot_l: f64) -> bool {

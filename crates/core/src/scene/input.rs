@@ -30,11 +30,20 @@ impl Input {
 /// The scene file at `path` read as `course` reads scenes (whitted's strict format for
 /// 2016-17, the year's loader otherwise), or the year's own scene when there is none.
 pub fn load_input(path: Option<&std::path::Path>, course: Course) -> Result<Input> {
+    let read = path.map(read_file).transpose()?;
+    input_of(path, read, course)
+}
+
+/// As [`load_input`], with the file at `path` already read into `read` (both None: the
+/// course's own scene): a caller that looked at the bytes first (which year is this
+/// scene?) does not read the file twice.
+pub fn input_of(
+    path: Option<&std::path::Path>,
+    read: Option<Vec<u8>>,
+    course: Course,
+) -> Result<Input> {
     let (embedded, embedded_name) = course.default_scene();
-    let bytes = match path {
-        Some(path) => read_file(path)?,
-        None => embedded.as_bytes().to_vec(),
-    };
+    let bytes = read.unwrap_or_else(|| embedded.as_bytes().to_vec());
     let name = path.map_or(embedded_name.to_string(), |p| p.display().to_string());
     let (scene, mut warnings) = parse_for_course(&name, &bytes, course)?;
     if path.is_none() {

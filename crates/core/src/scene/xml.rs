@@ -53,6 +53,34 @@ pub fn read_file(path: &Path) -> Result<Vec<u8>> {
     std::fs::read(path).map_err(|e| Error::io(path, "cannot read scene", e))
 }
 
+/// Whether the scene carries an attribute only the later years' loaders read (an ambient
+/// light's `intensity`, `alphaS`, 2023-24's `tr tg tb`): the scene is of a later year, not
+/// whitted's own. A file that is not well-formed says nothing here; its reader reports it.
+pub fn has_later_year_attributes(bytes: &[u8]) -> bool {
+    let mut reader = quick_xml::Reader::from_reader(bytes);
+    let mut buffer = Vec::new();
+    loop {
+        let tag = match reader.read_event_into(&mut buffer) {
+            Ok(quick_xml::events::Event::Start(tag) | quick_xml::events::Event::Empty(tag)) => tag,
+            Ok(quick_xml::events::Event::Eof) | Err(_) => return false,
+            Ok(_) => {
+                buffer.clear();
+                continue;
+            }
+        };
+        let name = tag.name();
+        let element: &str = name.as_ref();
+        let later = tag
+            .attributes()
+            .flatten()
+            .any(|a| attributes::later_year_attribute(element, a.key.as_ref()));
+        if later {
+            return true;
+        }
+        buffer.clear();
+    }
+}
+
 /// Parses a scene from raw bytes; `file` is the name used in error messages.
 pub fn parse_bytes(file: &str, bytes: &[u8]) -> Result<Scene> {
     parse_str(file, utf8(file, bytes)?)

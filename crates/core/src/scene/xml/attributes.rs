@@ -112,16 +112,22 @@ pub(super) fn read_attributes<'e>(
 /// whitted's own format is 2016-17's, and a 2019-20 scene's `intensity` on the ambient light
 /// is otherwise a puzzle.
 pub(super) fn later_year_hint(element: &str, name: &str) -> &'static str {
-    let later = match element {
-        "ambient-light" => name == "intensity",
-        "sphere" | "plane" => matches!(name, "alphaS" | "tr" | "tg" | "tb"),
-        _ => false,
-    };
-    if later {
+    if later_year_attribute(element, name) {
         "; a scene of the course's later years: give --course YEAR, e.g. --course 2021-22 \
          (docs/courses.md)"
     } else {
         ""
+    }
+}
+
+/// Whether `name` on `element` is an attribute whitted's own format refuses and only a
+/// later year's loader reads (docs/courses.md, "Scenes (the loader)"). `kD`, `kS` and
+/// `reflectivity` are not: whitted's own format has them too.
+pub(super) fn later_year_attribute(element: &str, name: &str) -> bool {
+    match element {
+        "ambient-light" => name == "intensity",
+        "sphere" | "plane" => matches!(name, "alphaS" | "tr" | "tg" | "tb"),
+        _ => false,
     }
 }
 
