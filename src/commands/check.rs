@@ -152,10 +152,10 @@ fn run_program(args: &CheckArgs, program: &str) -> Result<bool> {
     if let Some(report) = &args.report {
         refuse_clashes(&[], &[report])?;
     }
-    if let Some(dir) = &args.suite_dir {
-        suite::write_scenes(dir)?;
-    }
     let chosen = which_course::for_program(args.course.map(Course::from), program)?;
+    if let Some(dir) = &args.suite_dir {
+        suite::write_scenes(dir, chosen.course)?;
+    }
     let mut report = args.report.as_deref().map(Destination::open).transpose()?;
     let run = run_suite(program, args.tolerance, args.timeout, chosen.course)?;
     if let Some(out) = report.as_mut() {

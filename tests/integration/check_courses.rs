@@ -229,3 +229,30 @@ fn tick1_star_s_random_soft_shadows_are_noise_not_mistakes() {
     assert!(json["diagnosis"].as_array().is_some_and(|d| d.is_empty()));
     assert!(json["summary"].to_string().contains("not reproducible"));
 }
+
+#[test]
+fn suite_dir_writes_the_year_s_own_scenes() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let program = program("2021-22", &["no-ambient"]);
+    let out = whitted(
+        dir.path(),
+        &[
+            "check",
+            "--course",
+            "2021-22",
+            "--program",
+            &program,
+            "--suite-dir",
+            "suite",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    let test1 = std::fs::read(dir.path().join("suite/test1.xml")).expect("test1.xml");
+    let ours = std::fs::read(root().join("crates/check/scenes/courses/2021-24/test1.xml"))
+        .expect("the year's test1");
+    assert_eq!(test1, ours);
+    assert!(!dir.path().join("suite/tick2.xml").exists());
+    // The text's rerun lines point at the scenes written.
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("suite/test1.xml"), "{text}");
+}

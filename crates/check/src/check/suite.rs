@@ -73,12 +73,12 @@ impl SuiteCase {
     }
 }
 
-/// Writes every scene of the suite into `dir` (made if missing), so that a student can rerun
-/// and explain each case from their own directory. A file of the same name and content is
-/// left as it is; one with other content is refused, never replaced.
-pub fn write_scenes(dir: &Path) -> Result<()> {
+/// Writes every scene of `course`'s suite into `dir` (made if missing), so that a student can
+/// rerun and explain each case from their own directory. A file of the same name and content
+/// is left as it is; one with other content (another year's) is refused, never replaced.
+pub fn write_scenes(dir: &Path, course: Course) -> Result<()> {
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, "cannot create the directory", e))?;
-    let mut files: Vec<SuiteCase> = cases();
+    let mut files: Vec<SuiteCase> = cases_of(course);
     files.dedup_by(|a, b| a.file == b.file);
     for case in &files {
         let path = dir.join(&*case.file);
