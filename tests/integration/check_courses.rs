@@ -17,14 +17,22 @@ fn program(course: &str, bugs: &[&str]) -> String {
 /// The JSON of `check --course course --program ...` and its exit status.
 fn check(course: &str, bugs: &[&str]) -> (Value, Option<i32>) {
     let dir = tempfile::tempdir().expect("tempdir");
-    let program = program(course, bugs);
-    let out = whitted(
-        dir.path(),
-        &["check", "--course", course, "--program", &program, "--json"],
-    );
+    let out = check_program(dir.path(), course, &program(course, bugs), &["--json"]);
     let json: Value = serde_json::from_slice(&out.stdout)
         .unwrap_or_else(|_| panic!("{course} {bugs:?}: {}", stderr(&out)));
     (json, out.status.code())
+}
+
+/// `whitted check --course course --program program EXTRA...` in `dir`.
+fn check_program(
+    dir: &std::path::Path,
+    course: &str,
+    program: &str,
+    extra: &[&str],
+) -> std::process::Output {
+    let mut args = vec!["check", "--course", course, "--program", program];
+    args.extend_from_slice(extra);
+    whitted(dir, &args)
 }
 
 /// The ids of the top diagnosis and of its twins.
@@ -209,17 +217,7 @@ fn tick1_star_s_random_soft_shadows_are_noise_not_mistakes() {
         "java -Dcourse=2021-22 -Dstar=soft-shadows -cp '{}' uk.ac.cam.cl.gfxintro.whitted.tick1.Tick1",
         tick1_classes().to_str().expect("utf-8")
     );
-    let out = whitted(
-        dir.path(),
-        &[
-            "check",
-            "--course",
-            "2021-22",
-            "--program",
-            &program,
-            "--json",
-        ],
-    );
+    let out = check_program(dir.path(), "2021-22", &program, &["--json"]);
     assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
     let json: Value = serde_json::from_slice(&out.stdout).expect("json");
     assert_eq!(
@@ -234,18 +232,7 @@ fn tick1_star_s_random_soft_shadows_are_noise_not_mistakes() {
 fn suite_dir_writes_the_year_s_own_scenes() {
     let dir = tempfile::tempdir().expect("tempdir");
     let program = program("2021-22", &["no-ambient"]);
-    let out = whitted(
-        dir.path(),
-        &[
-            "check",
-            "--course",
-            "2021-22",
-            "--program",
-            &program,
-            "--suite-dir",
-            "suite",
-        ],
-    );
+    let out = check_program(dir.path(), "2021-22", &program, &["--suite-dir", "suite"]);
     assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
     let test1 = std::fs::read(dir.path().join("suite/test1.xml")).expect("test1.xml");
     let ours = std::fs::read(root().join("crates/check/scenes/courses/2021-24/test1.xml"))

@@ -48,6 +48,20 @@ fn skeleton() -> String {
         .to_string()
 }
 
+/// `whitted grade class -o out --course course --skeleton SKELETON` in `dir`.
+fn grade_year(dir: &Path, course: &str, skeleton: &str) -> std::process::Output {
+    let args = [
+        "class",
+        "-o",
+        "out",
+        "--course",
+        course,
+        "--skeleton",
+        skeleton,
+    ];
+    grade(dir, &args)
+}
+
 fn result_json(out: &Path, id: &str) -> Value {
     let text = std::fs::read(out.join("students").join(id).join("result.json")).expect("result");
     serde_json::from_slice(&text).expect("json")
@@ -113,18 +127,7 @@ fn a_later_class_with_a_package_each_is_graded_named_and_written_up() {
         "mn901",
     );
     let out = dir.path().join("out");
-    let run = grade(
-        dir.path(),
-        &[
-            "class",
-            "-o",
-            "out",
-            "--course",
-            "2021-22",
-            "--skeleton",
-            &skeleton(),
-        ],
-    );
+    let run = grade_year(dir.path(), "2021-22", &skeleton());
     assert_eq!(run.status.code(), Some(0), "{}", stderr(&run));
     let rows = records(&out.join("class.csv"));
     assert_eq!(rows.len(), 7, "{rows:?}");
@@ -165,18 +168,7 @@ fn a_random_tick1_star_submission_is_not_reproducible_rather_than_diagnosed() {
     let class = dir.path().join("class");
     let files = submission("op234", &["star-soft-shadows"]);
     student(&class, "op234", &files, "", "op234");
-    let run = grade(
-        dir.path(),
-        &[
-            "class",
-            "-o",
-            "out",
-            "--course",
-            "2021-22",
-            "--skeleton",
-            &skeleton(),
-        ],
-    );
+    let run = grade_year(dir.path(), "2021-22", &skeleton());
     assert_eq!(run.status.code(), Some(0), "{}", stderr(&run));
     let json = result_json(&dir.path().join("out"), "op234");
     let check = &json["extra_data"]["check"];
@@ -211,18 +203,7 @@ fn a_later_year_needs_its_skeleton_and_one_that_does_not_compile_is_named() {
         );
         std::fs::write(broken.join(entry.file_name()), text).expect("write");
     }
-    let run = grade(
-        dir.path(),
-        &[
-            "class",
-            "-o",
-            "out",
-            "--course",
-            "2023-24",
-            "--skeleton",
-            broken.to_str().expect("utf-8"),
-        ],
-    );
+    let run = grade_year(dir.path(), "2023-24", broken.to_str().expect("utf-8"));
     assert_eq!(run.status.code(), Some(0), "{}", stderr(&run));
     let rows = records(&dir.path().join("out/class.csv"));
     assert_eq!(rows[0]["status"], "compile-error", "{rows:?}");
