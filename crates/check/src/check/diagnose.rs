@@ -277,15 +277,12 @@ impl Search {
 
     /// The entries that, added to `top`, render every case byte for byte as `top` does (each
     /// confirmed on whole images), though each alone changes some case: `top` masks them.
-    /// Most common first.
-    pub fn image_identical_with(&mut self, cases: &[Case], top: Mistakes) -> Result<Vec<Bug>> {
-        let Some(base) = self.get(top).cloned() else {
+    /// Most common first. Only whether the images are equal is asked, not how well they
+    /// score: they are compared strip by strip as they render, and one that differs stops
+    /// at its first differing strip.
+    pub fn image_identical_with(&self, cases: &[Case], top: Mistakes) -> Result<Vec<Bug>> {
+        let Some(base) = self.get(top) else {
             return Ok(Vec::new());
-        };
-        let base = if base.is_whole() {
-            base
-        } else {
-            base.made_whole(cases)?
         };
         let mut found = Vec::new();
         for bug in Bug::BY_COMMONNESS {
@@ -297,16 +294,15 @@ impl Search {
             if !top.admits(bug) || !visible || found.len() == MASKED_LISTED {
                 continue;
             }
-            let Some(s) = self.get_mut(top.with(bug)) else {
+            let Some(s) = self.get(top.with(bug)) else {
                 continue;
             };
-            if !s.renders_like(&base) {
+            // Where both were counted whole this compares their images, else their samples.
+            if !s.renders_like(base) {
                 continue;
             }
-            if !s.is_whole() {
-                *s = s.made_whole(cases)?;
-            }
-            if s.renders_like(&base) {
+            let whole = s.is_whole() && base.is_whole();
+            if whole || renders_alike(cases, &s.variant, &base.variant)? {
                 found.push(bug);
             }
         }
@@ -359,6 +355,16 @@ impl Search {
             label: (!shows.is_empty() && wrong > 0 && label.explained >= LABELLED).then_some(label),
         }
     }
+}
+
+/// Whether `variant` renders every case byte for byte as `base` does.
+fn renders_alike(cases: &[Case], variant: &Variant, base: &Variant) -> Result<bool> {
+    for case in cases {
+        if !case.renderer.renders_as(variant, base)? {
+            return Ok(false);
+        }
+    }
+    Ok(true)
 }
 
 /// What the suite's explanation says of one case.

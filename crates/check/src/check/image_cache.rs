@@ -101,14 +101,24 @@ impl ImageCache {
             return Ok(Rgb8::clone(found));
         }
         let (image, others) = render()?;
+        self.keep([(key, image.clone())].into_iter().chain(others));
+        Ok(image)
+    }
+
+    /// The image under `key`, if it is kept.
+    pub fn get(&self, key: &ImageKey) -> Option<Rgb8> {
+        self.lock().images.get(key).map(|found| Rgb8::clone(found))
+    }
+
+    /// Keeps `images` as far as the limit allows (an image already kept stays as it is).
+    pub fn keep(&self, images: impl IntoIterator<Item = (ImageKey, Rgb8)>) {
         let mut kept = self.lock();
-        for (name, image) in [(key, image.clone())].into_iter().chain(others) {
+        for (name, image) in images {
             if kept.bytes + image.bytes.len() <= LIMIT_BYTES && !kept.images.contains_key(&name) {
                 kept.bytes += image.bytes.len();
                 kept.images.insert(name, Arc::new(image));
             }
         }
-        Ok(image)
     }
 
     /// Whether `bytes` more of images would be kept now.

@@ -3,6 +3,7 @@
 //! needs them. Every whole image is checked against the memory budget before it is made: a
 //! student's PNG sets the size, and a small file can claim a huge one.
 
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
 use rayon::prelude::*;
@@ -32,6 +33,10 @@ const ROWS_PER_TASK: u32 = 4;
 /// list (8), and a whole image's f64 beauty for the rows being traced, rounded up generously
 /// for the allocator.
 const BYTES_PER_PIXEL: u64 = 48;
+
+/// Whether a strip of rows (its first row, its bytes at each bounce count) differs from what
+/// it was to be: rendering stops at the first that does.
+type StripTest<'a> = dyn Fn(u32, &[Vec<u8>]) -> bool + Sync + 'a;
 
 /// A scene many checks share (a class's suite), for the run's cache of whole images.
 #[derive(Clone)]
@@ -222,21 +227,28 @@ impl<'a> Renderer<'a> {
     }
 
     /// The whole images under `model` in `frame` at each of `bounces` (each at most the
-    /// frame's), from one trace per pixel, on every core.
+    /// frame's), from one trace per pixel, on every core. None as soon as `differs` says of a
+    /// strip (its first row, its bytes at each of `bounces`) that it is not what it was to
+    /// be: the strips not yet begun are then skipped.
     fn images_with(
         &self,
         model: &impl Model,
         output: Output,
         frame: &Frame,
         bounces: &[u32],
-    ) -> Result<Vec<Rgb8>> {
+        differs: &StripTest<'_>,
+    ) -> Result<Option<Vec<Rgb8>>> {
         let (width, height) = (self.spec.width, self.spec.height);
         let accel = self.accelerator(frame);
         let starts: Vec<u32> = (0..height).step_by(ROWS_PER_TASK as usize).collect();
+        let stopped = AtomicBool::new(false);
         // Per strip, each bounce count's bytes.
         let strips: Vec<Vec<Vec<u8>>> = starts
             .par_iter()
             .map(|&y0| {
+                if stopped.load(Ordering::Relaxed) {
+                    return Ok(Vec::new());
+                }
                 let rows = y0..(y0 + ROWS_PER_TASK).min(height);
                 let pixels: Vec<(u32, u32)> =
                     rows.flat_map(|y| (0..width).map(move |x| (x, y))).collect();
@@ -244,23 +256,38 @@ impl<'a> Renderer<'a> {
                     trace_pixels_at_bounces(model, self.scene, accel, frame, &pixels, bounces);
                 interrupt::check()?;
                 let n = pixels.len();
-                Ok((0..bounces.len())
+                let bytes: Vec<Vec<u8>> = (0..bounces.len())
                     .map(|i| program_bytes(self.course(), output, &beauty[i * n..(i + 1) * n]))
-                    .collect())
+                    .collect();
+                if differs(y0, &bytes) {
+                    stopped.store(true, Ordering::Relaxed);
+                }
+                Ok(bytes)
             })
             .collect::<Result<_>>()?;
-        Ok((0..bounces.len())
-            .map(|i| Rgb8 {
-                width,
-                height,
-                bytes: strips.iter().flat_map(|s| s[i].iter().copied()).collect(),
-            })
-            .collect())
+        if stopped.into_inner() {
+            return Ok(None);
+        }
+        Ok(Some(
+            (0..bounces.len())
+                .map(|i| Rgb8 {
+                    width,
+                    height,
+                    bytes: strips.iter().flat_map(|s| s[i].iter().copied()).collect(),
+                })
+                .collect(),
+        ))
     }
 
     /// The whole images of `variant` (None: the course's model) at each of `bounces` (as
-    /// asked of the program, ascending), from one trace per pixel.
-    fn images_at(&self, variant: Option<&Variant>, bounces: &[u32]) -> Result<Vec<Rgb8>> {
+    /// asked of the program, ascending), from one trace per pixel; None where `differs`
+    /// stopped them (`images_with`).
+    fn images_until(
+        &self,
+        variant: Option<&Variant>,
+        bounces: &[u32],
+        differs: &StripTest<'_>,
+    ) -> Result<Option<Vec<Rgb8>>> {
         let mistakes = variant.map_or(Mistakes::NONE, |v| v.mistakes);
         // What a program with `mistakes` traces when asked for `bounces`.
         let asked = |bounces| {
@@ -274,12 +301,24 @@ impl<'a> Renderer<'a> {
         let traced: Vec<u32> = bounces.iter().map(|&b| asked(b).bounces).collect();
         let course = self.course();
         match variant {
-            None if course.is_default() => {
-                self.images_with(&whitted_core::model::Tick, Output::Course, &frame, &traced)
-            }
-            None => self.images_with(&course.rules(), Output::Course, &frame, &traced),
-            Some(v) => self.images_with(&v.in_course(course), v.output(), &frame, &traced),
+            None if course.is_default() => self.images_with(
+                &whitted_core::model::Tick,
+                Output::Course,
+                &frame,
+                &traced,
+                differs,
+            ),
+            None => self.images_with(&course.rules(), Output::Course, &frame, &traced, differs),
+            Some(v) => self.images_with(&v.in_course(course), v.output(), &frame, &traced, differs),
         }
+    }
+
+    /// The whole images of `variant` (None: the course's model) at each of `bounces` (as
+    /// asked of the program, ascending), from one trace per pixel.
+    fn images_at(&self, variant: Option<&Variant>, bounces: &[u32]) -> Result<Vec<Rgb8>> {
+        // Nothing stops them: always whole.
+        let whole = self.images_until(variant, bounces, &|_, _| false)?;
+        Ok(whole.unwrap_or_default())
     }
 
     /// The whole image of `variant` (None: the course's model), from the cache when this
@@ -314,6 +353,43 @@ impl<'a> Renderer<'a> {
     /// The reference: the course's model.
     pub fn reference(&self) -> Result<Rgb8> {
         self.remembered(None)
+    }
+
+    /// Whether `variant` renders this case byte for byte as `base` does, and the suite's other
+    /// cases of this scene at this size too where `base`'s are kept (all from one trace per
+    /// pixel). Strip by strip, stopping at the first strip that differs: a candidate that
+    /// renders otherwise costs a fraction of a whole render. Images found equal are kept for
+    /// the class.
+    pub fn renders_as(&self, variant: &Variant, base: &Variant) -> Result<bool> {
+        let own = self.spec.bounces;
+        let mut family = vec![(own, self.variant_image(base)?)];
+        if let Some((scene, cache)) = &self.shared {
+            let key =
+                |v, bounces| ImageKey::of(scene, self.size(), bounces, Some(v), self.course());
+            if let Some(found) = cache.get(&key(variant, own)) {
+                return Ok(found.bytes == family[0].1.bytes);
+            }
+            for &b in self.bounce_family.iter().filter(|&&b| b != own) {
+                family.extend(cache.get(&key(base, b)).map(|image| (b, image)));
+            }
+        }
+        family.sort_by_key(|&(b, _)| b);
+        let width = self.spec.width as usize;
+        let differs = |y0: u32, strips: &[Vec<u8>]| {
+            let at = 3 * width * y0 as usize;
+            strips.iter().zip(&family).any(|(strip, (_, image))| {
+                image.bytes.get(at..at + strip.len()) != Some(strip.as_slice())
+            })
+        };
+        let bounces: Vec<u32> = family.iter().map(|&(b, _)| b).collect();
+        let Some(images) = self.images_until(Some(variant), &bounces, &differs)? else {
+            return Ok(false);
+        };
+        if let Some((scene, cache)) = &self.shared {
+            let key = |b| ImageKey::of(scene, self.size(), b, Some(variant), self.course());
+            cache.keep(bounces.iter().map(|&b| key(b)).zip(images));
+        }
+        Ok(true)
     }
 
     /// The whole image a program with `mistakes` renders.
