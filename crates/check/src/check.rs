@@ -30,6 +30,7 @@ pub mod words;
 use crate::check::case::Case;
 use crate::check::diagnose::{CaseFinding, Diagnosis, Search};
 use crate::check::difference::{difference, Difference};
+use crate::check::image_cache::ImageCache;
 use crate::check::noise::Noise;
 use crate::check::numbers::NumberFit;
 use crate::check::progress::{Evidence, Stages};
@@ -373,8 +374,23 @@ pub fn check_image(
     student: Rgb8,
     course: Course,
 ) -> Result<(CaseReport, Findings)> {
+    // A cache of this check's own: the search asks for some whole images more than once
+    // (the top candidate's, to confirm the entries it masks).
+    let own = SharedScene {
+        key: String::new(),
+        bounce_family: Vec::new(),
+        cache: ImageCache::new(),
+        samples: false,
+    };
     let (case, mut report) = prepare(
-        scene, scene_name, bounces, tolerance, student, 1, None, course,
+        scene,
+        scene_name,
+        bounces,
+        tolerance,
+        student,
+        1,
+        Some(own),
+        course,
     )?;
     let passes = report.difference.verdict.passes();
     let findings = find(std::slice::from_ref(&case), passes, course)?;

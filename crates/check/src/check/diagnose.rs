@@ -18,6 +18,7 @@ use rayon::prelude::*;
 use crate::check::case::Case;
 use crate::check::difference::pixel_difference;
 use crate::check::score::{cost, explained_share, Scored};
+use crate::check::student_png::Rgb8;
 use crate::mistakes::{Bug, Mistakes, Number, Variant};
 use whitted_core::course::Course;
 use whitted_core::error::Result;
@@ -285,6 +286,8 @@ impl Search {
             return Ok(Vec::new());
         };
         let mut found = Vec::new();
+        // `top`'s image of each case, rendered once when a first candidate needs it.
+        let mut base_images: Option<Vec<Rgb8>> = None;
         for bug in Bug::BY_COMMONNESS {
             // An entry that changes none of these images on its own is one the cases cannot
             // show at all (a reflection mistake at 0 bounces), not one `top` masks.
@@ -302,9 +305,21 @@ impl Search {
                 continue;
             }
             let whole = s.is_whole() && base.is_whole();
-            if whole || renders_alike(cases, &s.variant, &base.variant)? {
+            if whole {
+                found.push(bug);
+                continue;
+            }
+            let images = match base_images.take() {
+                Some(images) => images,
+                None => cases
+                    .iter()
+                    .map(|case| case.renderer.variant_image(&base.variant))
+                    .collect::<Result<_>>()?,
+            };
+            if renders_alike(cases, &s.variant, &base.variant, &images)? {
                 found.push(bug);
             }
+            base_images = Some(images);
         }
         Ok(found)
     }
@@ -358,9 +373,14 @@ impl Search {
 }
 
 /// Whether `variant` renders every case byte for byte as `base` does.
-fn renders_alike(cases: &[Case], variant: &Variant, base: &Variant) -> Result<bool> {
-    for case in cases {
-        if !case.renderer.renders_as(variant, base)? {
+fn renders_alike(
+    cases: &[Case],
+    variant: &Variant,
+    base: &Variant,
+    base_images: &[Rgb8],
+) -> Result<bool> {
+    for (case, base_image) in cases.iter().zip(base_images) {
+        if !case.renderer.renders_as(variant, base, base_image)? {
             return Ok(false);
         }
     }

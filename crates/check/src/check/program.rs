@@ -233,6 +233,7 @@ pub fn run_suite_with(
             key: keys[k].clone(),
             bounce_family,
             cache: Arc::clone(cache),
+            samples: true,
         };
         let (c, report) = prepare(
             scene,

@@ -47,6 +47,9 @@ pub struct SharedScene {
     pub bounce_family: Vec<u32>,
     /// The run's images.
     pub cache: Arc<ImageCache>,
+    /// Whether candidates' sample lattices are kept too: a class's students share them, a
+    /// single check asks for each once and would only pay to keep it.
+    pub samples: bool,
 }
 
 /// Renders one scene at one size and bounce count under any candidate.
@@ -54,6 +57,8 @@ pub struct Renderer<'a> {
     pub scene: &'a Scene,
     /// Names the scene in the run's image cache (`image_cache.rs`); None renders every time.
     shared: Option<(String, Arc<ImageCache>)>,
+    /// Whether sample lattices are kept in the cache too (`SharedScene::samples`).
+    share_samples: bool,
     /// The bounce counts whose whole images are rendered together when one is asked for
     /// (this case's, and the suite's other cases of the scene at this size), ascending.
     bounce_family: Vec<u32>,
@@ -89,6 +94,7 @@ impl<'a> Renderer<'a> {
         Ok(Renderer {
             scene,
             shared: None,
+            share_samples: false,
             bounce_family: vec![spec.bounces],
             spec,
             bvh: Accelerator::build(&scene.objects),
@@ -114,6 +120,7 @@ impl<'a> Renderer<'a> {
             self.bounce_family = family;
         }
         self.shared = Some((shared.key, shared.cache));
+        self.share_samples = shared.samples;
         self
     }
 
@@ -194,7 +201,7 @@ impl<'a> Renderer<'a> {
     }
 
     /// `variant`'s bytes on the whole `lattice`, rendered once per class and kept with the
-    /// whole images; None where little would be shared: a single check, a fitted number, a
+    /// whole images; None where little would be shared: a single check (`SharedScene::samples`), a fitted number, a
     /// triple (each student's beam extends their own best pairs).
     fn lattice_bytes(
         &self,
@@ -203,7 +210,11 @@ impl<'a> Renderer<'a> {
         lattice: &[(u32, u32)],
     ) -> Result<Option<Rgb8>> {
         let shared = variant.number.is_none() && variant.mistakes.len() <= 2;
-        let Some((scene, cache)) = self.shared.as_ref().filter(|_| shared) else {
+        let Some((scene, cache)) = self
+            .shared
+            .as_ref()
+            .filter(|_| shared && self.share_samples)
+        else {
             return Ok(None);
         };
         let key = ImageKey {
@@ -359,10 +370,11 @@ impl<'a> Renderer<'a> {
     /// cases of this scene at this size too where `base`'s are kept (all from one trace per
     /// pixel). Strip by strip, stopping at the first strip that differs: a candidate that
     /// renders otherwise costs a fraction of a whole render. Images found equal are kept for
-    /// the class.
-    pub fn renders_as(&self, variant: &Variant, base: &Variant) -> Result<bool> {
+    /// the class. `base_image` is `base`'s image of this case (the caller renders it once for
+    /// every candidate it asks about).
+    pub fn renders_as(&self, variant: &Variant, base: &Variant, base_image: &Rgb8) -> Result<bool> {
         let own = self.spec.bounces;
-        let mut family = vec![(own, self.variant_image(base)?)];
+        let mut family = vec![(own, Rgb8::clone(base_image))];
         if let Some((scene, cache)) = &self.shared {
             let key =
                 |v, bounces| ImageKey::of(scene, self.size(), bounces, Some(v), self.course());

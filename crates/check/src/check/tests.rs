@@ -354,6 +354,7 @@ fn a_scene_s_bounce_counts_rendered_together_are_each_one_s_own_render() {
                         key: format!("bounce family test {} {n}", case.file),
                         bounce_family: family.clone(),
                         cache: cache.clone(),
+                        samples: true,
                     }));
                 assert!(
                     alone.variant_image(variant).expect("image")
