@@ -372,3 +372,67 @@ fn a_scene_s_bounce_counts_rendered_together_are_each_one_s_own_render() {
         }
     }
 }
+
+#[test]
+fn renders_as_says_what_comparing_whole_images_says() {
+    // The masked-entry proof stops a render at its first differing strip: it must answer
+    // exactly what rendering both whole and comparing them answers, alone and with a cache
+    // holding the base's other bounce counts (then every one of them must match).
+    let family = vec![0, 1, 2, 3];
+    let bases = [
+        Mistakes::NONE,
+        Mistakes::of(&[Bug::SpecularGated]),
+        Mistakes::of(&[Bug::PlanesMissing]),
+    ];
+    let (mut same, mut different) = (0, 0);
+    for case in cases().iter().filter(|c| c.bounces == 3) {
+        let scene = whitted_core::scene::parse_str(&case.file, &case.xml).expect("scene");
+        let alone: Vec<Renderer> = family
+            .iter()
+            .map(|&b| Renderer::new(&scene, 96, 72, b).expect("renderer"))
+            .collect();
+        for base in bases.map(Variant::from) {
+            let base_images: Vec<Rgb8> = alone
+                .iter()
+                .map(|r| r.variant_image(&base).expect("image"))
+                .collect();
+            for bug in Bug::offered(Course::Y2016) {
+                if !base.mistakes.admits(bug) {
+                    continue;
+                }
+                let variant = Variant::from(base.mistakes.with(bug));
+                let equal: Vec<bool> = alone
+                    .iter()
+                    .zip(&base_images)
+                    .map(|(r, image)| r.variant_image(&variant).expect("image") == *image)
+                    .collect();
+                for (i, r) in alone.iter().enumerate() {
+                    let says = r.renders_as(&variant, &base, &base_images[i]);
+                    assert_eq!(says.expect("renders"), equal[i], "{variant:?} alone");
+                }
+                let shared = Renderer::new(&scene, 96, 72, 2)
+                    .expect("renderer")
+                    .remembered_as(Some(SharedScene {
+                        key: case.file.to_string(),
+                        bounce_family: family.clone(),
+                        cache: ImageCache::new(),
+                        samples: false,
+                    }));
+                let base_image = shared.variant_image(&base).expect("image");
+                let says = shared.renders_as(&variant, &base, &base_image);
+                assert_eq!(
+                    says.expect("renders"),
+                    equal.iter().all(|&e| e),
+                    "{variant:?} with the family"
+                );
+                if variant.mistakes != base.mistakes {
+                    match equal[2] {
+                        true => same += 1,
+                        false => different += 1,
+                    }
+                }
+            }
+        }
+    }
+    assert!(same > 0 && different > 0, "{same} alike, {different} not");
+}
