@@ -378,11 +378,19 @@ impl<'a> Renderer<'a> {
         if let Some((scene, cache)) = &self.shared {
             let key =
                 |v, bounces| ImageKey::of(scene, self.size(), bounces, Some(v), self.course());
-            if let Some(found) = cache.get(&key(variant, own)) {
-                return Ok(found.bytes == family[0].1.bytes);
-            }
             for &b in self.bounce_family.iter().filter(|&&b| b != own) {
                 family.extend(cache.get(&key(base, b)).map(|image| (b, image)));
+            }
+            // Rendered before: compared as kept, over the same bounce counts.
+            let kept: Option<Vec<Rgb8>> = family
+                .iter()
+                .map(|&(b, _)| cache.get(&key(variant, b)))
+                .collect();
+            if let Some(kept) = kept {
+                return Ok(kept
+                    .iter()
+                    .zip(&family)
+                    .all(|(v, (_, b))| v.bytes == b.bytes));
             }
         }
         family.sort_by_key(|&(b, _)| b);
