@@ -374,8 +374,9 @@ pub fn check_image(
     student: Rgb8,
     course: Course,
 ) -> Result<(CaseReport, Findings)> {
-    // A cache of this check's own: the search asks for some whole images more than once
-    // (the top candidate's, to confirm the entries it masks).
+    // A cache of this check's own (one scene, so its name is empty): the search asks for
+    // some whole images more than once (the top candidate's, to confirm the entries it
+    // masks). Its samples are asked for once each, so they are not kept.
     let own = SharedScene {
         key: String::new(),
         bounce_family: Vec::new(),

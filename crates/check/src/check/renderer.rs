@@ -52,13 +52,20 @@ pub struct SharedScene {
     pub samples: bool,
 }
 
+/// The cache a renderer keeps its images in, and under which scene.
+struct Kept {
+    /// The scene's name in the cache.
+    scene: String,
+    cache: Arc<ImageCache>,
+    /// Whether sample lattices are kept too (`SharedScene::samples`).
+    samples: bool,
+}
+
 /// Renders one scene at one size and bounce count under any candidate.
 pub struct Renderer<'a> {
     pub scene: &'a Scene,
-    /// Names the scene in the run's image cache (`image_cache.rs`); None renders every time.
-    shared: Option<(String, Arc<ImageCache>)>,
-    /// Whether sample lattices are kept in the cache too (`SharedScene::samples`).
-    share_samples: bool,
+    /// Where this renderer's images are kept (`image_cache.rs`); None renders every time.
+    shared: Option<Kept>,
     /// The bounce counts whose whole images are rendered together when one is asked for
     /// (this case's, and the suite's other cases of the scene at this size), ascending.
     bounce_family: Vec<u32>,
@@ -94,7 +101,6 @@ impl<'a> Renderer<'a> {
         Ok(Renderer {
             scene,
             shared: None,
-            share_samples: false,
             bounce_family: vec![spec.bounces],
             spec,
             bvh: Accelerator::build(&scene.objects),
@@ -119,8 +125,11 @@ impl<'a> Renderer<'a> {
         if memory::check(budget, memory::available_bytes(), "").is_ok() {
             self.bounce_family = family;
         }
-        self.shared = Some((shared.key, shared.cache));
-        self.share_samples = shared.samples;
+        self.shared = Some(Kept {
+            scene: shared.key,
+            cache: shared.cache,
+            samples: shared.samples,
+        });
         self
     }
 
@@ -138,6 +147,12 @@ impl<'a> Renderer<'a> {
 
     fn size(&self) -> (u32, u32) {
         (self.spec.width, self.spec.height)
+    }
+
+    /// The cache's name for `variant`'s (None: the course's model) whole image of `scene` at
+    /// this size and `bounces`.
+    fn image_key(&self, scene: &str, bounces: u32, variant: Option<&Variant>) -> ImageKey {
+        ImageKey::of(scene, self.size(), bounces, variant, self.course())
     }
 
     pub fn width(&self) -> u32 {
@@ -201,8 +216,9 @@ impl<'a> Renderer<'a> {
     }
 
     /// `variant`'s bytes on the whole `lattice`, rendered once per class and kept with the
-    /// whole images; None where little would be shared: a single check (`SharedScene::samples`), a fitted number, a
-    /// triple (each student's beam extends their own best pairs).
+    /// whole images; None where little would be shared: a single check
+    /// (`SharedScene::samples`), a fitted number, a triple (each student's beam extends their
+    /// own best pairs).
     fn lattice_bytes(
         &self,
         variant: &Variant,
@@ -210,22 +226,13 @@ impl<'a> Renderer<'a> {
         lattice: &[(u32, u32)],
     ) -> Result<Option<Rgb8>> {
         let shared = variant.number.is_none() && variant.mistakes.len() <= 2;
-        let Some((scene, cache)) = self
-            .shared
-            .as_ref()
-            .filter(|_| shared && self.share_samples)
+        let Some(Kept { scene, cache, .. }) = self.shared.as_ref().filter(|k| shared && k.samples)
         else {
             return Ok(None);
         };
         let key = ImageKey {
             lattice: Some(lattice.len()),
-            ..ImageKey::of(
-                scene,
-                self.size(),
-                self.spec.bounces,
-                Some(variant),
-                self.course(),
-            )
+            ..self.image_key(scene, self.spec.bounces, Some(variant))
         };
         let render = || {
             Ok(Rgb8 {
@@ -339,11 +346,11 @@ impl<'a> Renderer<'a> {
             .bounce_family
             .iter()
             .position(|&b| b == self.spec.bounces);
-        let (Some((scene, cache)), Some(own)) = (&self.shared, own) else {
+        let (Some(Kept { scene, cache, .. }), Some(own)) = (&self.shared, own) else {
             let mut images = self.images_at(variant, &[self.spec.bounces])?;
             return Ok(images.swap_remove(0));
         };
-        let key = |bounces| ImageKey::of(scene, self.size(), bounces, variant, self.course());
+        let key = |bounces| self.image_key(scene, bounces, variant);
         cache.get_or_render_family(key(self.spec.bounces), || {
             // The others are worth their deeper trace only if the cache can keep them.
             let family_bytes = (3 * self.bounce_family.len())
@@ -374,26 +381,26 @@ impl<'a> Renderer<'a> {
     /// every candidate it asks about).
     pub fn renders_as(&self, variant: &Variant, base: &Variant, base_image: &Rgb8) -> Result<bool> {
         let own = self.spec.bounces;
-        let mut family = vec![(own, Rgb8::clone(base_image))];
-        if let Some((scene, cache)) = &self.shared {
-            let key =
-                |v, bounces| ImageKey::of(scene, self.size(), bounces, Some(v), self.course());
-            for &b in self.bounce_family.iter().filter(|&&b| b != own) {
-                family.extend(cache.get(&key(base, b)).map(|image| (b, image)));
-            }
-            // Rendered before: compared as kept, over the same bounce counts.
-            let kept: Option<Vec<Rgb8>> = family
-                .iter()
-                .map(|&(b, _)| cache.get(&key(variant, b)))
-                .collect();
-            if let Some(kept) = kept {
-                return Ok(kept
-                    .iter()
-                    .zip(&family)
-                    .all(|(v, (_, b))| v.bytes == b.bytes));
-            }
-        }
+        let kept = self.shared.as_ref();
+        let get = |v, b| kept.and_then(|k| k.cache.get(&self.image_key(&k.scene, b, Some(v))));
+        // `base`'s images at the family's other bounce counts, where they are kept.
+        let others: Vec<(u32, Rgb8)> = self
+            .bounce_family
+            .iter()
+            .filter(|&&b| b != own)
+            .filter_map(|&b| get(base, b).map(|image| (b, image)))
+            .collect();
+        let mut family: Vec<(u32, &Rgb8)> = others.iter().map(|(b, image)| (*b, image)).collect();
+        family.push((own, base_image));
         family.sort_by_key(|&(b, _)| b);
+        // Rendered before: compared as kept, over the same bounce counts.
+        let found: Option<Vec<Rgb8>> = family.iter().map(|&(b, _)| get(variant, b)).collect();
+        if let Some(found) = found {
+            return Ok(found
+                .iter()
+                .zip(&family)
+                .all(|(v, (_, b))| v.bytes == b.bytes));
+        }
         let width = self.spec.width as usize;
         let differs = |y0: u32, strips: &[Vec<u8>]| {
             let at = 3 * width * y0 as usize;
@@ -405,9 +412,11 @@ impl<'a> Renderer<'a> {
         let Some(images) = self.images_until(Some(variant), &bounces, &differs)? else {
             return Ok(false);
         };
-        if let Some((scene, cache)) = &self.shared {
-            let key = |b| ImageKey::of(scene, self.size(), b, Some(variant), self.course());
-            cache.keep(bounces.iter().map(|&b| key(b)).zip(images));
+        if let Some(k) = kept {
+            let keys = bounces
+                .iter()
+                .map(|&b| self.image_key(&k.scene, b, Some(variant)));
+            k.cache.keep(keys.zip(images));
         }
         Ok(true)
     }
