@@ -25,6 +25,8 @@
 //! [`frame`] (everything checked before anything runs) -> [`render`] (tiles in parallel;
 //! [`camera`] rays, [`accel`] over [`geometry`], [`trace`] -> [`sample::Sample`]) ->
 //! [`film::Film`] (the layers [`aov`] declares), which [`tonemap`] turns into display values.
+//! [`hits`] is the trace's two questions of the geometry, answered by [`accel`] or from a
+//! recording of an earlier trace (how `check`'s candidates share the course's searches).
 //! [`model`] is the course's shading, a trait every year ([`course`]) and every catalogued
 //! mistake overrides in part. [`progress`], [`interrupt`] and [`memory`] keep long renders
 //! watchable, stoppable and within the machine.
@@ -46,6 +48,7 @@ pub mod film;
 pub mod fingerprint;
 pub mod frame;
 pub mod geometry;
+pub mod hits;
 pub mod interrupt;
 pub mod memory;
 pub mod model;

@@ -12,6 +12,8 @@ use crate::course::Course;
 use crate::error::Result;
 use crate::film::{Film, PixelAccumulator};
 use crate::frame::{Acceleration, Frame};
+use crate::hits::tape::{Recording, Tape};
+use crate::hits::Hits;
 use crate::interrupt;
 use crate::model::{Model, Tick};
 use crate::sample::Sample;
@@ -299,16 +301,31 @@ pub fn trace_pixels<const LAYERS: bool, T>(
     keep: impl Fn(&Sample) -> T,
 ) -> Vec<T> {
     assert_suits(model, accel);
+    trace_pixels_with::<LAYERS, _, _>(model, scene, frame, pixels, |_| accel, keep)
+}
+
+/// `trace_pixels` with the hit searches of pixel `j` answered by `hits(j)`: a replay of
+/// the searches a trace of the same pixels recorded (`record_pixels`), where `model`
+/// intersects by the recording model's rules (`hits::tape`).
+pub fn trace_pixels_with<const LAYERS: bool, T, H: Hits>(
+    model: &impl Model,
+    scene: &Scene,
+    frame: &Frame,
+    pixels: &[(u32, u32)],
+    hits: impl Fn(usize) -> H,
+    keep: impl Fn(&Sample) -> T,
+) -> Vec<T> {
     let mut sample = Sample::empty(scene.lights.len(), frame.trace().bounces);
     pixels
         .iter()
+        .enumerate()
         .take_while(|_| !interrupt::requested())
-        .map(|&(x, y)| {
+        .map(|(j, &(x, y))| {
             let ray = frame.camera().pixel_centre_ray(x, y);
             trace_observed::<LAYERS>(
                 model,
                 scene,
-                accel,
+                &hits(j),
                 ray,
                 frame.trace(),
                 &mut sample,
@@ -317,6 +334,29 @@ pub fn trace_pixels<const LAYERS: bool, T>(
             keep(&sample)
         })
         .collect()
+}
+
+/// The hit searches of each listed pixel's trace under `model` (as `trace_pixels` traces it),
+/// for tracing the same pixels again under models that intersect by its rules
+/// (`trace_pixels_with` and `hits::tape::Replay`). Stops early (a shorter list) when the user
+/// presses Ctrl-C.
+pub fn record_pixels(
+    model: &impl Model,
+    scene: &Scene,
+    accel: &Accelerator,
+    frame: &Frame,
+    pixels: &[(u32, u32)],
+) -> Vec<Tape> {
+    assert_suits(model, accel);
+    let recording = Recording::new(accel);
+    trace_pixels_with::<false, _, _>(
+        model,
+        scene,
+        frame,
+        pixels,
+        |_| &recording,
+        |_| recording.take(),
+    )
 }
 
 /// `trace_pixels` for the beauty at several bounce counts at once, each at most the frame's:

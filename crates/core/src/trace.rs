@@ -10,6 +10,7 @@ use observe::{FoldStep, LightRecord, Observer, Silent, VertexRecord};
 
 use crate::accel::Accelerator;
 use crate::geometry::{Hit, Ray};
+use crate::hits::Hits;
 use crate::model::rounding::{SelfHit, TakingSelfHits};
 use crate::model::{Model, Tick};
 use crate::sample::{PrimaryHit, Sample};
@@ -74,7 +75,7 @@ pub fn trace_beauty(
 pub fn trace_observed<const LAYERS: bool>(
     model: &impl Model,
     scene: &Scene,
-    accel: &Accelerator,
+    accel: &impl Hits,
     primary: Ray,
     options: TraceOptions,
     sample: &mut Sample,
@@ -95,7 +96,7 @@ pub fn trace_observed<const LAYERS: bool>(
 pub fn trace_chain(
     model: &impl Model,
     scene: &Scene,
-    accel: &Accelerator,
+    accel: &impl Hits,
     primary: Ray,
     options: TraceOptions,
     sample: &mut Sample,
@@ -170,7 +171,7 @@ impl Chain {
 fn follow_chain<const LAYERS: bool>(
     model: &impl Model,
     scene: &Scene,
-    accel: &Accelerator,
+    accel: &impl Hits,
     primary: Ray,
     options: TraceOptions,
     sample: &mut Sample,
@@ -311,7 +312,7 @@ struct Vertex<'a> {
 #[inline(always)]
 fn light_terms<O: Observer>(
     model: &impl Model,
-    accel: &Accelerator,
+    accel: &impl Hits,
     vertex: &Vertex,
     (index, light): (usize, &PointLight),
     v: DVec3,
@@ -378,7 +379,7 @@ fn light_terms<O: Observer>(
 #[inline(always)]
 fn shadow_test<O: Observer>(
     model: &impl Model,
-    accel: &Accelerator,
+    accel: &impl Hits,
     shadow_ray: &Ray,
     reach: f64,
     cast: bool,
@@ -403,7 +404,7 @@ fn shadow_test<O: Observer>(
 fn shade<const LAYERS: bool, O: Observer>(
     model: &impl Model,
     scene: &Scene,
-    accel: &Accelerator,
+    accel: &impl Hits,
     vertex: &Vertex,
     shadows: bool,
     sample: &mut Sample,

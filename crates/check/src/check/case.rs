@@ -64,17 +64,26 @@ impl<'a> Case<'a> {
                 .flat_map(|&i| image.bytes[3 * i..3 * i + 3].iter().copied())
                 .collect()
         };
+        let positions: Vec<(u32, u32)> =
+            looked.iter().map(|&i| position(student.width, i)).collect();
+        let lattice: Vec<(u32, u32)> = lattice
+            .iter()
+            .map(|&i| position(student.width, i))
+            .collect();
+        let lattice_searches = match renderer.keeps_lattices() {
+            true => renderer.searches_at(&lattice)?,
+            false => Vec::new(),
+        };
         let sample = PixelSample {
-            positions: looked.iter().map(|&i| position(student.width, i)).collect(),
+            searches: renderer.searches_at(&positions)?,
+            positions,
             wrong: wrong_sample.len(),
             wrong_weight: wrong.len() as f64 / wrong_sample.len().max(1) as f64,
             right_weight: right.len() as f64 / right_sample.len().max(1) as f64,
             student: pick(&student),
             reference: pick(&reference),
-            lattice: lattice
-                .iter()
-                .map(|&i| position(student.width, i))
-                .collect(),
+            lattice,
+            lattice_searches,
             right_in_lattice,
         };
         Ok(Case {

@@ -1,6 +1,8 @@
 //! The pixels of a case that every candidate is scored on first: what `case.rs` draws and
 //! `renderer.rs` renders, in a file of its own so that neither depends on the other.
 
+use whitted_core::hits::tape::Tape;
+
 /// The pixels of one case that every candidate renders first: up to a share of `SAMPLE` of
 /// those the student got wrong, then as many of those they got right, each standing for its
 /// share of the image.
@@ -20,6 +22,12 @@ pub struct PixelSample {
     pub lattice: Vec<(u32, u32)>,
     /// Where in `lattice` each sampled right pixel (`positions[wrong..]`) is.
     pub right_in_lattice: Vec<usize>,
+    /// The hit searches of the course's trace of each of `positions`, which the candidates
+    /// that intersect as the course does share (`Renderer::searches_at`).
+    pub searches: Vec<Tape>,
+    /// The same at each of `lattice`'s pixels where the renderer keeps lattices
+    /// (`Renderer::keeps_lattices`), else empty.
+    pub lattice_searches: Vec<Tape>,
 }
 
 impl PixelSample {

@@ -16,10 +16,13 @@ use whitted_core::accel::Accelerator;
 use whitted_core::course::Course;
 use whitted_core::error::Result;
 use whitted_core::frame::{Acceleration, Frame, FrameSpec};
+use whitted_core::hits::tape::{Replay, Tape};
 use whitted_core::interrupt;
 use whitted_core::memory;
 use whitted_core::model::Model;
-use whitted_core::render::{trace_pixels, trace_pixels_at_bounces};
+use whitted_core::render::{
+    record_pixels, trace_pixels, trace_pixels_at_bounces, trace_pixels_with,
+};
 use whitted_core::sample::Sample;
 use whitted_core::scene::Scene;
 use whitted_core::tonemap::ToneMap;
@@ -189,12 +192,42 @@ impl<'a> Renderer<'a> {
         frame: &Frame,
         pixels: &[(u32, u32)],
     ) -> Result<Vec<u8>> {
+        self.bytes_replaying(variant, frame, pixels, None)
+    }
+
+    /// `bytes_at`, with the hit searches the course's trace of `pixels` recorded
+    /// (`searches_at`, one tape per pixel) answering those of `variant`'s rays that are the
+    /// same, where it intersects as the course does: most candidates differ from the course
+    /// in their shading only, and searching is half a trace.
+    pub(crate) fn bytes_replaying(
+        &self,
+        variant: &Variant,
+        frame: &Frame,
+        pixels: &[(u32, u32)],
+        searches: Option<&[Tape]>,
+    ) -> Result<Vec<u8>> {
         let accel = self.accelerator(frame);
         let model = variant.in_course(self.course());
-        let beauty =
-            trace_pixels::<false, _>(&model, self.scene, accel, frame, pixels, |s| s.beauty);
+        let keep = |s: &Sample| s.beauty;
+        let beauty = match searches.filter(|_| variant.intersects_as_course()) {
+            Some(tapes) => {
+                let hits = |j: usize| Replay::new(accel, &tapes[j]);
+                trace_pixels_with::<false, _, _>(&model, self.scene, frame, pixels, hits, keep)
+            }
+            None => trace_pixels::<false, _>(&model, self.scene, accel, frame, pixels, keep),
+        };
         interrupt::check()?;
         Ok(program_bytes(self.course(), variant.output(), &beauty))
+    }
+
+    /// The hit searches of the course's trace (the program with no mistake) of each of
+    /// `pixels`, for `sample_bytes` to share with the candidates.
+    pub fn searches_at(&self, pixels: &[(u32, u32)]) -> Result<Vec<Tape>> {
+        let frame = self.frame(Mistakes::NONE)?;
+        let model = Variant::from(Mistakes::NONE).in_course(self.course());
+        let tapes = record_pixels(&model, self.scene, self.accelerator(&frame), &frame, pixels);
+        interrupt::check()?;
+        Ok(tapes)
     }
 
     /// `variant`'s bytes at `sample`'s positions: the wrong pixels rendered, the right ones
@@ -205,40 +238,50 @@ impl<'a> Renderer<'a> {
         frame: &Frame,
         sample: &PixelSample,
     ) -> Result<Vec<u8>> {
-        let Some(lattice) = self.lattice_bytes(variant, frame, &sample.lattice)? else {
-            return self.bytes_at(variant, frame, &sample.positions);
+        let searches = Some(&sample.searches[..]);
+        let Some(lattice) = self.lattice_bytes(variant, frame, sample)? else {
+            return self.bytes_replaying(variant, frame, &sample.positions, searches);
         };
-        let mut bytes = self.bytes_at(variant, frame, &sample.positions[..sample.wrong])?;
+        let wrong = &sample.positions[..sample.wrong];
+        let mut bytes = self.bytes_replaying(variant, frame, wrong, searches)?;
         for &k in &sample.right_in_lattice {
             bytes.extend_from_slice(&lattice.bytes[3 * k..3 * k + 3]);
         }
         Ok(bytes)
     }
 
-    /// `variant`'s bytes on the whole `lattice`, rendered once per class and kept with the
-    /// whole images; None where little would be shared: a single check
+    /// Whether this renderer keeps candidates' bytes on a sample's lattice
+    /// (`SharedScene::samples`): only then are the course's searches there worth recording.
+    pub fn keeps_lattices(&self) -> bool {
+        self.shared.as_ref().is_some_and(|k| k.samples)
+    }
+
+    /// `variant`'s bytes on the whole of `sample`'s lattice, rendered once per class and kept
+    /// with the whole images; None where little would be shared: a single check
     /// (`SharedScene::samples`), a fitted number, a triple (each student's beam extends their
     /// own best pairs).
     fn lattice_bytes(
         &self,
         variant: &Variant,
         frame: &Frame,
-        lattice: &[(u32, u32)],
+        sample: &PixelSample,
     ) -> Result<Option<Rgb8>> {
         let shared = variant.number.is_none() && variant.mistakes.len() <= 2;
         let Some(Kept { scene, cache, .. }) = self.shared.as_ref().filter(|k| shared && k.samples)
         else {
             return Ok(None);
         };
+        let lattice = &sample.lattice;
         let key = ImageKey {
             lattice: Some(lattice.len()),
             ..self.image_key(scene, self.spec.bounces, Some(variant))
         };
+        let searches = Some(&sample.lattice_searches[..]).filter(|s| s.len() == lattice.len());
         let render = || {
             Ok(Rgb8 {
                 width: lattice.len() as u32,
                 height: 1,
-                bytes: self.bytes_at(variant, frame, lattice)?,
+                bytes: self.bytes_replaying(variant, frame, lattice, searches)?,
             })
         };
         cache.get_or_render(key, render).map(Some)

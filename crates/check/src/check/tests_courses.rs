@@ -4,7 +4,7 @@
 
 use super::*;
 use crate::check::suite::{cases_of, SuiteCase};
-use crate::mistakes::{Bug, Mistakes, Variant};
+use crate::mistakes::{Bug, Mistakes, Number, Parameter, Variant};
 use whitted_core::scene::input::parse_for_course;
 
 /// The size the tests render at: the year's aspect, a quarter of its width, so that the
@@ -145,4 +145,55 @@ fn the_years_rules_are_not_offered_as_mistakes() {
     assert!(Bug::offered(Course::Y2019).contains(&Bug::ShadowBiasAlongN));
     assert_eq!(Bug::offered(Course::Y2016).len(), 26);
     assert!(!Bug::offered(Course::Y2016).contains(&Bug::ViewToCamera));
+}
+
+#[test]
+fn candidates_replaying_the_course_s_searches_render_what_searching_renders() {
+    // Every year, every scene of its suite, every entry and pair of its catalogue, and the
+    // fitted offset: the bytes with the course's recorded searches answering the rays they
+    // hold are the bytes with every ray searched. An entry that changes a hit but is let
+    // through as intersecting as the course does fails here.
+    let mut replayed = 0;
+    for course in Course::ALL {
+        let (w, h) = (size(course).0 / 2, size(course).1 / 2);
+        let catalogue = Bug::offered(course);
+        let mut variants: Vec<Variant> = Vec::new();
+        for (i, &a) in catalogue.iter().enumerate() {
+            variants.push(Variant::from(Mistakes::of(&[a])));
+            for &b in &catalogue[i + 1..] {
+                if !a.excludes(b) {
+                    variants.push(Variant::from(Mistakes::of(&[a, b])));
+                }
+            }
+        }
+        variants.push(Variant {
+            number: Some(Number {
+                parameter: Parameter::Epsilon,
+                value: 1e-3,
+            }),
+            ..Variant::default()
+        });
+        for case in cases_of(course) {
+            let scene = scene_of(&case);
+            let r = Renderer::new(&scene, w, h, case.bounces)
+                .expect("renderer")
+                .in_course(course);
+            // Every seventh pixel: spread over the whole image, a few seconds for all.
+            let pixels: Vec<(u32, u32)> = (0..w * h).step_by(7).map(|i| (i % w, i / w)).collect();
+            let tapes = r.searches_at(&pixels).expect("searches");
+            for v in &variants {
+                let frame = r.frame(v.mistakes).expect("frame");
+                let searched = r.bytes_at(v, &frame, &pixels).expect("bytes");
+                let shared = r.bytes_replaying(v, &frame, &pixels, Some(&tapes));
+                assert!(
+                    shared.expect("bytes") == searched,
+                    "{course:?} {} b{}: {v:?}",
+                    case.file,
+                    case.bounces
+                );
+                replayed += usize::from(v.intersects_as_course());
+            }
+        }
+    }
+    assert!(replayed > 1000, "{replayed} candidates replayed");
 }

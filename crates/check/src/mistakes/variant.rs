@@ -239,6 +239,20 @@ impl Variant {
                 .is_some_and(|e| e < ROUNDING_EPSILON)
     }
 
+    /// Whether this program searches for hits by the course's own rules: the same
+    /// `sphere_root`, `plane_accepts` and `plane_root` below as the program with no mistake,
+    /// and every root taken as its own arithmetic has it. Its traces can then be answered
+    /// from the searches the course's trace recorded (`whitted_core::hits::tape`), for the
+    /// rays that are the same. Keep in step with those three methods: the replay test in
+    /// `check::tests` fails for an entry that changes a hit and is let through here.
+    pub fn intersects_as_course(&self) -> bool {
+        !self.has(Bug::SpheresMissing)
+            && !self.has(Bug::PlanesMissing)
+            && !self.has(Bug::PlaneBehind)
+            && self.far_root() == self.rules().far_root
+            && self.rounding == Rounding::Exact
+    }
+
     /// The sphere's root when roots within the band are taken `how` (kept out of line: the
     /// search's hot path is the model's own arithmetic).
     #[cold]
@@ -281,10 +295,12 @@ impl Variant {
 }
 
 impl Model for Variant {
+    #[inline]
     fn hierarchy_exact(&self) -> bool {
         self.mistakes.hierarchy_exact()
     }
 
+    #[inline(always)]
     fn sphere_root(
         &self,
         ray: &Ray,
@@ -307,10 +323,12 @@ impl Model for Variant {
         }
     }
 
+    #[inline]
     fn far_root(&self) -> bool {
         self.has(Bug::SphereFarRoot) || self.rules().far_root
     }
 
+    #[inline]
     fn plane_accepts(&self, s: f64) -> bool {
         if self.has(Bug::PlanesMissing) {
             false
@@ -321,12 +339,14 @@ impl Model for Variant {
         }
     }
 
+    #[inline]
     fn plane_root(&self, ray: &Ray, point: DVec3, normal: DVec3) -> Option<f64> {
         plane_root_taken(self.rounding.elsewhere(), ray, point, normal, |s| {
             self.plane_accepts(s)
         })
     }
 
+    #[inline]
     fn self_hits_toward(&self, light: usize) -> SelfHit {
         match self.rounding {
             Rounding::OneLight { light: one, how } if usize::from(one) == light => how,
@@ -334,6 +354,7 @@ impl Model for Variant {
         }
     }
 
+    #[inline]
     fn clamp_r_dot_v(&self, r_dot_v: f64) -> f64 {
         if self.has(Bug::RvUnclamped) {
             r_dot_v
@@ -342,6 +363,7 @@ impl Model for Variant {
         }
     }
 
+    #[inline]
     fn background(&self) -> DVec3 {
         let course = self.rules().background;
         match self.has(Bug::BackgroundChanged) {
@@ -352,10 +374,12 @@ impl Model for Variant {
         }
     }
 
+    #[inline]
     fn reaches(&self, n_dot_l: f64) -> bool {
         self.has(Bug::NoGate) || self.rules().reaches(n_dot_l)
     }
 
+    #[inline]
     fn lights<'a>(&self, lights: &'a [PointLight]) -> &'a [PointLight] {
         if self.has(Bug::LightsMissing) || self.has(Bug::ShadingMissing) {
             &[]
@@ -366,6 +390,7 @@ impl Model for Variant {
         }
     }
 
+    #[inline]
     fn illumination(&self, light: &PointLight, d: f64) -> DVec3 {
         if self.has(Bug::NoFalloff) {
             light.colour * light.intensity
@@ -376,6 +401,7 @@ impl Model for Variant {
         }
     }
 
+    #[inline]
     fn to_light(&self, to_light: DVec3, d: f64) -> DVec3 {
         if self.has(Bug::LightUnnormalised) {
             to_light
@@ -384,6 +410,7 @@ impl Model for Variant {
         }
     }
 
+    #[inline]
     fn view(&self, p: DVec3, ray_origin: DVec3) -> DVec3 {
         if self.has(Bug::ViewFlipped) {
             normalise(p)
@@ -396,6 +423,7 @@ impl Model for Variant {
         }
     }
 
+    #[inline]
     fn specular_mirror(&self, n: DVec3, l: DVec3, n_dot_l: f64) -> DVec3 {
         if self.has(Bug::ReflectUnclamped) {
             n * (2.0 * n.dot(l)) - l
@@ -404,10 +432,12 @@ impl Model for Variant {
         }
     }
 
+    #[inline]
     fn epsilon(&self) -> f64 {
         self.value(Parameter::Epsilon).unwrap_or(EPSILON)
     }
 
+    #[inline]
     fn specular_exponent(&self, n: f64) -> f64 {
         match self.value(Parameter::SpecularExponent) {
             // Only the spheres' exponent: the planes' 0 makes no highlight to change.
@@ -416,10 +446,12 @@ impl Model for Variant {
         }
     }
 
+    #[inline]
     fn reflectivity(&self, r: f64) -> f64 {
         self.value(Parameter::Reflectivity).map_or(r, |f| r * f)
     }
 
+    #[inline]
     fn ambient(&self, ambient_light: DVec3, colour: DVec3) -> DVec3 {
         if self.has(Bug::ShadingMissing) {
             // The skeleton's illuminate: the object's own colour, flat.
@@ -433,6 +465,7 @@ impl Model for Variant {
         }
     }
 
+    #[inline]
     fn diffuse(&self, colour: DVec3, illumination: DVec3, kd: f64, n_dot_l: f64) -> DVec3 {
         if self.has(Bug::DiffuseNoColour) {
             (illumination * kd) * n_dot_l
@@ -441,6 +474,7 @@ impl Model for Variant {
         }
     }
 
+    #[inline]
     fn specular(
         &self,
         light: &PointLight,
@@ -468,6 +502,7 @@ impl Model for Variant {
         }
     }
 
+    #[inline]
     fn shadow_ray(&self, p: DVec3, l: DVec3, n: DVec3) -> Ray {
         let along = if self.has(Bug::NoShadowBias) {
             return Ray::new(p, l);
@@ -484,6 +519,7 @@ impl Model for Variant {
         }
     }
 
+    #[inline]
     fn shadow_reach(&self, d: f64) -> f64 {
         if self.has(Bug::ShadowAnyHit) {
             f64::INFINITY
@@ -492,6 +528,7 @@ impl Model for Variant {
         }
     }
 
+    #[inline]
     fn add_light(&self, colour: DVec3, ambient: DVec3, diffuse: DVec3, specular: DVec3) -> DVec3 {
         let base = if self.has(Bug::LastLightWins) {
             ambient
@@ -501,6 +538,7 @@ impl Model for Variant {
         Tick.add_light(base, ambient, diffuse, specular)
     }
 
+    #[inline]
     fn mirror_ray(&self, p: DVec3, d: DVec3, n: DVec3) -> Ray {
         let direction = if self.has(Bug::ReflectionWrongSign) {
             normalise(n * (2.0 * n.dot(d)) - d)
@@ -516,6 +554,7 @@ impl Model for Variant {
         }
     }
 
+    #[inline]
     fn blend(&self, direct: DVec3, reflected: DVec3, r: f64) -> DVec3 {
         if self.has(Bug::ReflectionMissing) {
             // The skeleton's reflectedIllumination, never assigned: black.

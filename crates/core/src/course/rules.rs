@@ -28,6 +28,7 @@ pub struct Rules {
 }
 
 impl Model for Rules {
+    #[inline]
     fn sphere_root(
         &self,
         ray: &Ray,
@@ -42,14 +43,17 @@ impl Model for Rules {
         }
     }
 
+    #[inline]
     fn far_root(&self) -> bool {
         self.far_root
     }
 
+    #[inline]
     fn background(&self) -> DVec3 {
         DVec3::splat(self.background)
     }
 
+    #[inline]
     fn view(&self, p: DVec3, ray_origin: DVec3) -> DVec3 {
         match self.view {
             View::ToCamera => Tick.view(p, ray_origin),
@@ -57,11 +61,13 @@ impl Model for Rules {
         }
     }
 
+    #[inline]
     fn reaches(&self, n_dot_l: f64) -> bool {
         // NaN is not < 0: a NaN N.L lights, as the course's `if (N.L < 0)` lets it.
         !(self.gate && n_dot_l < 0.0)
     }
 
+    #[inline]
     fn specular_mirror(&self, n: DVec3, l: DVec3, n_dot_l: f64) -> DVec3 {
         if self.reflect_unclamped {
             n * (2.0 * n.dot(l)) - l
@@ -70,6 +76,7 @@ impl Model for Rules {
         }
     }
 
+    #[inline]
     fn specular(
         &self,
         light: &PointLight,
@@ -86,6 +93,7 @@ impl Model for Rules {
         }
     }
 
+    #[inline]
     fn shadow_ray(&self, p: DVec3, l: DVec3, n: DVec3) -> Ray {
         match self.shadow_bias {
             ShadowBias::AlongL => Tick.shadow_ray(p, l, n),
