@@ -209,7 +209,10 @@ impl<'a> Renderer<'a> {
         let accel = self.accelerator(frame);
         let model = variant.in_course(self.course());
         let keep = |s: &Sample| s.beauty;
-        let beauty = match searches.filter(|_| variant.intersects_as_course()) {
+        // A tape per pixel, or none used (a recording the user stopped half-way is shorter).
+        let usable =
+            |tapes: &&[Tape]| tapes.len() >= pixels.len() && variant.intersects_as_course();
+        let beauty = match searches.filter(usable) {
             Some(tapes) => {
                 let hits = |j: usize| Replay::new(accel, &tapes[j]);
                 trace_pixels_with::<false, _, _>(&model, self.scene, frame, pixels, hits, keep)
@@ -276,7 +279,8 @@ impl<'a> Renderer<'a> {
             lattice: Some(lattice.len()),
             ..self.image_key(scene, self.spec.bounces, Some(variant))
         };
-        let searches = Some(&sample.lattice_searches[..]).filter(|s| s.len() == lattice.len());
+        // Empty where this renderer does not keep lattices: then not used.
+        let searches = Some(&sample.lattice_searches[..]);
         let render = || {
             Ok(Rgb8 {
                 width: lattice.len() as u32,
