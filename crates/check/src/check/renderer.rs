@@ -16,7 +16,7 @@ use whitted_core::accel::Accelerator;
 use whitted_core::course::Course;
 use whitted_core::error::Result;
 use whitted_core::frame::{Acceleration, Frame, FrameSpec};
-use whitted_core::hits::tape::{Replay, Tape};
+use whitted_core::hits::tape::{bytes_per_pixel, Replay, Tape};
 use whitted_core::interrupt;
 use whitted_core::memory;
 use whitted_core::model::Model;
@@ -36,6 +36,10 @@ const ROWS_PER_TASK: u32 = 4;
 /// list (8), and a whole image's f64 beauty for the rows being traced, rounded up generously
 /// for the allocator.
 const BYTES_PER_PIXEL: u64 = 48;
+
+/// The most bytes one list of recorded searches may take (`Renderer::searches_at`): a
+/// check's sample and lattice at the course's sizes take a few MiB.
+const TAPE_BUDGET: u64 = 64 << 20;
 
 /// Whether a strip of rows (its first row, its bytes at each bounce count) differs from what
 /// it was to be: rendering stops at the first that does.
@@ -224,9 +228,16 @@ impl<'a> Renderer<'a> {
     }
 
     /// The hit searches of the course's trace (the program with no mistake) of each of
-    /// `pixels`, for `sample_bytes` to share with the candidates.
+    /// `pixels`, for `sample_bytes` to share with the candidates; none where they could
+    /// take more than `TAPE_BUDGET` (a scene of thousands of lights), and then every
+    /// candidate searches for itself.
     pub fn searches_at(&self, pixels: &[(u32, u32)]) -> Result<Vec<Tape>> {
         let frame = self.frame(Mistakes::NONE)?;
+        let most = bytes_per_pixel(self.scene.lights.len(), frame.trace().bounces)
+            .saturating_mul(pixels.len() as u64);
+        if most > TAPE_BUDGET {
+            return Ok(Vec::new());
+        }
         let model = Variant::from(Mistakes::NONE).in_course(self.course());
         let tapes = record_pixels(&model, self.scene, self.accelerator(&frame), &frame, pixels);
         interrupt::check()?;

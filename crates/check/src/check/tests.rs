@@ -444,3 +444,28 @@ fn renders_as_says_what_comparing_whole_images_says() {
     }
     assert!(same > 0 && different > 0, "{same} alike, {different} not");
 }
+
+#[test]
+fn the_course_s_searches_are_recorded_within_a_budget() {
+    // A tape per sampled pixel for the course's scenes; none for a scene whose tapes could
+    // take more than the budget (thousands of lights), where each candidate searches itself.
+    let case = &cases()[0];
+    let mut scene = whitted_core::scene::parse_str(&case.file, &case.xml).expect("scene");
+    let pixels: Vec<(u32, u32)> = (0..200).map(|i| (i % 64, i / 64)).collect();
+    let r = Renderer::new(&scene, 64, 48, 3).expect("renderer");
+    assert_eq!(
+        r.searches_at(&pixels).expect("searches").len(),
+        pixels.len()
+    );
+    let light = scene.lights[0].clone();
+    scene.lights = vec![light; 3000];
+    let r = Renderer::new(&scene, 64, 48, 3).expect("renderer");
+    assert!(r.searches_at(&pixels).expect("searches").is_empty());
+    // And the sample is still scored the same way: by searching.
+    let frame = r.frame(Mistakes::NONE).expect("frame");
+    let v = Variant::from(Mistakes::of(&[Bug::SpecularObjectColour]));
+    let at = &pixels[..4];
+    let searched = r.bytes_at(&v, &frame, at).expect("bytes");
+    let replayed = r.bytes_replaying(&v, &frame, at, Some(&[])).expect("bytes");
+    assert_eq!(searched, replayed);
+}

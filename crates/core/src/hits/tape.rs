@@ -58,6 +58,15 @@ impl Tape {
     }
 }
 
+/// The most a pixel's tape can hold, in bytes, for a scene with `lights` lights traced to
+/// `bounces` reflections: a hit search and a shadow test per light at each vertex. A caller
+/// bounds what it records with it (a scene may have any number of lights).
+pub fn bytes_per_pixel(lights: usize, bounces: u32) -> u64 {
+    let entry = std::mem::size_of::<(RayKey, Answer)>() as u64;
+    let searches = (u64::from(bounces) + 1).saturating_mul(lights as u64 + 1);
+    searches.saturating_mul(entry)
+}
+
 /// Searches with `accel` and records every answer.
 pub struct Recording<'a> {
     accel: &'a Accelerator,
