@@ -244,7 +244,7 @@ impl Variant {
     /// and every root taken as its own arithmetic has it. Its traces can then be answered
     /// from the searches the course's trace recorded (`whitted_core::hits::tape`), for the
     /// rays that are the same. Keep in step with those three methods: the replay test in
-    /// `check::tests` fails for an entry that changes a hit and is let through here.
+    /// `check::tests_courses` fails for an entry that changes a hit and is let through here.
     pub fn intersects_as_course(&self) -> bool {
         !self.has(Bug::SpheresMissing)
             && !self.has(Bug::PlanesMissing)

@@ -185,18 +185,12 @@ impl Hits for Replay<'_> {
 mod tests {
     use super::*;
     use crate::model::Tick;
-    use crate::scene::parse_str;
+    use crate::scene::{parse_str, Scene};
     use crate::trace::observe::Silent;
     use crate::trace::{trace_observed, TraceOptions};
 
-    const SCENE: &str = r##"<scene>
-        <ambient-light colour="#333333"/>
-        <point-light x="2" y="3" z="1" colour="#ffffff" intensity="60"/>
-        <point-light x="-2" y="1" z="2" colour="#ff8080" intensity="40"/>
-        <sphere x="0" y="0" z="5" radius="1" colour="#ff0000"/>
-        <sphere x="1.5" y="-0.5" z="4" radius="0.5" colour="#00ff00"/>
-        <plane x="0" y="-1" z="0" nx="0" ny="1" nz="0" colour="#8080ff"/>
-    </scene>"##;
+    /// The course's own tick2 scene: mirrors, several lights, a plane.
+    const SCENE: &str = crate::scene::EMBEDDED_TICK2;
 
     /// A trace of a fan of rays with `hits` answering its searches, and its beauty.
     fn beauty(scene: &Scene, hits: &impl Hits, model: &impl Model, ray: Ray) -> glam::DVec3 {
@@ -208,8 +202,6 @@ mod tests {
         trace_observed::<false>(model, scene, hits, ray, options, &mut sample, &mut Silent);
         sample.beauty
     }
-
-    use crate::scene::Scene;
 
     fn rays() -> Vec<Ray> {
         (0..64)
@@ -225,7 +217,7 @@ mod tests {
 
     #[test]
     fn the_same_trace_again_is_answered_from_the_tape_alone() {
-        let scene = parse_str("tape.xml", SCENE).expect("scene");
+        let scene = parse_str("tick2.xml", SCENE).expect("scene");
         let accel = Accelerator::build(&scene.objects);
         let recording = Recording::new(&accel);
         let mut longest = 0;
@@ -252,7 +244,7 @@ mod tests {
     fn a_ray_the_tape_does_not_hold_is_searched() {
         // Another camera ray's tape answers nothing of this one: every search falls through
         // to the hierarchy, and the beauty is what searching gives.
-        let scene = parse_str("tape.xml", SCENE).expect("scene");
+        let scene = parse_str("tick2.xml", SCENE).expect("scene");
         let accel = Accelerator::build(&scene.objects);
         let recording = Recording::new(&accel);
         let rays = rays();
