@@ -281,12 +281,15 @@ pub fn java_max_zero(x: f64) -> f64 {
     }
 }
 
-/// `x^n` for the specular term. `pow(x, ±0)` is 1 for every `x`, NaN included (IEEE 754 and
-/// C's `pow`), so the library call is skipped for an exponent of 0 (the plane's default) with
-/// the very same result.
+/// `x^n` for the specular term. `pow(x, ±0)` is 1 for every `x`, NaN included, and
+/// `pow(+0, n)` is +0 for every `n > 0` (IEEE 754 and C's `pow`), so the library call is
+/// skipped for an exponent of 0 (the plane's default) and for a clamped `R.V` of +0 (the half
+/// of all points that face away from the mirror direction) with the very same result.
 fn phong_power(x: f64, n: f64) -> f64 {
     if n == 0.0 {
         1.0
+    } else if x.to_bits() == 0 && n > 0.0 {
+        0.0
     } else {
         x.powf(n)
     }
@@ -307,7 +310,8 @@ struct Vertex<'a> {
 
 /// One light's terms at a vertex, in the course's order (docs/rendering.md, Shading), and its
 /// shadow test: a pure function of the vertex, the light and `V`. The occluder is found only
-/// for an observer that records it; otherwise the search stops at the first blocker.
+/// for an observer that records it; otherwise the search stops at the first blocker. With
+/// `all_terms` false a shadowed light's terms are left at zero (see `Observer`).
 /// Inlined (see `trace_observed`), so the record's fields nobody reads are never computed.
 #[inline(always)]
 fn light_terms<O: Observer>(
@@ -317,6 +321,7 @@ fn light_terms<O: Observer>(
     (index, light): (usize, &PointLight),
     v: DVec3,
     shadows: bool,
+    all_terms: bool,
 ) -> LightRecord {
     let Vertex {
         point: p,
@@ -333,15 +338,6 @@ fn light_terms<O: Observer>(
     let n_dot_l = java_max_zero(raw_n_dot_l);
     let r = model.specular_mirror(n, l, n_dot_l);
     let r_dot_v = model.clamp_r_dot_v(r.dot(v));
-    // A light that does not reach the point adds exact zeros: no term is computed for it.
-    let (diffuse, specular) = if reaches {
-        let diffuse = model.diffuse(m.colour, illumination, m.kd, n_dot_l);
-        let phong = phong_power(r_dot_v, model.specular_exponent(m.n));
-        let specular = model.specular(light, illumination, m.ks, phong, m.colour, n_dot_l);
-        (diffuse, specular)
-    } else {
-        (DVec3::ZERO, DVec3::ZERO)
-    };
     let shadow_ray = model.shadow_ray(p, l, n);
     let reach = model.shadow_reach(d);
     let cast = shadows && reaches;
@@ -354,6 +350,18 @@ fn light_terms<O: Observer>(
             reach,
             cast,
         ),
+    };
+    // A light that does not reach the point adds exact zeros: no term is computed for it. Nor
+    // for one in shadow when nobody reads its terms (`all_terms` false): the terms are pure
+    // functions of the vertex and the light, so computing them after the shadow test, or not
+    // at all where the pixel never adds them, changes no value it gets.
+    let (diffuse, specular) = if reaches && (all_terms || !in_shadow) {
+        let diffuse = model.diffuse(m.colour, illumination, m.kd, n_dot_l);
+        let phong = phong_power(r_dot_v, model.specular_exponent(m.n));
+        let specular = model.specular(light, illumination, m.ks, phong, m.colour, n_dot_l);
+        (diffuse, specular)
+    } else {
+        (DVec3::ZERO, DVec3::ZERO)
     };
     LightRecord {
         depth: vertex.depth,
@@ -419,7 +427,8 @@ fn shade<const LAYERS: bool, O: Observer>(
     let v = model.view(vertex.point, vertex.ray_origin);
     let lights = model.lights(&scene.lights).iter();
     for (index, (light, out)) in lights.zip(sample.lights.iter_mut()).enumerate() {
-        let record = light_terms::<O>(model, accel, vertex, (index, light), v, shadows);
+        let all_terms = LAYERS || O::READS_SHADOWED_TERMS;
+        let record = light_terms::<O>(model, accel, vertex, (index, light), v, shadows, all_terms);
         sample.rays += u64::from(shadows && record.reaches);
         let (diffuse, specular) = (record.diffuse, record.specular);
         if LAYERS {
@@ -608,9 +617,33 @@ mod tests {
     }
 
     #[test]
-    fn phong_power_is_pow_including_a_zero_exponent() {
-        for x in [0.0, 0.5, 1.0, 1.5, f64::NAN, f64::INFINITY] {
-            for n in [0.0, -0.0, 1.0, 10.0, 1e300] {
+    fn phong_power_is_pow_including_a_zero_exponent_and_a_zero_base() {
+        let xs = [
+            0.0,
+            -0.0,
+            5e-324,
+            0.5,
+            1.0,
+            1.5,
+            f64::NAN,
+            f64::INFINITY,
+            -1.0,
+        ];
+        let ns = [
+            0.0,
+            -0.0,
+            5e-324,
+            0.5,
+            1.0,
+            3.0,
+            10.0,
+            1e300,
+            -1.0,
+            -3.0,
+            f64::NAN,
+        ];
+        for x in xs {
+            for n in ns {
                 assert_eq!(
                     phong_power(x, n).to_bits(),
                     x.powf(n).to_bits(),

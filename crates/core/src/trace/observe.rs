@@ -76,6 +76,11 @@ pub trait Observer {
     /// instead of stopping at the first one: the same answer, for an observer that shows it.
     const RECORDS_OCCLUDERS: bool = false;
 
+    /// Whether the observer reads a shadowed light's terms. The renderer's does not: a light
+    /// in shadow adds nothing to the pixel, so its diffuse and specular terms (a `pow` each)
+    /// are then left at zero in the record rather than computed.
+    const READS_SHADOWED_TERMS: bool = true;
+
     fn fold(&mut self, _step: FoldStep) {}
     fn light(&mut self, _record: LightRecord) {}
     fn vertex(&mut self, _record: VertexRecord) {}
@@ -86,4 +91,6 @@ pub trait Observer {
 /// The renderer's observer: nothing.
 pub struct Silent;
 
-impl Observer for Silent {}
+impl Observer for Silent {
+    const READS_SHADOWED_TERMS: bool = false;
+}
