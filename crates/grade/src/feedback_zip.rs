@@ -12,10 +12,13 @@ use whitted_core::error::{Error, Result};
 /// The zip's bytes: every student whose report exists, in class order.
 pub fn build(students_dir: &Path, rows: &[StudentResult]) -> Result<Vec<u8>> {
     let mut zip = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
-    // Deflate's default level: a report is mostly base64 of PNGs, which it shrinks by 40%
-    // (its fastest level by 20%), and Moodle's uploads have a size limit.
+    // Deflate at level 2: a report is mostly base64 of PNGs, which it shrinks by 36%, as the
+    // default level 6 does to within 2% (Moodle's uploads have a size limit), in a fifth less
+    // time; level 1 shrinks it by only 16%. Measured on eight 2021-22 reports of 3 MB each:
+    // 26.3 MB to 16.75 MB in 0.48 s (level 6: 16.48 MB in 0.62 s; level 1: 22.0 MB).
     let options = zip::write::SimpleFileOptions::default()
         .compression_method(zip::CompressionMethod::Deflated)
+        .compression_level(Some(2))
         .unix_permissions(0o644);
     let fail =
         |e: &dyn std::fmt::Display| Error::Environment(format!("cannot write feedback.zip: {e}"));
@@ -61,3 +64,4 @@ fn folder(row: &StudentResult) -> String {
     };
     name.replace(['/', '\\'], "_")
 }
+

@@ -197,3 +197,49 @@ fn candidates_replaying_the_course_s_searches_render_what_searching_renders() {
     }
     assert!(replayed > 1000, "{replayed} candidates replayed");
 }
+
+#[test]
+#[ignore]
+fn tmp_time_whole_renders() {
+    let course = Course::Y2021;
+    let (w, h) = course.size();
+    let div: u32 = std::env::var("TMP_DIV")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(1);
+    let reps: u32 = std::env::var("TMP_REPS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(5);
+    let (w, h) = (w / div, h / div);
+    let suite = cases_of(course);
+    let mut totals = [0.0f64; 4];
+    for case in &suite {
+        let scene = scene_of(case);
+        let ms = [
+            None,
+            Some(Mistakes::NONE),
+            Some(Mistakes::of(&[Bug::from_id("no-shadows").unwrap()])),
+            Some(Mistakes::of(&[Bug::from_id("plane-behind").unwrap()])),
+        ];
+        for (k, m) in ms.into_iter().enumerate() {
+            let mut best = f64::MAX;
+            for _ in 0..reps {
+                let r = Renderer::new(&scene, w, h, case.bounces)
+                    .expect("renderer")
+                    .in_course(course);
+                let t = std::time::Instant::now();
+                let _ = match m {
+                    None => r.reference(),
+                    Some(m) => r.variant_image(&Variant::from(m)),
+                };
+                best = best.min(t.elapsed().as_secs_f64());
+            }
+            totals[k] += best;
+        }
+    }
+    eprintln!(
+        "TOTALS ref {:.3} none {:.3} no-shadows {:.3} plane-behind {:.3}",
+        totals[0], totals[1], totals[2], totals[3]
+    );
+}
