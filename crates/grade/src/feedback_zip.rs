@@ -64,4 +64,3 @@ fn folder(row: &StudentResult) -> String {
     };
     name.replace(['/', '\\'], "_")
 }
-
