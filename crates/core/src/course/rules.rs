@@ -123,6 +123,34 @@ mod tests {
     }
 
     #[test]
+    fn every_year_s_beauty_is_the_same_without_the_layers_where_lights_are_shadowed() {
+        // Without the layers (a PNG or a check's bytes) a shadowed light's terms are never
+        // computed (`Observer::READS_SHADOWED_TERMS`); the beauty must not notice.
+        use crate::accel::Accelerator;
+        use crate::frame::{Frame, FrameSpec};
+        use crate::render::trace_pixels;
+        let scene =
+            crate::scene::parse_str("tick2.xml", crate::scene::EMBEDDED_TICK2).expect("tick2");
+        let frame = Frame::new(&scene, &FrameSpec::tick(64, 48, 3, true)).expect("frame");
+        let accel = Accelerator::build(&scene.objects);
+        let pixels: Vec<(u32, u32)> = (0..48).flat_map(|y| (0..64).map(move |x| (x, y))).collect();
+        for course in Course::ALL {
+            let rules = course.rules();
+            let layered = trace_pixels::<true, _>(&rules, &scene, &accel, &frame, &pixels, |s| {
+                let shadowed = s.lights.iter().any(|l| l.occluded_at_primary);
+                (s.beauty.to_array().map(f64::to_bits), shadowed)
+            });
+            let bare = trace_pixels::<false, _>(&rules, &scene, &accel, &frame, &pixels, |s| {
+                s.beauty.to_array().map(f64::to_bits)
+            });
+            let shadowed = layered.iter().filter(|(_, shadowed)| *shadowed).count();
+            assert!(shadowed > 50, "{course}: {shadowed} pixels in some shadow");
+            let layered: Vec<[u64; 3]> = layered.into_iter().map(|(b, _)| b).collect();
+            assert_eq!(layered, bare, "{course}");
+        }
+    }
+
+    #[test]
     fn the_2016_17_rules_render_what_tick_renders_on_every_pixel() {
         // `render` runs `Tick` for 2016-17 (the same code as before there were years); the
         // data-driven rules, which `explain` and the viewer trace, must agree with it.
