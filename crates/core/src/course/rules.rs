@@ -122,18 +122,45 @@ mod tests {
         assert!(rules.reaches(-1.0));
     }
 
+    use crate::accel::Accelerator;
+    use crate::frame::{Frame, FrameSpec};
+    use crate::render::trace_pixels;
+    use crate::scene::Scene;
+
+    /// The course's tick2 scene at 64x48 and 3 bounces, with every pixel.
+    struct Tick2 {
+        scene: Scene,
+        frame: Frame,
+        accel: Accelerator,
+        pixels: Vec<(u32, u32)>,
+    }
+
+    impl Tick2 {
+        fn at_64x48() -> Tick2 {
+            let scene =
+                crate::scene::parse_str("tick2.xml", crate::scene::EMBEDDED_TICK2).expect("tick2");
+            let frame = Frame::new(&scene, &FrameSpec::tick(64, 48, 3, true)).expect("frame");
+            let accel = Accelerator::build(&scene.objects);
+            let pixels = (0..48).flat_map(|y| (0..64).map(move |x| (x, y))).collect();
+            Tick2 {
+                scene,
+                frame,
+                accel,
+                pixels,
+            }
+        }
+    }
+
     #[test]
     fn every_year_s_beauty_is_the_same_without_the_layers_where_lights_are_shadowed() {
         // Without the layers (a PNG or a check's bytes) a shadowed light's terms are never
         // computed (`Observer::READS_SHADOWED_TERMS`); the beauty must not notice.
-        use crate::accel::Accelerator;
-        use crate::frame::{Frame, FrameSpec};
-        use crate::render::trace_pixels;
-        let scene =
-            crate::scene::parse_str("tick2.xml", crate::scene::EMBEDDED_TICK2).expect("tick2");
-        let frame = Frame::new(&scene, &FrameSpec::tick(64, 48, 3, true)).expect("frame");
-        let accel = Accelerator::build(&scene.objects);
-        let pixels: Vec<(u32, u32)> = (0..48).flat_map(|y| (0..64).map(move |x| (x, y))).collect();
+        let Tick2 {
+            scene,
+            frame,
+            accel,
+            pixels,
+        } = Tick2::at_64x48();
         for course in Course::ALL {
             let rules = course.rules();
             let layered = trace_pixels::<true, _>(&rules, &scene, &accel, &frame, &pixels, |s| {
@@ -154,14 +181,12 @@ mod tests {
     fn the_2016_17_rules_render_what_tick_renders_on_every_pixel() {
         // `render` runs `Tick` for 2016-17 (the same code as before there were years); the
         // data-driven rules, which `explain` and the viewer trace, must agree with it.
-        use crate::accel::Accelerator;
-        use crate::frame::{Frame, FrameSpec};
-        use crate::render::trace_pixels;
-        let scene =
-            crate::scene::parse_str("tick2.xml", crate::scene::EMBEDDED_TICK2).expect("tick2");
-        let frame = Frame::new(&scene, &FrameSpec::tick(64, 48, 3, true)).expect("frame");
-        let accel = Accelerator::build(&scene.objects);
-        let pixels: Vec<(u32, u32)> = (0..48).flat_map(|y| (0..64).map(move |x| (x, y))).collect();
+        let Tick2 {
+            scene,
+            frame,
+            accel,
+            pixels,
+        } = Tick2::at_64x48();
         let tick =
             trace_pixels::<true, _>(&Tick, &scene, &accel, &frame, &pixels, |s| format!("{s:?}"));
         let rules = trace_pixels::<true, _>(
