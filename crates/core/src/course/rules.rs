@@ -149,27 +149,35 @@ mod tests {
                 pixels,
             }
         }
+
+        /// What `keep` keeps of every pixel's sample under `model`.
+        fn trace<const LAYERS: bool, T>(
+            &self,
+            model: &impl crate::model::Model,
+            keep: impl Fn(&crate::sample::Sample) -> T,
+        ) -> Vec<T> {
+            let Tick2 {
+                scene,
+                frame,
+                accel,
+                pixels,
+            } = self;
+            trace_pixels::<LAYERS, _>(model, scene, accel, frame, pixels, keep)
+        }
     }
 
     #[test]
     fn every_year_s_beauty_is_the_same_without_the_layers_where_lights_are_shadowed() {
         // Without the layers (a PNG or a check's bytes) a shadowed light's terms are never
         // computed (`Observer::READS_SHADOWED_TERMS`); the beauty must not notice.
-        let Tick2 {
-            scene,
-            frame,
-            accel,
-            pixels,
-        } = Tick2::at_64x48();
+        let tick2 = Tick2::at_64x48();
         for course in Course::ALL {
             let rules = course.rules();
-            let layered = trace_pixels::<true, _>(&rules, &scene, &accel, &frame, &pixels, |s| {
+            let layered = tick2.trace::<true, _>(&rules, |s| {
                 let shadowed = s.lights.iter().any(|l| l.occluded_at_primary);
                 (s.beauty.to_array().map(f64::to_bits), shadowed)
             });
-            let bare = trace_pixels::<false, _>(&rules, &scene, &accel, &frame, &pixels, |s| {
-                s.beauty.to_array().map(f64::to_bits)
-            });
+            let bare = tick2.trace::<false, _>(&rules, |s| s.beauty.to_array().map(f64::to_bits));
             let shadowed = layered.iter().filter(|(_, shadowed)| *shadowed).count();
             assert!(shadowed > 50, "{course}: {shadowed} pixels in some shadow");
             let layered: Vec<[u64; 3]> = layered.into_iter().map(|(b, _)| b).collect();
@@ -181,22 +189,9 @@ mod tests {
     fn the_2016_17_rules_render_what_tick_renders_on_every_pixel() {
         // `render` runs `Tick` for 2016-17 (the same code as before there were years); the
         // data-driven rules, which `explain` and the viewer trace, must agree with it.
-        let Tick2 {
-            scene,
-            frame,
-            accel,
-            pixels,
-        } = Tick2::at_64x48();
-        let tick =
-            trace_pixels::<true, _>(&Tick, &scene, &accel, &frame, &pixels, |s| format!("{s:?}"));
-        let rules = trace_pixels::<true, _>(
-            &Course::Y2016.rules(),
-            &scene,
-            &accel,
-            &frame,
-            &pixels,
-            |s| format!("{s:?}"),
-        );
+        let tick2 = Tick2::at_64x48();
+        let tick = tick2.trace::<true, _>(&Tick, |s| format!("{s:?}"));
+        let rules = tick2.trace::<true, _>(&Course::Y2016.rules(), |s| format!("{s:?}"));
         assert_eq!(tick.len(), 64 * 48);
         assert_eq!(tick, rules);
     }
