@@ -426,8 +426,9 @@ fn shade<const LAYERS: bool, O: Observer>(
     let mut colour = ambient;
     let v = model.view(vertex.point, vertex.ray_origin);
     let lights = model.lights(&scene.lights).iter();
+    // Known at compile time: whether a shadowed light's terms are read at all.
+    let all_terms = LAYERS || O::READS_SHADOWED_TERMS;
     for (index, (light, out)) in lights.zip(sample.lights.iter_mut()).enumerate() {
-        let all_terms = LAYERS || O::READS_SHADOWED_TERMS;
         let record = light_terms::<O>(model, accel, vertex, (index, light), v, shadows, all_terms);
         sample.rays += u64::from(shadows && record.reaches);
         let (diffuse, specular) = (record.diffuse, record.specular);

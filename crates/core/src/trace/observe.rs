@@ -77,8 +77,8 @@ pub trait Observer {
     const RECORDS_OCCLUDERS: bool = false;
 
     /// Whether the observer reads a shadowed light's terms. The renderer's does not: a light
-    /// in shadow adds nothing to the pixel, so its diffuse and specular terms (a `pow` each)
-    /// are then left at zero in the record rather than computed.
+    /// in shadow adds nothing to the pixel, so its diffuse and specular terms (the specular's
+    /// `pow` among them) are then left at zero in the record rather than computed.
     const READS_SHADOWED_TERMS: bool = true;
 
     fn fold(&mut self, _step: FoldStep) {}
