@@ -2,8 +2,9 @@
 //! (`tests/java/.../tick1/Tick1.java`, written from docs/courses.md; its year is
 //! `-Dcourse=YEAR`, its mistakes `-Dbug=ID`, written as students write them): the correct
 //! program passes, each mistake is named first with the year's progress keys, the common
-//! variant is named as both its mistakes, and a Tick 1 program is never checked as 2016-17's
-//! in silence, and Tick 1*'s random soft shadows are called noise, not mistakes.
+//! variant is named as both its mistakes, a Tick 1 program is never checked as 2016-17's
+//! in silence, a student's own sphere arithmetic (`-Dsphere=geometric`) is no mistake, and
+//! Tick 1*'s random soft shadows are called noise, not mistakes.
 
 use serde_json::Value;
 
@@ -16,10 +17,15 @@ fn program(course: &str, bugs: &[&str]) -> String {
 
 /// The JSON of `check --course course --program ...` and its exit status.
 fn check(course: &str, bugs: &[&str]) -> (Value, Option<i32>) {
+    check_json(course, &program(course, bugs))
+}
+
+/// The JSON of `check --course course --program program` and its exit status.
+fn check_json(course: &str, program: &str) -> (Value, Option<i32>) {
     let dir = tempfile::tempdir().expect("tempdir");
-    let out = check_program(dir.path(), course, &program(course, bugs), &["--json"]);
+    let out = check_program(dir.path(), course, program, &["--json"]);
     let json: Value = serde_json::from_slice(&out.stdout)
-        .unwrap_or_else(|_| panic!("{course} {bugs:?}: {}", stderr(&out)));
+        .unwrap_or_else(|_| panic!("{program}: {}", stderr(&out)));
     (json, out.status.code())
 }
 
@@ -58,10 +64,16 @@ fn top(json: &Value) -> Vec<Vec<String>> {
 
 fn assert_named_first(course: &str, bugs: &[&str]) {
     let (json, status) = check(course, bugs);
+    assert_names_first(course, bugs, &json, status);
+}
+
+/// That the check `json` (exit `status`) of a `course` program with `bugs` fails and names
+/// them first, with the year's progress keys.
+fn assert_names_first(course: &str, bugs: &[&str], json: &Value, status: Option<i32>) {
     assert_eq!(status, Some(1), "{course} {bugs:?} fails the suite");
     let mut wanted: Vec<String> = bugs.iter().map(|s| s.to_string()).collect();
     wanted.sort();
-    let named = top(&json);
+    let named = top(json);
     let found = named.iter().any(|ids| {
         let mut ids = ids.clone();
         ids.sort();
@@ -113,7 +125,9 @@ const SHOWN: [&str; 28] = [
 
 #[test]
 fn a_correct_program_of_each_later_year_passes() {
-    for course in ["2017-18", "2019-20", "2020-21", "2021-22"] {
+    for course in [
+        "2017-18", "2018-19", "2019-20", "2020-21", "2021-22", "2023-24",
+    ] {
         let (json, status) = check(course, &[]);
         assert_eq!(status, Some(0), "{course}: {json}");
         assert_eq!(json["passed"], true);
@@ -151,6 +165,14 @@ fn the_mistakes_that_differ_between_years_are_named_in_their_year() {
         "reflection-bias-along-n",
     ] {
         assert_named_first("2017-18", &[bug]);
+    }
+    // 2018-19: 2017-18's loader (planes with the Plane class's kD .6) under 2019-20's rules.
+    for bug in ["shadow-bias-along-n", "no-gate", "tonemap-missing"] {
+        assert_named_first("2018-19", &[bug]);
+    }
+    // 2023-24: the shadow ray along N is the rule, as from 2020-21.
+    for bug in ["shadow-bias-along-l", "background-changed"] {
+        assert_named_first("2023-24", &[bug]);
     }
 }
 
@@ -208,6 +230,27 @@ fn an_800x600_image_is_checked_as_2021_22_and_says_why() {
     );
     assert_eq!(out.status.code(), Some(2));
     assert!(stderr(&out).contains("--course with one of 2019-20 and 2020-21"));
+}
+
+/// From 2017-18 students write the sphere intersection themselves, in arithmetic of their
+/// own, so every hit's last bits differ from the course's quadratic. Written so, a correct
+/// program still passes every case identically, and the shadow and mirror acne that hinge on
+/// those bits are still named.
+#[test]
+fn a_student_s_own_sphere_arithmetic_neither_is_a_mistake_nor_hides_one() {
+    let geometric =
+        |bugs: &[&str]| program("2021-22", bugs).replacen("java ", "java -Dsphere=geometric ", 1);
+    let (json, status) = check_json("2021-22", &geometric(&[]));
+    assert_eq!(status, Some(0), "{json}");
+    let cases = json["cases"].as_array().expect("cases");
+    assert_eq!(cases.len(), 6);
+    for case in cases {
+        assert_eq!(case["verdict"], "identical", "{case}");
+    }
+    for bug in ["no-shadow-bias", "no-reflection-bias"] {
+        let (json, status) = check_json("2021-22", &geometric(&[bug]));
+        assert_names_first("2021-22", &[bug], &json, status);
+    }
 }
 
 #[test]

@@ -59,6 +59,9 @@ public final class Tick1 {
     /** Tick 1*'s soft shadows (-Dstar=soft-shadows): random, so never the same image twice. */
     static final boolean SOFT_SHADOWS = "soft-shadows".equals(System.getProperty("star", ""));
 
+    /** The sphere intersection written another way (-Dsphere=geometric), as real students do. */
+    static final boolean GEOMETRIC_SPHERE = "geometric".equals(System.getProperty("sphere", ""));
+
     record Vector3(double x, double y, double z) {
         Vector3 add(Vector3 o) { return new Vector3(x + o.x, y + o.y, z + o.z); }
         Vector3 subtract(Vector3 o) { return new Vector3(x - o.x, y - o.y, z - o.z); }
@@ -93,20 +96,39 @@ public final class Tick1 {
         Sphere(Vector3 centre, double radius) { this.centre = centre; this.radius = radius; }
 
         Double intersectionWith(Ray ray) {
+            // The skeleton's TODO: no sphere is hit yet.
+            if (bug("spheres-missing")) return null;
+            if (GEOMETRIC_SPHERE) return geometricRoot(ray);
             Vector3 o = ray.origin(), d = ray.direction();
             Vector3 oc = o.subtract(centre);
             double a = d.dot(d);
             double b = 2 * d.dot(oc);
             double c = oc.dot(oc) - radius * radius;
             double disc = b * b - 4 * a * c;
-            // The skeleton's TODO: no sphere is hit yet.
-            if (bug("spheres-missing") || disc < 0) return null;
+            if (disc < 0) return null;
             double near = (-b - Math.sqrt(disc)) / (2 * a);
             if (near > 0) return near;
             if (year.farRoot()) {
                 double far = (-b + Math.sqrt(disc)) / (2 * a);
                 if (far > 0) return far;
             }
+            return null;
+        }
+
+        /**
+         * The intersection as many students write it instead (-Dsphere=geometric): the
+         * half-chord from the closest approach, other arithmetic than the quadratic's, so other
+         * last bits in every hit. Rays are unit length here, as the course's always are.
+         */
+        Double geometricRoot(Ray ray) {
+            Vector3 toCentre = centre.subtract(ray.origin());
+            double along = toCentre.dot(ray.direction());
+            double r2 = radius * radius;
+            double apart2 = toCentre.dot(toCentre) - along * along;
+            if (apart2 > r2) return null;
+            double half = Math.sqrt(r2 - apart2);
+            if (along - half > 0) return along - half;
+            if (year.farRoot() && along + half > 0) return along + half;
             return null;
         }
 
