@@ -17,7 +17,8 @@ import org.w3c.dom.NodeList;
  * correct program of that year renders. Run as
  * {@code java -Dcourse=Y -cp out uk.ac.cam.cl.gfxintro.whitted.tick1.Tick1 -i S.xml -o O.png
  * -b N -r WxH}. {@code -Dbug=id,id} makes the catalogue's mistakes the way a student writes
- * them, for the tests of `whitted check --course`.
+ * them, for the tests of `whitted check --course`; {@code -Dsphere=geometric} writes the sphere
+ * intersection in other arithmetic, as many students do.
  */
 public final class Tick1 {
     static final double EPSILON = 0.0001;
