@@ -12,7 +12,12 @@ use crate::common::*;
 
 /// Our Java Tick 1 of `course` with the mistakes `bugs`, as one --program string.
 fn program(course: &str, bugs: &[&str]) -> String {
-    java_program(Some(course), bugs)
+    program_with(course, "", bugs)
+}
+
+/// The same with the JVM options `flags` (`-Dsphere=geometric `, `-Dstar=soft-shadows `).
+fn program_with(course: &str, flags: &str, bugs: &[&str]) -> String {
+    java_program_with(Some(course), flags, bugs)
 }
 
 /// The JSON of `check --course course --program ...` and its exit status.
@@ -238,8 +243,7 @@ fn an_800x600_image_is_checked_as_2021_22_and_says_why() {
 /// those bits are still named.
 #[test]
 fn a_student_s_own_sphere_arithmetic_neither_is_a_mistake_nor_hides_one() {
-    let geometric =
-        |bugs: &[&str]| program("2021-22", bugs).replacen("java ", "java -Dsphere=geometric ", 1);
+    let geometric = |bugs: &[&str]| program_with("2021-22", "-Dsphere=geometric ", bugs);
     let (json, status) = check_json("2021-22", &geometric(&[]));
     assert_eq!(status, Some(0), "{json}");
     let cases = json["cases"].as_array().expect("cases");
@@ -256,10 +260,7 @@ fn a_student_s_own_sphere_arithmetic_neither_is_a_mistake_nor_hides_one() {
 #[test]
 fn tick1_star_s_random_soft_shadows_are_noise_not_mistakes() {
     let dir = tempfile::tempdir().expect("tempdir");
-    let program = format!(
-        "java -Dcourse=2021-22 -Dstar=soft-shadows -cp '{}' uk.ac.cam.cl.gfxintro.whitted.tick1.Tick1",
-        tick1_classes().to_str().expect("utf-8")
-    );
+    let program = program_with("2021-22", "-Dstar=soft-shadows ", &[]);
     let out = check_program(dir.path(), "2021-22", &program, &["--json"]);
     assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
     let json: Value = serde_json::from_slice(&out.stdout).expect("json");

@@ -263,6 +263,11 @@ pub fn tick1_classes() -> &'static Path {
 /// One `--program` string running our Java program with the mistakes `bugs` (`-Dbug=`):
 /// 2016-17's Tick 2 without a course, the later years' Tick 1 under `-Dcourse=` with one.
 pub fn java_program(course: Option<&str>, bugs: &[&str]) -> String {
+    java_program_with(course, "", bugs)
+}
+
+/// The same with the JVM options `flags`, each ending in a space (`-Dsphere=geometric `).
+pub fn java_program_with(course: Option<&str>, flags: &str, bugs: &[&str]) -> String {
     let flag = if bugs.is_empty() {
         String::new()
     } else {
@@ -277,7 +282,7 @@ pub fn java_program(course: Option<&str>, bugs: &[&str]) -> String {
         ),
     };
     format!(
-        "java {course}{flag}-cp '{}' {main}",
+        "java {course}{flags}{flag}-cp '{}' {main}",
         classes.to_str().expect("utf-8")
     )
 }
