@@ -3,8 +3,10 @@
 //! dialect and defaults ([`Dialect`]), the camera's row step, the tone map and the default
 //! size. There is one renderer; a year is a parameter of it, never a copy.
 
+pub mod api;
 pub mod rules;
 
+pub use api::Api;
 pub use rules::Rules;
 
 use crate::scene::Material;
@@ -130,6 +132,17 @@ impl Course {
             },
             far_root: !self.is_default(),
             background: if later { 0.001 } else { 0.1 },
+        }
+    }
+
+    /// The course classes' API a submission of this year compiles against (docs/grade.md).
+    pub fn api(self) -> Api {
+        match self {
+            Course::Y2016 => Api::Tick2,
+            Course::Y2017 => Api::T1,
+            Course::Y2018 => Api::T2,
+            Course::Y2019 | Course::Y2020 | Course::Y2021 => Api::T3,
+            Course::Y2023 => Api::T4,
         }
     }
 

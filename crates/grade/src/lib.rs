@@ -228,6 +228,24 @@ pub fn list(options: &Options) -> Result<Vec<(String, bool)>> {
         .collect())
 }
 
+/// whitted's clean-room skeleton of `course`, its sources moved into `package` (None: the
+/// skeleton's own, `gfx.tick2` or the course's placeholder `...gfxintro.crsid.tick1`), each at
+/// its path under the source root: what a student's files compile beside.
+pub fn clean_room_skeleton(
+    course: Course,
+    package: Option<&str>,
+) -> Result<Vec<(String, Vec<u8>)>> {
+    let skeleton = Skeleton::clean_room(course)?;
+    let to = package.or(skeleton.package.as_deref());
+    Ok(skeleton.sources_in(to))
+}
+
+/// `text`, a Java source in the skeleton template's markers (`skeleton/tick1/README.md`), as
+/// `course`'s API has it: how the tests write one student's files for every year.
+pub fn for_year(text: &str, course: Course) -> std::result::Result<String, String> {
+    skeleton::select(text, course)
+}
+
 /// The exercise's name in reports and on the class page: 2016-17's Tick 2, the later years'
 /// Tick 1 with its year.
 pub fn tick(course: Course) -> String {

@@ -1,18 +1,16 @@
 //! The course's classes a submission compiles against: by default whitted's clean-room
-//! `skeleton/gfx/tick2` (compiled into the binary), or the course's own sources with
-//! `--skeleton DIR`. Never a submission's: only the files the year's handout says to submit
-//! (`archive::submitted`) come from there.
-//!
-//! The later years' skeleton (2017-18 on, `uk.ac.cam.cl.gfxintro.<crsid>.tick1`) is read from
-//! `--skeleton DIR` only: docs/grade.md gives the API of 2016-17's classes, from which the
-//! clean-room one is written, and no such facts of the later classes, so whitted has no
-//! clean-room Tick 1 skeleton to offer (docs/grade.md, "Every year of the course").
+//! skeleton of the year (compiled into the binary): 2016-17's `skeleton/gfx/tick2`, or from
+//! 2017-18 the year's Tick 1 skeleton (T1 to T4, selected from the one set of sources in
+//! `skeleton/tick1`); or the course's own sources with `--skeleton DIR`. Never a submission's:
+//! only the files the year's handout says to submit (`archive::submitted`) come from there.
+
+mod template;
 
 use std::path::{Path, PathBuf};
 
 use super::archive::{self, MAX_SOURCE};
 use super::package;
-use whitted_core::course::Course;
+use whitted_core::course::{Api, Course};
 use whitted_core::error::{Error, Result};
 
 /// The skeleton's files: (name, bytes), sorted by name.
@@ -39,6 +37,32 @@ macro_rules! ours {
     };
 }
 
+/// The package the Tick 1 skeleton's sources declare: the course's placeholder for the user id.
+pub const TICK1_PACKAGE: &str = "uk.ac.cam.cl.gfxintro.crsid.tick1";
+
+macro_rules! tick1 {
+    ($($name:literal),*) => {
+        [$(($name, include_str!(concat!("../skeleton/tick1/", $name)))),*]
+    };
+}
+
+/// whitted's own Tick 1 classes, every year's in one set of sources (docs/grade.md, "The Tick 1
+/// skeleton's API"): `Tick1Tests` too, since it pins signatures in the student's files.
+const TICK1: [(&str, &str); 12] = tick1!(
+    "BumpySphere.java",
+    "Camera.java",
+    "ColorRGB.java",
+    "PointLight.java",
+    "Ray.java",
+    "RaycastHit.java",
+    "Scene.java",
+    "SceneLoader.java",
+    "SceneObject.java",
+    "Tick1.java",
+    "Tick1Tests.java",
+    "Vector3.java"
+);
+
 /// whitted's own: the API of docs/grade.md, the arithmetic of docs/rendering.md.
 const CLEAN_ROOM: [(&str, &[u8]); 10] = ours!(
     "Camera.java",
@@ -54,7 +78,31 @@ const CLEAN_ROOM: [(&str, &[u8]); 10] = ours!(
 );
 
 impl Skeleton {
-    pub fn clean_room() -> Skeleton {
+    /// whitted's clean-room skeleton of `course`'s classes.
+    pub fn clean_room(course: Course) -> Result<Skeleton> {
+        let api = course.api();
+        if api == Api::Tick2 {
+            return Ok(Skeleton::tick2());
+        }
+        let mut files = Vec::new();
+        for (name, text) in TICK1 {
+            let text = select(text, course).map_err(|why| {
+                Error::Environment(format!(
+                    "whitted's skeleton/tick1/{name} is malformed: {why}"
+                ))
+            })?;
+            files.push((name.to_string(), text.into_bytes()));
+        }
+        Ok(Skeleton {
+            files,
+            source: format!("whitted's clean-room {course} skeleton ({api})"),
+            package: Some(TICK1_PACKAGE.into()),
+            main: "Tick1",
+        })
+    }
+
+    /// 2016-17's `gfx.tick2` classes.
+    fn tick2() -> Skeleton {
         Skeleton {
             files: CLEAN_ROOM
                 .iter()
@@ -67,14 +115,11 @@ impl Skeleton {
     }
 
     /// The skeleton `course` is graded against: `--skeleton DIR` when given, else the
-    /// clean-room one (2016-17's only).
+    /// clean-room one of that year.
     pub fn of(course: Course, dir: Option<&Path>) -> Result<Skeleton> {
-        match (dir, course.is_default()) {
-            (Some(dir), _) => Skeleton::from_dir(dir, course),
-            (None, true) => Ok(Skeleton::clean_room()),
-            (None, false) => Err(Error::Usage(format!(
-                "grade --course {course} needs --skeleton DIR, the course's tick1 sources of that                  year: whitted's clean-room skeleton is 2016-17's gfx.tick2 (docs/grade.md,                  \"Every year of the course\")"
-            ))),
+        match dir {
+            Some(dir) => Skeleton::from_dir(dir, course),
+            None => Skeleton::clean_room(course),
         }
     }
 
@@ -153,6 +198,11 @@ impl Skeleton {
             })
             .collect()
     }
+}
+
+/// `text` in the template's markers as `course`'s API has it, at the year's size.
+pub fn select(text: &str, course: Course) -> std::result::Result<String, String> {
+    template::select(text, course.api(), course.size())
 }
 
 /// The folder under `dir` (breadth first, links not followed) that holds a file `name`.
