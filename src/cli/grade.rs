@@ -6,6 +6,7 @@ use clap::Args;
 
 use super::parse::*;
 use clap::ValueEnum;
+use whitted_check::check::pass_rule::{Allowance, PassRule};
 use whitted_grade::{Grading, Rerun};
 
 #[derive(Debug, Clone, Args)]
@@ -67,6 +68,12 @@ pub struct GradeArgs {
     /// Largest difference of a channel, in LSB, that still passes
     #[arg(long, value_name = "LSB", default_value_t = 2)]
     pub tolerance: u8,
+
+    /// Pixels allowed beyond --tolerance: a case passes when at most N pixels (or P% of the
+    /// image's pixels) have a channel off by more than it [default: 0]
+    #[arg(long, value_name = "N|P%", value_parser = parse_allowance,
+          allow_negative_numbers = true)]
+    pub max_beyond: Option<Allowance>,
 
     /// Count whitted's diagnostic scenes (shadows.xml, mirrors.xml) towards the grade too; by
     /// default they inform the diagnosis and the report and score nothing
@@ -158,5 +165,15 @@ fn parse_part(s: &str) -> Result<(usize, usize), String> {
     match parsed {
         Some((k, n)) if n >= 1 && (1..=n).contains(&k) && n <= 100_000 => Ok((k, n)),
         _ => Err(format!("expected K/N with 1 <= K <= N, got `{s}`")),
+    }
+}
+
+impl GradeArgs {
+    /// When a case passes: `--tolerance` and `--max-beyond`.
+    pub fn rule(&self) -> PassRule {
+        PassRule {
+            tolerance: self.tolerance,
+            allowance: self.max_beyond.unwrap_or(Allowance::NONE),
+        }
     }
 }

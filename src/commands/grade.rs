@@ -23,7 +23,7 @@ pub fn run(args: &GradeArgs) -> Result<()> {
         rerun: args.rerun.map(Into::into),
         no_sandbox: args.no_sandbox,
         grading: args.grade.into(),
-        tolerance: args.tolerance,
+        rule: args.rule(),
         count_diagnostic: args.count_diagnostic,
         rubric: args.rubric.clone(),
         only: args.only.clone(),

@@ -18,6 +18,7 @@
 //! them; the class files are made from the `result.json`s alone.
 
 mod archive;
+mod beyond;
 mod class;
 mod compile;
 mod feedback_zip;
@@ -55,6 +56,7 @@ use status::StudentStatus;
 use student::{Outcome, Setup};
 use warm_javac::WarmJavac;
 use whitted_check::check::image_cache::ImageCache;
+use whitted_check::check::pass_rule::PassRule;
 use whitted_check::check::suite::{cases_of, SuiteCase};
 use whitted_core::course::Course;
 use whitted_core::error::{Error, Result};
@@ -86,7 +88,8 @@ pub struct Options {
     pub rerun: Option<Rerun>,
     pub no_sandbox: bool,
     pub grading: Grading,
-    pub tolerance: u8,
+    /// When a case passes (`--tolerance`, `--max-beyond`).
+    pub rule: PassRule,
     /// Whether whitted's diagnostic scenes count towards the grade.
     pub count_diagnostic: bool,
     /// A rubric file weighing the cases (docs/grade.md, "What counts").
@@ -140,7 +143,7 @@ pub fn run(options: &Options) -> Result<Summary> {
         course: options.course,
         suite,
         limits: options.limits,
-        tolerance: options.tolerance,
+        tolerance: policy.rule,
         work: work.path().to_path_buf(),
         images: ImageCache::new(),
         report_images: SharedImages::default(),
@@ -257,7 +260,7 @@ fn course(options: &Options) -> Result<(Skeleton, Vec<SuiteCase>, Policy)> {
     let policy = Policy::new(
         &suite,
         options.grading,
-        options.tolerance,
+        options.rule,
         options.count_diagnostic,
         options.rubric.as_deref(),
     )?;
