@@ -13,8 +13,8 @@ use whitted_grade::{Grading, Rerun};
 pub struct GradeArgs {
     /// Moodle's "Download all submissions" zip, a folder with a folder per student, or one
     /// student's project folder
-    #[arg(value_name = "SUBMISSIONS")]
-    pub submissions: PathBuf,
+    #[arg(value_name = "SUBMISSIONS", required_unless_present = "calibrate")]
+    pub submissions: Option<PathBuf>,
 
     /// Where the reports, class.csv, mistakes.csv, moodle.csv and index.html go (made if
     /// missing; a rerun into it skips the students already graded)
@@ -25,6 +25,12 @@ pub struct GradeArgs {
     /// (`done`) or not (`todo`), one per line, in the order --part shares them out
     #[arg(long)]
     pub list: bool,
+
+    /// Grade no one: print, from the results in OUTDIR alone, how many students each channel
+    /// tolerance and pixel allowance would pass and the diagnosed mistakes of those it passes
+    /// beyond the graded setting (a --max-beyond given adds its column)
+    #[arg(long, conflicts_with_all = ["list", "only", "part", "rerun"])]
+    pub calibrate: bool,
 
     /// The course's sources to compile against: 2016-17's gfx/tick2, or from 2017-18 the
     /// year's tick1 folder (found anywhere under DIR; required then) [default: whitted's

@@ -19,6 +19,7 @@
 
 mod archive;
 mod beyond;
+mod calibrate;
 mod class;
 mod compile;
 mod feedback_zip;
@@ -56,7 +57,7 @@ use status::StudentStatus;
 use student::{Outcome, Setup};
 use warm_javac::WarmJavac;
 use whitted_check::check::image_cache::ImageCache;
-use whitted_check::check::pass_rule::PassRule;
+use whitted_check::check::pass_rule::{Allowance, PassRule};
 use whitted_check::check::suite::{cases_of, SuiteCase};
 use whitted_core::course::Course;
 use whitted_core::error::{Error, Result};
@@ -229,6 +230,13 @@ pub fn list(options: &Options) -> Result<Vec<(String, bool)>> {
             (s.id.clone(), done)
         })
         .collect())
+}
+
+/// `--calibrate`: over the class graded into `outdir`, how many students each pair (channel
+/// tolerance, pixel allowance) passes and what it lets through, from the results alone (no
+/// program runs); `extra` adds an allowance to those shown.
+pub fn calibrate(outdir: &Path, extra: Option<Allowance>) -> Result<String> {
+    calibrate::run(outdir, extra)
 }
 
 /// The exercise's name in reports and on the class page: 2016-17's Tick 2, the later years'

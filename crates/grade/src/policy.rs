@@ -209,6 +209,7 @@ fn parse_rubric(text: &str, suite: &[SuiteCase]) -> std::result::Result<Vec<f64>
 #[cfg(test)]
 mod tests {
     use super::*;
+    use whitted_check::check::pass_rule::Allowance;
     use whitted_check::check::suite::cases;
 
     #[test]
@@ -278,5 +279,30 @@ mod tests {
             parse_rubric("tick2.xml", &suite).map_err(|(l, _)| l),
             Err(1)
         );
+    }
+
+    #[test]
+    fn the_allowance_is_named_and_decides_the_key() {
+        let suite = cases();
+        let strict = Policy::new(&suite, Grading::PassFail, PassRule::strict(2), false, None)
+            .expect("policy");
+        assert!(strict
+            .describe()
+            .ends_with("a case passes when identical or within 2 of 255 in a channel"));
+        // No allowance keeps the key results had before there was one.
+        assert!(String::from_utf8_lossy(&strict.key_bytes()).starts_with("pass-fail 2 1,"));
+        let rule = PassRule {
+            tolerance: 2,
+            allowance: Allowance::Pixels(10),
+        };
+        let allowing = Policy::new(&suite, Grading::PassFail, rule, false, None).expect("policy");
+        assert!(
+            allowing
+                .describe()
+                .ends_with("within 2 of 255 in a channel, but for at most 10 pixels"),
+            "{}",
+            allowing.describe()
+        );
+        assert_ne!(allowing.key_bytes(), strict.key_bytes());
     }
 }
