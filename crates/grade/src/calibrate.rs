@@ -216,8 +216,10 @@ pub fn table(rows: &[Row], graded: Option<PassRule>, extra: Option<Allowance>) -
         out += &format!("{:>8}", a.to_string());
     }
     out += "\n";
-    let mut through = Vec::new();
+    // Per row and column, the students passing there who did not as graded (indices).
+    let mut newly: Vec<Vec<Vec<usize>>> = Vec::new();
     for &tolerance in &tolerances {
+        let mut cells = Vec::new();
         let mark = match graded.is_some_and(|g| g.tolerance == tolerance) {
             true => "*",
             false => " ",
@@ -228,32 +230,50 @@ pub fn table(rows: &[Row], graded: Option<PassRule>, extra: Option<Allowance>) -
                 tolerance,
                 allowance,
             };
-            let passing: Vec<&Row> = rows.iter().filter(|r| r.passes(rule)).collect();
+            let passing: Vec<usize> = (0..rows.len()).filter(|&i| rows[i].passes(rule)).collect();
             let here = match graded == Some(rule) {
                 true => format!("{}*", passing.len()),
                 false => passing.len().to_string(),
             };
             out += &format!("{here:>8}");
-            let newly: Vec<&Row> = passing
-                .into_iter()
-                .filter(|r| !r.passed_as_graded)
-                .collect();
-            if !newly.is_empty() {
-                through.push(format!(
-                    "  {}: +{} ({}): {}",
-                    setting(rule),
-                    newly.len(),
-                    mistakes(&newly),
-                    ids(&newly)
-                ));
-            }
+            cells.push(
+                passing
+                    .into_iter()
+                    .filter(|&i| !rows[i].passed_as_graded)
+                    .collect(),
+            );
         }
+        newly.push(cells);
         out += "\n";
     }
     out += "(* as graded)\n";
+    let mut through = Vec::new();
+    for (r, &tolerance) in tolerances.iter().enumerate() {
+        for (c, &allowance) in allowances.iter().enumerate() {
+            let here = &newly[r][c];
+            let left = c > 0 && newly[r][c - 1] == *here;
+            let above = r > 0 && newly[r - 1][c] == *here;
+            if here.is_empty() || left || above {
+                continue;
+            }
+            let students: Vec<&Row> = here.iter().map(|&i| &rows[i]).collect();
+            let rule = PassRule {
+                tolerance,
+                allowance,
+            };
+            through.push(format!(
+                "  {}: +{} ({}): {}",
+                setting(rule),
+                students.len(),
+                mistakes(&students),
+                ids(&students)
+            ));
+        }
+    }
     if !through.is_empty() {
-        out += "\nwhat each setting passes that the graded one does not (students, by their \
-                diagnosis):\n";
+        out += "\nwhat a setting passes that the graded one does not (students, by their \
+                diagnosis), where it changes: a setting not listed passes what the one to its \
+                left or above it does:\n";
         out += &through.join("\n");
         out += "\n";
     }
@@ -419,6 +439,8 @@ mod tests {
             text.contains("  ±0, --max-beyond 0.1%: +1 (no diagnosis 1): b"),
             "{text}"
         );
+        // The same students as the setting to the left: not listed again.
+        assert!(!text.contains("±2, --max-beyond 100:"), "{text}");
         assert!(
             !text.contains("reflect-unclamped"),
             "no setting shown passes a mistake of 27: {text}"
