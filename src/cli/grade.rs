@@ -78,7 +78,7 @@ pub struct GradeArgs {
     /// Pixels allowed beyond --tolerance: a case passes when at most N pixels (or P% of the
     /// image's pixels) have a channel off by more than it [default: 0]
     #[arg(long, value_name = "N|P%", value_parser = parse_allowance,
-          allow_negative_numbers = true)]
+          allow_hyphen_values = true)]
     pub max_beyond: Option<Allowance>,
 
     /// Count whitted's diagnostic scenes (shadows.xml, mirrors.xml) towards the grade too; by

@@ -61,6 +61,10 @@ fn check_passes_an_image_a_few_pixels_off_only_with_an_allowance_and_says_so() {
     assert_eq!(report["max_beyond"], "10");
     assert_eq!(report["pixels_allowed_beyond"], 10);
     assert_eq!(report["pixels_beyond_tolerance"], OFF);
+    assert_eq!(
+        report["verdict_text"],
+        "within-tolerance (7 pixels beyond ±2, allowed up to 10)"
+    );
     // One pixel fewer allowed than are off fails; 0.01% of 307200 is 30, which passes.
     let short = whitted(
         d,

@@ -105,6 +105,7 @@ pub fn case_json(case: &CaseReport, findings: Option<&Findings>) -> Value {
     let d = &case.difference;
     let mut object = json!({
         "verdict": d.verdict.name(),
+        "verdict_text": super::words::verdict_name(case),
         "width": d.width,
         "height": d.height,
         "bounces": case.bounces,

@@ -90,7 +90,7 @@ impl ReportRow {
             }),
         ];
         let mut caption = vec![
-            format!("{case_name}: {}", d.verdict.name()),
+            format!("{case_name}: {}", crate::check::words::verdict_name(case)),
             format!("{} pixels differ, {}", d.differing_pixels, largest(d)),
         ];
         // What explains most first: the best fit beyond the catalogue when the catalogue
