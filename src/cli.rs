@@ -513,6 +513,16 @@ mod tests {
             &["whitted", "explain", "--pixel", "-1,0"][..],
             &["whitted", "render", "--region", "-1,0,4,4"],
             &["whitted", "check", "x.png", "--tolerance", "-1"],
+            &["whitted", "check", "x.png", "--max-beyond", "-1"],
+            &[
+                "whitted",
+                "grade",
+                "class.zip",
+                "-o",
+                "out",
+                "--max-beyond",
+                "-5%",
+            ],
             &["whitted", "diff", "a", "b", "--fail-percent", "-1"],
             &["whitted", "render", "--width", "-5"],
         ] {

@@ -7,6 +7,7 @@ use clap::Args;
 use super::parse::*;
 use super::values::CourseArg;
 use super::ServeArgs;
+use whitted_check::check::pass_rule::{Allowance, PassRule};
 
 #[derive(Debug, Clone, Args)]
 pub struct CheckArgs {
@@ -27,6 +28,12 @@ pub struct CheckArgs {
     /// Largest difference of a channel, in LSB, that still passes
     #[arg(long, value_name = "LSB", default_value_t = 2)]
     pub tolerance: u8,
+
+    /// Pixels allowed beyond --tolerance: a case passes when at most N pixels (or P% of the
+    /// image's pixels) have a channel off by more than it [default: 0]
+    #[arg(long, value_name = "N|P%", value_parser = parse_allowance,
+          allow_hyphen_values = true)]
+    pub max_beyond: Option<Allowance>,
 
     /// Print one JSON object instead of the text report
     #[arg(long)]
@@ -71,4 +78,14 @@ pub struct CheckArgs {
 
     #[command(flatten)]
     pub serve: ServeArgs,
+}
+
+impl CheckArgs {
+    /// When a case passes: `--tolerance` and `--max-beyond`.
+    pub fn rule(&self) -> PassRule {
+        PassRule {
+            tolerance: self.tolerance,
+            allowance: self.max_beyond.unwrap_or(Allowance::NONE),
+        }
+    }
 }

@@ -6,14 +6,15 @@ use clap::Args;
 
 use super::parse::*;
 use clap::ValueEnum;
+use whitted_check::check::pass_rule::{Allowance, PassRule};
 use whitted_grade::{Grading, Rerun};
 
 #[derive(Debug, Clone, Args)]
 pub struct GradeArgs {
     /// Moodle's "Download all submissions" zip, a folder with a folder per student, or one
     /// student's project folder
-    #[arg(value_name = "SUBMISSIONS")]
-    pub submissions: PathBuf,
+    #[arg(value_name = "SUBMISSIONS", required_unless_present = "calibrate")]
+    pub submissions: Option<PathBuf>,
 
     /// Where the reports, class.csv, mistakes.csv, moodle.csv and index.html go (made if
     /// missing; a rerun into it skips the students already graded)
@@ -24,6 +25,12 @@ pub struct GradeArgs {
     /// (`done`) or not (`todo`), one per line, in the order --part shares them out
     #[arg(long)]
     pub list: bool,
+
+    /// Grade no one: print, from the results in OUTDIR alone, how many students each channel
+    /// tolerance and pixel allowance would pass and the diagnosed mistakes of those it passes
+    /// beyond the graded setting (a --max-beyond given adds its column)
+    #[arg(long, conflicts_with_all = ["list", "only", "part", "rerun"])]
+    pub calibrate: bool,
 
     /// The course's sources to compile against: 2016-17's gfx/tick2, or from 2017-18 the
     /// year's tick1 folder (found anywhere under DIR; required then) [default: whitted's
@@ -67,6 +74,12 @@ pub struct GradeArgs {
     /// Largest difference of a channel, in LSB, that still passes
     #[arg(long, value_name = "LSB", default_value_t = 2)]
     pub tolerance: u8,
+
+    /// Pixels allowed beyond --tolerance: a case passes when at most N pixels (or P% of the
+    /// image's pixels) have a channel off by more than it [default: 0]
+    #[arg(long, value_name = "N|P%", value_parser = parse_allowance,
+          allow_hyphen_values = true)]
+    pub max_beyond: Option<Allowance>,
 
     /// Count whitted's diagnostic scenes (shadows.xml, mirrors.xml) towards the grade too; by
     /// default they inform the diagnosis and the report and score nothing
@@ -158,5 +171,15 @@ fn parse_part(s: &str) -> Result<(usize, usize), String> {
     match parsed {
         Some((k, n)) if n >= 1 && (1..=n).contains(&k) && n <= 100_000 => Ok((k, n)),
         _ => Err(format!("expected K/N with 1 <= K <= N, got `{s}`")),
+    }
+}
+
+impl GradeArgs {
+    /// When a case passes: `--tolerance` and `--max-beyond`.
+    pub fn rule(&self) -> PassRule {
+        PassRule {
+            tolerance: self.tolerance,
+            allowance: self.max_beyond.unwrap_or(Allowance::NONE),
+        }
     }
 }

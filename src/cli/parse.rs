@@ -2,6 +2,7 @@
 //! expected. Checks that depend on other options or on the scene are the plan's.
 
 use super::MAX_THREADS;
+use whitted_check::check::pass_rule::Allowance;
 use whitted_core::frame::{limits, Region};
 
 /// A whole number, or the message saying that `what` was expected.
@@ -43,6 +44,11 @@ pub(super) fn parse_region(s: &str) -> Result<Region, String> {
         [_, _, _, _] => Err(format!("the region `{s}` is empty (X0 < X1 and Y0 < Y1)")),
         _ => Err(format!("expected four numbers X0,Y0,X1,Y1, got `{s}`")),
     }
+}
+
+/// `--max-beyond`: `N` pixels or `P%` of the image's pixels (`pass_rule.rs`).
+pub(super) fn parse_allowance(s: &str) -> Result<Allowance, String> {
+    Allowance::parse(s)
 }
 
 pub(super) fn parse_tolerance(s: &str) -> Result<f64, String> {

@@ -102,7 +102,7 @@ fn run_image(args: &CheckArgs, image: &std::path::Path) -> Result<bool> {
         &input.scene,
         &input.name,
         args.bounces,
-        args.tolerance,
+        args.rule(),
         student,
         chosen.course,
     )?;
@@ -140,7 +140,7 @@ fn view(args: &CheckArgs, image: &std::path::Path) -> Result<bool> {
         image: image.to_path_buf(),
         scene: args.input.clone(),
         bounces: args.bounces,
-        tolerance: args.tolerance,
+        rule: args.rule(),
         course: args.course.map(Course::from),
     };
     let serve = &args.serve;
@@ -157,7 +157,7 @@ fn run_program(args: &CheckArgs, program: &str) -> Result<bool> {
         suite::write_scenes(dir, chosen.course)?;
     }
     let mut report = args.report.as_deref().map(Destination::open).transpose()?;
-    let run = run_suite(program, args.tolerance, args.timeout, chosen.course)?;
+    let run = run_suite(program, args.rule(), args.timeout, chosen.course)?;
     if let Some(out) = report.as_mut() {
         let rows = failing_rows(&run, |_| true);
         out.write_png(&contact_sheet(&rows))?;
@@ -238,13 +238,13 @@ fn case_text(
 ) -> String {
     let d = &case.difference;
     let mut out = format!(
-        "{}, {}x{}, {} bounces: {} (tolerance: {} of 255 in a channel)\n",
+        "{}, {}x{}, {} bounces: {} (tolerance: {})\n",
         case.scene_name,
         d.width,
         d.height,
         case.bounces,
-        d.verdict.name(),
-        case.tolerance
+        words::verdict_name(case),
+        d.rule.words()
     );
     for line in opening(findings) {
         out += &line;

@@ -1,16 +1,25 @@
 //! `whitted grade SUBMISSIONS -o OUTDIR`: a whole class (docs/grade.md). Exit 0 when the class
 //! is graded (whatever the students' verdicts), 2 when it cannot be, 130 on Ctrl-C (the
-//! students finished by then are kept).
+//! students finished by then are kept). `whitted grade -o OUTDIR --calibrate` grades no one
+//! and prints what other tolerances would pass, from the results alone.
 
 use crate::cli::GradeArgs;
-use whitted_core::error::Result;
+use whitted_core::error::{Error, Result};
 use whitted_grade::{Limits, Options};
 use whitted_io::output::stdout;
 
 pub fn run(args: &GradeArgs) -> Result<()> {
+    if args.calibrate {
+        return stdout::print_line(
+            whitted_grade::calibrate(&args.output, args.max_beyond)?.trim_end(),
+        );
+    }
+    let Some(submissions) = &args.submissions else {
+        return Err(Error::Usage("grade needs SUBMISSIONS".into()));
+    };
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     let options = Options {
-        submissions: args.submissions.clone(),
+        submissions: submissions.clone(),
         outdir: args.output.clone(),
         skeleton: args.skeleton.clone(),
         course: args.course.course(),
@@ -23,7 +32,7 @@ pub fn run(args: &GradeArgs) -> Result<()> {
         rerun: args.rerun.map(Into::into),
         no_sandbox: args.no_sandbox,
         grading: args.grade.into(),
-        tolerance: args.tolerance,
+        rule: args.rule(),
         count_diagnostic: args.count_diagnostic,
         rubric: args.rubric.clone(),
         only: args.only.clone(),

@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use whitted_check::check::difference::difference;
+use whitted_check::check::pass_rule::PassRule;
 use whitted_check::check::renderer::Renderer;
 use whitted_check::check::suite::{cases, SuiteCase};
 use whitted_check::mistakes::{Bug, Mistakes};
@@ -48,7 +49,13 @@ fn separating_case(mistakes: Mistakes) -> SuiteCase {
         let scene = whitted_core::scene::parse_str(&case.file, &case.xml).expect("scene");
         let r = Renderer::new(&scene, 640, 480, case.bounces).expect("renderer");
         let image = r.image(mistakes).expect("image");
-        let fails = difference(&image, &r.reference().expect("reference"), 2).beyond_tolerance > 0;
+        let fails = difference(
+            &image,
+            &r.reference().expect("reference"),
+            PassRule::strict(2),
+        )
+        .beyond_tolerance
+            > 0;
         let shows = mistakes.bugs().iter().all(|&b| {
             mistakes.bugs().len() == 1 || r.image(Mistakes::of(&[b])).expect("image") != image
         });

@@ -1,6 +1,7 @@
 //! whitted's integration tests, one crate with a module per area: the built binary run as a
 //! user runs it, and the library rendered against its references.
 
+mod allowance;
 mod check;
 mod check_courses;
 mod cli_errors;

@@ -13,6 +13,7 @@ pub mod image_cache;
 pub mod json;
 pub mod noise;
 pub mod numbers;
+pub mod pass_rule;
 pub mod pixel_sample;
 pub mod program;
 pub mod progress;
@@ -33,6 +34,7 @@ use crate::check::difference::{difference, Difference};
 use crate::check::image_cache::ImageCache;
 use crate::check::noise::Noise;
 use crate::check::numbers::NumberFit;
+use crate::check::pass_rule::PassRule;
 use crate::check::progress::{Evidence, Stages};
 use crate::check::renderer::{Renderer, SharedScene};
 use crate::check::student_png::Rgb8;
@@ -322,7 +324,7 @@ fn fit_terms(cases: &[Case]) -> Result<Vec<TermFit>> {
 pub struct CaseReport {
     pub scene_name: String,
     pub bounces: u32,
-    pub tolerance: u8,
+    /// How it differs, and the verdict by the rule it was given (`difference.rule`).
     pub difference: Difference,
     /// The diagnosis as it concerns this case: the whole ranking for one image; in a suite,
     /// the part of the suite's explanation that shows here, if it explains this case.
@@ -341,7 +343,7 @@ pub fn prepare<'a>(
     scene: &'a Scene,
     scene_name: &str,
     bounces: u32,
-    tolerance: u8,
+    rule: PassRule,
     student: Rgb8,
     cases: usize,
     shared: Option<SharedScene>,
@@ -354,8 +356,7 @@ pub fn prepare<'a>(
     let report = CaseReport {
         scene_name: scene_name.to_string(),
         bounces,
-        tolerance,
-        difference: difference(&case.student, &case.reference, tolerance),
+        difference: difference(&case.student, &case.reference, rule),
         diagnosis: Vec::new(),
         hidden_mistakes: Mistakes::NONE,
         student: case.student.clone(),
@@ -365,12 +366,12 @@ pub fn prepare<'a>(
 }
 
 /// Checks `student` against `scene` rendered at its size with `bounces` bounces under
-/// `course`'s rules.
+/// `course`'s rules, passing it by `rule`.
 pub fn check_image(
     scene: &Scene,
     scene_name: &str,
     bounces: u32,
-    tolerance: u8,
+    rule: PassRule,
     student: Rgb8,
     course: Course,
 ) -> Result<(CaseReport, Findings)> {
@@ -387,7 +388,7 @@ pub fn check_image(
         scene,
         scene_name,
         bounces,
-        tolerance,
+        rule,
         student,
         1,
         Some(own),

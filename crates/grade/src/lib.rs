@@ -18,6 +18,8 @@
 //! them; the class files are made from the `result.json`s alone.
 
 mod archive;
+mod beyond;
+mod calibrate;
 mod class;
 mod compile;
 mod feedback_zip;
@@ -55,6 +57,7 @@ use status::StudentStatus;
 use student::{Outcome, Setup};
 use warm_javac::WarmJavac;
 use whitted_check::check::image_cache::ImageCache;
+use whitted_check::check::pass_rule::{Allowance, PassRule};
 use whitted_check::check::suite::{cases_of, SuiteCase};
 use whitted_core::course::Course;
 use whitted_core::error::{Error, Result};
@@ -86,7 +89,8 @@ pub struct Options {
     pub rerun: Option<Rerun>,
     pub no_sandbox: bool,
     pub grading: Grading,
-    pub tolerance: u8,
+    /// When a case passes (`--tolerance`, `--max-beyond`).
+    pub rule: PassRule,
     /// Whether whitted's diagnostic scenes count towards the grade.
     pub count_diagnostic: bool,
     /// A rubric file weighing the cases (docs/grade.md, "What counts").
@@ -140,7 +144,7 @@ pub fn run(options: &Options) -> Result<Summary> {
         course: options.course,
         suite,
         limits: options.limits,
-        tolerance: options.tolerance,
+        tolerance: policy.rule,
         work: work.path().to_path_buf(),
         images: ImageCache::new(),
         report_images: SharedImages::default(),
@@ -246,6 +250,13 @@ pub fn for_year(text: &str, course: Course) -> std::result::Result<String, Strin
     skeleton::select(text, course)
 }
 
+/// `--calibrate`: over the class graded into `outdir`, how many students each pair (channel
+/// tolerance, pixel allowance) passes and what it lets through, from the results alone (no
+/// program runs); `extra` adds an allowance to those shown.
+pub fn calibrate(outdir: &Path, extra: Option<Allowance>) -> Result<String> {
+    calibrate::run(outdir, extra)
+}
+
 /// The exercise's name in reports and on the class page: 2016-17's Tick 2, the later years'
 /// Tick 1 with its year.
 pub fn tick(course: Course) -> String {
@@ -275,7 +286,7 @@ fn course(options: &Options) -> Result<(Skeleton, Vec<SuiteCase>, Policy)> {
     let policy = Policy::new(
         &suite,
         options.grading,
-        options.tolerance,
+        options.rule,
         options.count_diagnostic,
         options.rubric.as_deref(),
     )?;

@@ -1,11 +1,13 @@
 //! What a grade is made of (docs/grade.md, "What counts"): which cases count and how much, how
-//! the counted verdicts become a grade out of 100, and the tolerance a pass allows. By default
+//! the counted verdicts become a grade out of 100, and the rule a case passes by (the channel
+//! tolerance and the pixel allowance, `pass_rule.rs` of whitted-check). By default
 //! the course's own scenes and every `--scenes` case count, one each, and whitted's diagnostic
 //! scenes inform the diagnosis and the report but score nothing; `--count-diagnostic` counts
 //! them too, and a rubric file weighs each case as the course wishes.
 
 use std::path::Path;
 
+use whitted_check::check::pass_rule::PassRule;
 use whitted_check::check::suite::{Role, SuiteCase};
 use whitted_core::error::{Error, Result};
 
@@ -31,8 +33,8 @@ impl Grading {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Policy {
     pub grading: Grading,
-    /// The largest difference of a channel, in LSB, that still passes.
-    pub tolerance: u8,
+    /// When a case passes: the channel tolerance and the pixels allowed beyond it.
+    pub rule: PassRule,
     pub weights: Vec<f64>,
     /// Where the weights come from, in words.
     pub source: String,
@@ -47,7 +49,7 @@ impl Policy {
     pub fn new(
         suite: &[SuiteCase],
         grading: Grading,
-        tolerance: u8,
+        rule: PassRule,
         count_diagnostic: bool,
         rubric: Option<&Path>,
     ) -> Result<Policy> {
@@ -80,7 +82,7 @@ impl Policy {
         }
         Ok(Policy {
             grading,
-            tolerance,
+            rule,
             weights,
             source,
         })
@@ -122,22 +124,26 @@ impl Policy {
     pub fn describe(&self) -> String {
         let counted = (0..self.weights.len()).filter(|&i| self.counts(i)).count();
         format!(
-            "{} over {counted} counted case{} ({}); a case passes when identical or within {} \
-             of 255 in a channel",
+            "{} over {counted} counted case{} ({}); a case passes when identical or within {}",
             self.grading.name(),
             if counted == 1 { "" } else { "s" },
             self.source,
-            self.tolerance
+            self.rule.words()
         )
     }
 
-    /// What of the policy decides a result, for the result's key.
+    /// What of the policy decides a result, for the result's key. No allowance adds nothing,
+    /// so that the results graded before there was one keep their key.
     pub fn key_bytes(&self) -> Vec<u8> {
         let weights: Vec<String> = self.weights.iter().map(|w| w.to_string()).collect();
+        let allowance = match self.rule.allowance.is_none() {
+            true => String::new(),
+            false => format!(" beyond {}", self.rule.allowance),
+        };
         format!(
-            "{} {} {}",
+            "{} {}{allowance} {}",
             self.grading.name(),
-            self.tolerance,
+            self.rule.tolerance,
             weights.join(",")
         )
         .into_bytes()
@@ -203,12 +209,14 @@ fn parse_rubric(text: &str, suite: &[SuiteCase]) -> std::result::Result<Vec<f64>
 #[cfg(test)]
 mod tests {
     use super::*;
+    use whitted_check::check::pass_rule::Allowance;
     use whitted_check::check::suite::cases;
 
     #[test]
     fn by_default_the_course_s_scenes_count_and_the_diagnostic_ones_inform() {
         let suite = cases();
-        let policy = Policy::new(&suite, Grading::PassFail, 2, false, None).expect("policy");
+        let policy = Policy::new(&suite, Grading::PassFail, PassRule::strict(2), false, None)
+            .expect("policy");
         let counted: Vec<String> = (0..suite.len())
             .filter(|&i| policy.counts(i))
             .map(|i| suite[i].name())
@@ -226,12 +234,14 @@ mod tests {
         // Failing only the diagnostic scenes still passes.
         let passes = [true, true, true, true, true, false, false];
         assert_eq!(policy.grade(&passes), 100.0);
-        let fraction = Policy::new(&suite, Grading::Fraction, 2, false, None).expect("policy");
+        let fraction = Policy::new(&suite, Grading::Fraction, PassRule::strict(2), false, None)
+            .expect("policy");
         assert_eq!(
             fraction.grade(&[true, false, true, true, true, false, false]),
             80.0
         );
-        let all = Policy::new(&suite, Grading::PassFail, 2, true, None).expect("policy");
+        let all = Policy::new(&suite, Grading::PassFail, PassRule::strict(2), true, None)
+            .expect("policy");
         assert_eq!(all.grade(&passes), 0.0);
         assert!(policy
             .describe()
@@ -249,7 +259,7 @@ mod tests {
         assert_eq!(weights, [0.0, 0.0, 3.0, 0.0, 1.0, 0.0, 0.0]);
         let policy = Policy {
             grading: Grading::Fraction,
-            tolerance: 2,
+            rule: PassRule::strict(2),
             weights,
             source: "test".into(),
         };
@@ -269,5 +279,30 @@ mod tests {
             parse_rubric("tick2.xml", &suite).map_err(|(l, _)| l),
             Err(1)
         );
+    }
+
+    #[test]
+    fn the_allowance_is_named_and_decides_the_key() {
+        let suite = cases();
+        let strict = Policy::new(&suite, Grading::PassFail, PassRule::strict(2), false, None)
+            .expect("policy");
+        assert!(strict
+            .describe()
+            .ends_with("a case passes when identical or within 2 of 255 in a channel"));
+        // No allowance keeps the key results had before there was one.
+        assert!(String::from_utf8_lossy(&strict.key_bytes()).starts_with("pass-fail 2 1,"));
+        let rule = PassRule {
+            tolerance: 2,
+            allowance: Allowance::Pixels(10),
+        };
+        let allowing = Policy::new(&suite, Grading::PassFail, rule, false, None).expect("policy");
+        assert!(
+            allowing
+                .describe()
+                .ends_with("within 2 of 255 in a channel, but for at most 10 pixels"),
+            "{}",
+            allowing.describe()
+        );
+        assert_ne!(allowing.key_bytes(), strict.key_bytes());
     }
 }

@@ -144,7 +144,7 @@ fn ran(run: &SuiteRun, shown: &Shown, feedback: &str) -> String {
         match &case.status {
             RunStatus::Ok(r) if !case.passed() => {
                 let (w, h) = (r.student.width, r.student.height);
-                let heat = heat_map(&r.student, &r.reference, r.tolerance);
+                let heat = heat_map(&r.student, &r.reference, r.difference.rule.tolerance);
                 let PngPixels::Eight(heat) = heat.pixels else {
                     continue;
                 };

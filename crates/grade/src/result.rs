@@ -7,6 +7,7 @@
 use serde::{Deserialize, Serialize};
 use serde_json::{json, Value};
 
+use super::beyond::CaseBeyond;
 use super::intake::Submission;
 use super::policy::Policy;
 use super::status::StudentStatus;
@@ -51,6 +52,15 @@ pub enum TestStatus {
 /// `extra_data`: what the class files read, and what a second look needs.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Extra {
+    /// `--max-beyond`: the pixels a case may have beyond the tolerance (`10`, `0.1%`); results
+    /// written before there was one allowed none.
+    #[serde(default = "no_allowance")]
+    pub allowance: String,
+    /// Per case (in the order of `tests`), the counts that replay the pass rule at another
+    /// tolerance and allowance (`beyond.rs`), when the program ran; results written before
+    /// there were any have none, and `--calibrate` skips them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub beyond: Option<Vec<CaseBeyond>>,
     /// Counted cases, 0 when none ran.
     pub cases: usize,
     /// `check --json`'s report of the suite (hidden cases cut unless shown), when it ran.
@@ -91,11 +101,18 @@ pub struct Extra {
     pub whitted: String,
 }
 
+/// The allowance of a result written before there was one.
+fn no_allowance() -> String {
+    "0".into()
+}
+
 impl StudentResult {
     /// The row of a student who has no result (yet): an `error` that `--rerun failed` grades.
     pub fn not_graded(submission: &Submission) -> StudentResult {
         StudentResult {
             extra: Extra {
+                allowance: no_allowance(),
+                beyond: None,
                 cases: 0,
                 check: None,
                 compile_errors: None,
@@ -160,6 +177,7 @@ pub fn build(
     let mut progress = None;
     let mut compile_errors = None;
     let mut diagnosis = Vec::new();
+    let mut beyond = None;
     let (status, tests, passes, feedback, failed) = match outcome {
         Outcome::Refused { status, message } => (
             *status,
@@ -211,6 +229,7 @@ pub fn build(
             diagnosis = diagnosis_ids(run).into_iter().map(String::from).collect();
             progress = Some(report["progress"].clone());
             check = Some(report);
+            beyond = Some(run.cases.iter().map(CaseBeyond::of).collect());
             let feedback = feedback(run, policy);
             (StudentStatus::Graded, tests, passes, feedback, timed_out)
         }
@@ -226,6 +245,8 @@ pub fn build(
     }
     StudentResult {
         extra: Extra {
+            allowance: policy.rule.allowance.to_string(),
+            beyond,
             cases,
             check,
             compile_errors,
@@ -249,7 +270,7 @@ pub fn build(
             sandbox: sandboxed,
             skeleton: skeleton.to_string(),
             status,
-            tolerance: policy.tolerance,
+            tolerance: policy.rule.tolerance,
             warnings: submission.warnings.clone(),
             whitted: env!("CARGO_PKG_VERSION").to_string(),
         },
@@ -348,6 +369,7 @@ fn feedback(run: &SuiteRun, policy: &Policy) -> String {
     let cases = counted.len();
     let passed = counted.iter().filter(|&&i| run.cases[i].passed()).count();
     let all = run.cases.iter().all(|c| c.passed());
+    let allowed = by_allowance(run, &counted, policy);
     if passed == cases && all {
         let hidden: Mistakes = run
             .cases
@@ -359,13 +381,14 @@ fn feedback(run: &SuiteRun, policy: &Policy) -> String {
             .fold(Mistakes::NONE, |all, m| {
                 m.bugs().into_iter().fold(all, Mistakes::with)
             });
-        return words::all_pass(cases, hidden);
+        return words::all_pass(cases, &allowed, hidden);
     }
     let mut line = match passed == cases {
         true => format!(
-            "passes all {cases} graded cases, but not every one of whitted's diagnostic scenes"
+            "passes all {cases} graded cases{allowed}, but not every one of whitted's \
+             diagnostic scenes"
         ),
-        false => format!("passes {passed} of {cases} graded cases"),
+        false => format!("passes {passed} of {cases} graded cases{allowed}"),
     };
     let findings = &run.findings;
     match findings.diagnosis.first() {
@@ -380,4 +403,24 @@ fn feedback(run: &SuiteRun, policy: &Policy) -> String {
         _ => line += &format!("; {}", findings.progress.sentence()),
     }
     line
+}
+
+/// How many of the `counted` cases that pass do so only by the allowance, as words to follow
+/// "passes N graded cases": " (2 of them only by the allowance: at most 10 pixels beyond ±2)";
+/// empty when none does, so that a feedback never calls such a case simply right.
+fn by_allowance(run: &SuiteRun, counted: &[usize], policy: &Policy) -> String {
+    let n = counted
+        .iter()
+        .filter(|&&i| match &run.cases[i].status {
+            RunStatus::Ok(report) => report.difference.allowed_words().is_some(),
+            _ => false,
+        })
+        .count();
+    match n {
+        0 => String::new(),
+        n => format!(
+            " ({n} of them only by the allowance: {})",
+            policy.rule.allowance_words()
+        ),
+    }
 }

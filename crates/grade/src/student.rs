@@ -32,7 +32,7 @@ pub struct Setup {
     pub course: Course,
     pub suite: Vec<SuiteCase>,
     pub limits: Limits,
-    pub tolerance: u8,
+    pub tolerance: whitted_check::check::pass_rule::PassRule,
     /// Where the students' work folders are made (removed at the end).
     pub work: PathBuf,
     /// The suite's whole images, rendered once for the class.

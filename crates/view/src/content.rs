@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 
 use serde_json::Value;
 
+use whitted_check::check::pass_rule::PassRule;
 use whitted_check::check::{check_image, json::case_json, student_png, which_course, words};
 use whitted_check::mistakes::Mistakes;
 use whitted_core::course::Course;
@@ -31,7 +32,8 @@ pub enum Source {
         image: PathBuf,
         scene: Option<PathBuf>,
         bounces: u32,
-        tolerance: u8,
+        /// When the image passes (`--tolerance`, `--max-beyond`).
+        rule: PassRule,
         /// `--course` (None: read from the image's size and the scene, as `check` does).
         course: Option<Course>,
     },
@@ -100,9 +102,9 @@ impl Source {
                 image,
                 scene,
                 bounces,
-                tolerance,
+                rule,
                 course,
-            } => load_check(image, scene.as_deref(), *bounces, *tolerance, *course),
+            } => load_check(image, scene.as_deref(), *bounces, *rule, *course),
         }
     }
 }
@@ -140,7 +142,7 @@ fn load_check(
     image: &Path,
     scene: Option<&Path>,
     bounces: u32,
-    tolerance: u8,
+    rule: PassRule,
     course: Option<Course>,
 ) -> Result<Content> {
     let student = student_png::read(image)?;
@@ -152,7 +154,7 @@ fn load_check(
         &input.scene,
         &input.name,
         bounces,
-        tolerance,
+        rule,
         student,
         chosen.course,
     )?;

@@ -105,11 +105,14 @@ pub fn case_json(case: &CaseReport, findings: Option<&Findings>) -> Value {
     let d = &case.difference;
     let mut object = json!({
         "verdict": d.verdict.name(),
+        "verdict_text": super::words::verdict_name(case),
         "width": d.width,
         "height": d.height,
         "bounces": case.bounces,
         "scene": case.scene_name,
-        "tolerance": case.tolerance,
+        "tolerance": d.rule.tolerance,
+        "max_beyond": d.rule.allowance.to_string(),
+        "pixels_allowed_beyond": d.rule.allowance.pixels_of(d.pixels()),
         "differing_pixels": d.differing_pixels,
         "pixels_beyond_tolerance": d.beyond_tolerance,
         "max_difference": d.max_difference,

@@ -13,6 +13,7 @@ use std::time::Duration;
 use crate::check::case::Case;
 use crate::check::image_cache::ImageCache;
 use crate::check::noise::{self, Noise, Seen};
+use crate::check::pass_rule::PassRule;
 use crate::check::renderer::SharedScene;
 use crate::check::student_png::{self, Rgb8};
 use crate::check::suite::{cases_of, SuiteCase};
@@ -171,28 +172,21 @@ impl Launch for Plain {
     }
 }
 
-/// Runs `program` over the suite and checks each image at `tolerance`.
-pub fn run_suite(program: &str, tolerance: u8, timeout: u64, course: Course) -> Result<SuiteRun> {
+/// Runs `program` over the suite and passes each image by `rule`.
+pub fn run_suite(program: &str, rule: PassRule, timeout: u64, course: Course) -> Result<SuiteRun> {
     let plain = Plain(words(program)?);
     let cache = ImageCache::new();
-    run_suite_with(
-        &plain,
-        program,
-        &cases_of(course),
-        tolerance,
-        timeout,
-        &cache,
-    )
+    run_suite_with(&plain, program, &cases_of(course), rule, timeout, &cache)
 }
 
 /// Runs the program `launch` starts (shown to the user as `program`) over `suite`, and checks
-/// each image at `tolerance`. The suite's whole images are kept in `cache`, which a caller
+/// each image, passing it by `rule`. The suite's whole images are kept in `cache`, which a caller
 /// checking many programs over one suite (a class) shares between them.
 pub fn run_suite_with(
     launch: &dyn Launch,
     program: &str,
     suite: &[SuiteCase],
-    tolerance: u8,
+    rule: PassRule,
     timeout: u64,
     cache: &Arc<ImageCache>,
 ) -> Result<SuiteRun> {
@@ -239,7 +233,7 @@ pub fn run_suite_with(
             scene,
             &case.file,
             case.bounces,
-            tolerance,
+            rule,
             image,
             count,
             Some(shared),

@@ -74,7 +74,11 @@ impl ReportRow {
     /// The row of one case, captioned with its part of the suite's `findings`.
     pub fn of(case_name: &str, case: &CaseReport, findings: &Findings) -> Self {
         let d = &case.difference;
-        let heat = heat_pixels(&case.student, &case.reference, case.tolerance);
+        let heat = heat_pixels(
+            &case.student,
+            &case.reference,
+            case.difference.rule.tolerance,
+        );
         let width = case.student.width;
         let tiles = [
             tile(width, case.student.height, |x, y| case.student.pixel(x, y)),
@@ -86,7 +90,7 @@ impl ReportRow {
             }),
         ];
         let mut caption = vec![
-            format!("{case_name}: {}", d.verdict.name()),
+            format!("{case_name}: {}", crate::check::words::verdict_name(case)),
             format!("{} pixels differ, {}", d.differing_pixels, largest(d)),
         ];
         // What explains most first: the best fit beyond the catalogue when the catalogue

@@ -9,6 +9,9 @@ use crate::check::progress::StageState;
 use crate::check::suite::{cases, SuiteCase};
 use crate::mistakes::{Bug, Mistakes, Number, Parameter, Stage, Variant};
 
+/// The default rule: 2 of 255 in a channel, no pixel beyond.
+const STRICT: PassRule = PassRule::strict(2);
+
 /// The first suite case on which `mistakes` fails, each of its entries showing, with its
 /// image.
 fn failing_case(mistakes: Mistakes) -> (SuiteCase, Scene, Rgb8) {
@@ -16,7 +19,8 @@ fn failing_case(mistakes: Mistakes) -> (SuiteCase, Scene, Rgb8) {
         let scene = whitted_core::scene::parse_str(&case.file, &case.xml).expect("scene");
         let r = Renderer::new(&scene, 640, 480, case.bounces).expect("renderer");
         let image = r.image(mistakes).expect("image");
-        let fails = difference(&image, &r.reference().expect("reference"), 2).beyond_tolerance > 0;
+        let fails =
+            difference(&image, &r.reference().expect("reference"), STRICT).beyond_tolerance > 0;
         let members = mistakes.bugs();
         let each_shows = members.len() == 1
             || members
@@ -71,7 +75,7 @@ fn suite_findings(images: &[(SuiteCase, Scene, Rgb8)]) -> Findings {
                 scene,
                 &case.file,
                 case.bounces,
-                2,
+                STRICT,
                 image.clone(),
                 images.len(),
                 None,
@@ -89,8 +93,15 @@ fn every_entry_is_named_first_on_its_own_render() {
     for bug in Bug::offered(Course::Y2016) {
         let wanted = Mistakes::of(&[bug]);
         let (case, scene, image) = failing_case(wanted);
-        let (_, findings) =
-            check_image(&scene, &case.file, case.bounces, 2, image, Course::Y2016).expect("check");
+        let (_, findings) = check_image(
+            &scene,
+            &case.file,
+            case.bounces,
+            STRICT,
+            image,
+            Course::Y2016,
+        )
+        .expect("check");
         assert!(
             named_first(&findings.diagnosis, wanted),
             "{}: {:?}",
@@ -123,8 +134,15 @@ fn pairs_with_stages_are_found_in_the_top_three() {
     for pair in pairs {
         let wanted = Mistakes::of(&pair);
         let (case, scene, image) = failing_case(wanted);
-        let (_, findings) =
-            check_image(&scene, &case.file, case.bounces, 2, image, Course::Y2016).expect("check");
+        let (_, findings) = check_image(
+            &scene,
+            &case.file,
+            case.bounces,
+            STRICT,
+            image,
+            Course::Y2016,
+        )
+        .expect("check");
         assert_in_top_three(&findings.diagnosis, wanted);
     }
 }
@@ -194,7 +212,7 @@ fn rounding_noise_is_not_a_mistake() {
         image.bytes[i] = image.bytes[i].saturating_add(1);
     }
     let (report, findings) =
-        check_image(&scene, "tick2.xml", 2, 2, image, Course::Y2016).expect("check");
+        check_image(&scene, "tick2.xml", 2, STRICT, image, Course::Y2016).expect("check");
     assert_eq!(report.difference.verdict, Verdict::WithinTolerance);
     assert!(
         findings.diagnosis.is_empty(),
@@ -223,7 +241,7 @@ fn the_model_s_numbers_are_fitted() {
         };
         let image = r.variant_image(&variant).expect("image");
         let (_, findings) =
-            check_image(&scene, "tick2.xml", bounces, 2, image, Course::Y2016).expect("check");
+            check_image(&scene, "tick2.xml", bounces, STRICT, image, Course::Y2016).expect("check");
         let fit = findings
             .parameters
             .iter()
@@ -259,13 +277,13 @@ fn mistakes_beyond_the_catalogue_are_located_in_the_terms() {
     };
     let half_ambient = render(&|s| s.beauty - s.ambient * 0.5);
     let (_, findings) =
-        check_image(&scene, "tick2.xml", 0, 2, half_ambient, Course::Y2016).expect("check");
+        check_image(&scene, "tick2.xml", 0, STRICT, half_ambient, Course::Y2016).expect("check");
     let top = findings.terms.first().expect("a term");
     assert_eq!(top.layer, "ambient");
     assert!((top.factor - 0.5).abs() < 0.05, "{top:?}");
     let unshadowed = render(&|s| s.beauty - s.lights[1].shadowed + s.lights[1].unshadowed);
     let (_, findings) =
-        check_image(&scene, "tick2.xml", 0, 2, unshadowed, Course::Y2016).expect("check");
+        check_image(&scene, "tick2.xml", 0, STRICT, unshadowed, Course::Y2016).expect("check");
     let top = findings.terms.first().expect("a term");
     assert_eq!(
         (top.layer.as_str(), top.replaces.as_deref()),
@@ -282,7 +300,7 @@ fn a_passing_image_that_is_exactly_a_mistake_says_so() {
     let gated = Mistakes::of(&[Bug::SpecularGated]);
     let image = r.image(gated).expect("image");
     let (report, findings) =
-        check_image(&scene, "tick2.xml", 2, 2, image, Course::Y2016).expect("check");
+        check_image(&scene, "tick2.xml", 2, STRICT, image, Course::Y2016).expect("check");
     assert_eq!(report.difference.verdict, Verdict::WithinTolerance);
     assert_eq!(report.hidden_mistakes, gated, "{:?}", findings.diagnosis);
     // A reference is hiding nothing.
@@ -290,7 +308,7 @@ fn a_passing_image_that_is_exactly_a_mistake_says_so() {
         &scene,
         "tick2.xml",
         2,
-        2,
+        STRICT,
         r.reference().expect("reference"),
         Course::Y2016,
     )
@@ -312,7 +330,7 @@ fn no_implausible_term_factor_is_a_finding() {
         let r = Renderer::new(&scene, 640, 480, bounces).expect("renderer");
         let image = r.image(Mistakes::of(&bugs)).expect("image");
         let (_, findings) =
-            check_image(&scene, "tick2.xml", bounces, 2, image, Course::Y2016).expect("check");
+            check_image(&scene, "tick2.xml", bounces, STRICT, image, Course::Y2016).expect("check");
         for t in &findings.terms {
             assert!((-0.05..=4.0).contains(&t.factor), "{t:?}");
             assert!(!t.sentence().contains("x as strong") || t.factor >= 0.0);

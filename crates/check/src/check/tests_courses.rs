@@ -7,6 +7,9 @@ use crate::check::suite::{cases_of, SuiteCase};
 use crate::mistakes::{Bug, Mistakes, Number, Parameter, Variant};
 use whitted_core::scene::input::parse_for_course;
 
+/// The default rule: 2 of 255 in a channel, no pixel beyond.
+const STRICT: PassRule = PassRule::strict(2);
+
 /// The size the tests render at: the year's aspect, a quarter of its width, so that the
 /// whole catalogue runs in seconds.
 fn size(course: Course) -> (u32, u32) {
@@ -37,7 +40,7 @@ fn suite_findings(course: Course, mistakes: Mistakes) -> (Findings, bool) {
             scene,
             &case.file,
             case.bounces,
-            2,
+            STRICT,
             image,
             suite.len(),
             None,
@@ -72,7 +75,7 @@ fn each_year_s_expected_images_check_identical() {
             .expect("in the suite");
         let scene = scene_of(&case);
         let (report, findings) =
-            check_image(&scene, &case.file, 2, 2, student, course).expect("check");
+            check_image(&scene, &case.file, 2, STRICT, student, course).expect("check");
         assert_eq!(report.difference.differing_pixels, 0, "{course} {test}");
         assert!(findings.diagnosis.is_empty());
         let keys: Vec<&str> = findings

@@ -36,11 +36,23 @@ pub fn passes_but_hidden(case: &CaseReport) -> Option<String> {
 }
 
 /// A case's verdict, and when it fails, how far off it is: "differs: N of M pixels differ ...".
+/// A case that passes with pixels beyond the tolerance says so: "within-tolerance (5 pixels
+/// beyond ±2, allowed up to 10)", never only "within-tolerance".
 pub fn verdict(case: &CaseReport) -> String {
     let d = &case.difference;
     match d.verdict.passes() {
-        true => d.verdict.name().to_string(),
+        true => verdict_name(case),
         false => format!("{}: {}", d.verdict.name(), summary::difference_sentence(d)),
+    }
+}
+
+/// A case's verdict's name, and for a case that passes with pixels beyond the tolerance, how
+/// many ("within-tolerance (5 pixels beyond ±2, allowed up to 10)").
+pub fn verdict_name(case: &CaseReport) -> String {
+    let d = &case.difference;
+    match d.allowed_words() {
+        Some(allowed) => format!("{} ({allowed})", d.verdict.name()),
+        None => d.verdict.name().to_string(),
     }
 }
 
@@ -50,10 +62,10 @@ pub fn case_line(case: &CaseReport) -> String {
     let d = &case.difference;
     if d.verdict.passes() {
         return match case.hidden_mistakes.is_empty() {
-            true => d.verdict.name().to_string(),
+            true => verdict_name(case),
             false => format!(
                 "{}, but is {}: the same fix",
-                d.verdict.name(),
+                verdict_name(case),
                 exactly_what(case.hidden_mistakes)
             ),
         };
@@ -83,13 +95,14 @@ pub fn test_line(case: &CaseReport) -> String {
     }
 }
 
-/// A student's feedback when every graded case passes: how many, and the mistakes the passing
-/// images render exactly, if any.
-pub fn all_pass(cases: usize, hidden: Mistakes) -> String {
+/// A student's feedback when every graded case passes: how many, how (`how`: how many pass
+/// only by the allowance, or nothing), and the mistakes the passing images render exactly, if
+/// any.
+pub fn all_pass(cases: usize, how: &str, hidden: Mistakes) -> String {
     match hidden.is_empty() {
-        true => format!("passes all {cases} graded cases"),
+        true => format!("passes all {cases} graded cases{how}"),
         false => format!(
-            "passes all {cases} graded cases, but renders {}: fix it all the same",
+            "passes all {cases} graded cases{how}, but renders {}: fix it all the same",
             exactly_what(hidden)
         ),
     }

@@ -86,7 +86,7 @@ const PANELS = (() => {
         element.append(p);
         return p;
       };
-      line(`${report.scene}, ${report.width}x${report.height}, ${report.bounces} bounces: ${report.verdict}`, `verdict ${report.verdict}`);
+      line(`${report.scene}, ${report.width}x${report.height}, ${report.bounces} bounces: ${report.verdict_text || report.verdict}`, `verdict ${report.verdict}`);
       line(report.difference_text);
       // The server's words (the check's words.rs), the same as the text report's.
       if (report.hidden_text) line(report.hidden_text);
