@@ -1,9 +1,9 @@
-//! `whitted grade --course 2021-22`: a class of the later years, each student in the package
-//! of their own user id (`uk.ac.cam.cl.gfxintro.<crsid>.tick1`), handing in Plane, Renderer
-//! and Sphere. The skeleton is `tests/java/tick1-skeleton`, a Tick 1 skeleton of whitted's own
-//! API (not the course's, which the specs do not give), in the course's placeholder package
-//! `...gfxintro.crsid.tick1`; the submissions (`tests/java/tick1-submission`) are written
-//! against it the way students write (the plane's stored normal trusted, the far root taken).
+//! `whitted grade --course YEAR` on whitted's clean-room skeleton of the year (docs/grade.md,
+//! "The Tick 1 skeleton's API"): classes of every API group, each student in the package of
+//! their own user id (`uk.ac.cam.cl.gfxintro.<crsid>.tick1`), handing in Plane, Renderer and
+//! Sphere, as real submissions arrive (a whole IDE project with the course's classes and an
+//! edited Tick1.java, a Maven tree in a zip, a Tick 1* project). The submissions are our Java
+//! Tick 1 (`tests/java/tick1-submission`), selected for each year's API.
 
 use std::path::Path;
 
@@ -11,25 +11,11 @@ use serde_json::Value;
 
 use crate::common::*;
 use crate::grade::{grade, records};
+use crate::grade_skeletons::fixture;
 
-/// The submission's three files in package `crsid`, with `bugs` baked into Renderer.java.
+/// The submission's three files for 2021-22 in package `crsid`, with `bugs` baked in.
 fn submission(crsid: &str, bugs: &[&str]) -> Vec<(&'static str, String)> {
-    let dir = root().join("tests/java/tick1-submission");
-    ["Plane.java", "Renderer.java", "Sphere.java"]
-        .into_iter()
-        .map(|name| {
-            let text = std::fs::read_to_string(dir.join(name)).expect("source");
-            let text = text.replace(
-                "package uk.ac.cam.cl.gfxintro.crsid.tick1;",
-                &format!("package uk.ac.cam.cl.gfxintro.{crsid}.tick1;"),
-            );
-            let text = text.replace(
-                "System.getProperty(\"bug\", \"\")",
-                &format!("\"{}\"", bugs.join(",")),
-            );
-            (name, text)
-        })
-        .collect()
+    fixture("2021-22", crsid, bugs)
 }
 
 /// Writes a student's folder: their files under `layout` (`{crsid}` replaced).
@@ -41,25 +27,9 @@ fn student(class: &Path, folder: &str, files: &[(&str, String)], layout: &str, c
     }
 }
 
-fn skeleton() -> String {
-    root()
-        .join("tests/java/tick1-skeleton")
-        .display()
-        .to_string()
-}
-
-/// `whitted grade class -o out --course course --skeleton SKELETON` in `dir`.
-fn grade_year(dir: &Path, course: &str, skeleton: &str) -> std::process::Output {
-    let args = [
-        "class",
-        "-o",
-        "out",
-        "--course",
-        course,
-        "--skeleton",
-        skeleton,
-    ];
-    grade(dir, &args)
+/// `whitted grade class -o out --course course` in `dir`: the year's default skeleton.
+fn grade_year(dir: &Path, course: &str) -> std::process::Output {
+    grade(dir, &["class", "-o", "out", "--course", course])
 }
 
 fn result_json(out: &Path, id: &str) -> Value {
@@ -127,7 +97,7 @@ fn a_later_class_with_a_package_each_is_graded_named_and_written_up() {
         "mn901",
     );
     let out = dir.path().join("out");
-    let run = grade_year(dir.path(), "2021-22", &skeleton());
+    let run = grade_year(dir.path(), "2021-22");
     assert_eq!(run.status.code(), Some(0), "{}", stderr(&run));
     let rows = records(&out.join("class.csv"));
     assert_eq!(rows.len(), 7, "{rows:?}");
@@ -168,7 +138,7 @@ fn a_random_tick1_star_submission_is_not_reproducible_rather_than_diagnosed() {
     let class = dir.path().join("class");
     let files = submission("op234", &["star-soft-shadows"]);
     student(&class, "op234", &files, "", "op234");
-    let run = grade_year(dir.path(), "2021-22", &skeleton());
+    let run = grade_year(dir.path(), "2021-22");
     assert_eq!(run.status.code(), Some(0), "{}", stderr(&run));
     let json = result_json(&dir.path().join("out"), "op234");
     let check = &json["extra_data"]["check"];
@@ -181,29 +151,33 @@ fn a_random_tick1_star_submission_is_not_reproducible_rather_than_diagnosed() {
     assert!(report.contains("not reproducible"), "{report}");
 }
 
+/// `--skeleton DIR` overrides the default: the course's 2023-24 classes as shipped (BumpySphere's
+/// getNormalAt without its return) do not compile, and the report says the skeleton is at fault.
 #[test]
-fn a_later_year_needs_its_skeleton_and_one_that_does_not_compile_is_named() {
+fn a_given_skeleton_overrides_the_default_and_one_that_does_not_compile_is_named() {
     let dir = tempfile::tempdir().expect("tempdir");
     let class = dir.path().join("class");
-    student(&class, "qr567", &submission("qr567", &[]), "", "qr567");
-    let run = grade(dir.path(), &["class", "-o", "out", "--course", "2021-22"]);
-    assert_eq!(run.status.code(), Some(2));
-    let said = stderr(&run);
-    assert!(said.contains("needs --skeleton DIR"), "{said}");
-    assert!(!dir.path().join("out/class.csv").exists());
-    // 2023-24's BumpySphere as shipped: getNormalAt without its return.
+    let files = fixture("2023-24", "qr567", &[]);
+    student(&class, "qr567", &files, "", "qr567");
     let broken = dir.path().join("broken");
-    let from = root().join("tests/java/tick1-skeleton/src/uk/ac/cam/cl/gfxintro/crsid/tick1");
-    std::fs::create_dir_all(&broken).expect("folder");
-    for entry in std::fs::read_dir(&from).expect("skeleton").flatten() {
-        let text = std::fs::read_to_string(entry.path()).expect("source");
-        let text = text.replace(
-            "return super.getNormalAt(position);",
-            "super.getNormalAt(position);",
-        );
-        std::fs::write(broken.join(entry.file_name()), text).expect("write");
+    let course = whitted_core::course::Course::from_name("2023-24").expect("course");
+    for (path, bytes) in whitted_grade::clean_room_skeleton(course, None).expect("skeleton") {
+        let text = String::from_utf8(bytes).expect("utf-8");
+        let text = text.replace("return new Vector3(0);", "new Vector3(0);");
+        let path = broken.join(path);
+        std::fs::create_dir_all(path.parent().expect("parent")).expect("folder");
+        std::fs::write(path, text).expect("write");
     }
-    let run = grade_year(dir.path(), "2023-24", broken.to_str().expect("utf-8"));
+    let args = [
+        "class",
+        "-o",
+        "out",
+        "--course",
+        "2023-24",
+        "--skeleton",
+        s(&broken),
+    ];
+    let run = grade(dir.path(), &args);
     assert_eq!(run.status.code(), Some(0), "{}", stderr(&run));
     let rows = records(&dir.path().join("out/class.csv"));
     assert_eq!(rows[0]["status"], "compile-error", "{rows:?}");
@@ -212,4 +186,173 @@ fn a_later_year_needs_its_skeleton_and_one_that_does_not_compile_is_named() {
     assert!(report.contains("BumpySphere.java"), "{report}");
     assert!(report.contains("missing return statement"), "{report}");
     assert!(report.contains("the skeleton"), "{report}");
+    // The same student on the default skeleton of the year compiles and passes.
+    let run = grade(
+        dir.path(),
+        &["class", "-o", "default", "--course", "2023-24"],
+    );
+    assert_eq!(run.status.code(), Some(0), "{}", stderr(&run));
+    let rows = records(&dir.path().join("default/class.csv"));
+    assert_eq!(rows[0]["status"], "graded", "{rows:?}");
+    assert_eq!(rows[0]["passed"], rows[0]["cases"], "{rows:?}");
+}
+
+/// A project as a student's IDE has it: the course's classes beside their three files, an edited
+/// Tick1.java and Tick1Tests.java, compiled classes, scenes; all under `top`.
+fn ide_project(class: &Path, folder: &str, year: &str, crsid: &str, bugs: &[&str], top: &str) {
+    let course = whitted_core::course::Course::from_name(year).expect("course");
+    let package = format!("uk.ac.cam.cl.gfxintro.{crsid}.tick1");
+    let root = class.join(folder).join(top);
+    for (path, bytes) in
+        whitted_grade::clean_room_skeleton(course, Some(&package)).expect("skeleton")
+    {
+        let text = String::from_utf8(bytes).expect("utf-8");
+        // Six of eleven real solutions change Tick1's defaults; a few break it outright.
+        let text = text.replace("\"tick1.xml\"", "\"scenes/test1.xml\"");
+        let path = root.join("src").join(path);
+        std::fs::create_dir_all(path.parent().expect("parent")).expect("folder");
+        std::fs::write(path, text).expect("write");
+    }
+    student(
+        &class.join(folder),
+        top,
+        &fixture(year, crsid, bugs),
+        &format!("src/uk/ac/cam/cl/gfxintro/{crsid}/tick1"),
+        crsid,
+    );
+    for (path, text) in [
+        (".idea/misc.xml", "<project version=\"4\"/>"),
+        ("tick1.iml", "<module type=\"JAVA_MODULE\"/>"),
+        ("scenes/test1.xml", "<scene/>"),
+        (
+            &format!("out/production/tick1/uk/ac/cam/cl/gfxintro/{crsid}/tick1/Tick1.class")
+                as &str,
+            "\u{cafe}",
+        ),
+    ] {
+        let path = root.join(path);
+        std::fs::create_dir_all(path.parent().expect("parent")).expect("folder");
+        std::fs::write(path, text).expect("write");
+    }
+}
+
+/// Each API group's class graded on its default skeleton, as submissions arrive: whole IDE
+/// projects carrying the course's classes and an edited Tick1.java, a Maven tree zipped inside
+/// the Moodle folder with a second copy of a file, and a Tick 1* project.
+#[test]
+fn every_api_group_is_graded_on_its_own_skeleton_as_submissions_arrive() {
+    for (year, bugs, width) in [
+        ("2017-18", &["specular-white"][..], 640),
+        ("2018-19", &["no-shadows"][..], 640),
+        ("2023-24", &["view-to-camera"][..], 800),
+    ] {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let class = dir.path().join("class");
+        ide_project(
+            &class,
+            "Ada_51001_assignsubmission_file",
+            year,
+            "ab123",
+            &[],
+            "tick1",
+        );
+        // A Maven project zipped, with an old copy of Renderer.java left at the top.
+        let maven = dir.path().join("maven");
+        let tree = "src/main/java/uk/ac/cam/cl/gfxintro/cd456/tick1";
+        student(
+            &maven,
+            "project",
+            &fixture(year, "cd456", bugs),
+            tree,
+            "cd456",
+        );
+        std::fs::write(maven.join("project/pom.xml"), "<project/>").expect("pom");
+        let folder = class.join("Ben_51002_assignsubmission_file");
+        std::fs::create_dir_all(&folder).expect("folder");
+        zip_folder(&maven.join("project"), &folder.join("project.zip"));
+        let old = fixture(year, "cd456", &["shading-missing"]);
+        std::fs::write(folder.join("Renderer.java"), &old[1].1).expect("old copy");
+        if year == "2023-24" {
+            // Tick 1*: random soft shadows in its own package.
+            let star: Vec<(&str, String)> = fixture(year, "ef789", &["star-soft-shadows"])
+                .into_iter()
+                .map(|(name, text)| (name, text.replace(".ef789.tick1;", ".ef789.tick1star;")))
+                .collect();
+            student(
+                &class,
+                "Cy_51003_assignsubmission_file",
+                &star,
+                "src/uk/ac/cam/cl/gfxintro/ef789/tick1star",
+                "ef789",
+            );
+        }
+        let run = grade_year(dir.path(), year);
+        assert_eq!(run.status.code(), Some(0), "{year}: {}", stderr(&run));
+        let out = dir.path().join("out");
+        let rows = records(&out.join("class.csv"));
+        assert_eq!(
+            rows.len(),
+            if year == "2023-24" { 3 } else { 2 },
+            "{year}: {rows:?}"
+        );
+        let ada = rows.iter().find(|r| r["id"] == "51001").expect("Ada");
+        assert_eq!(ada["status"], "graded", "{year}: {ada:?}");
+        assert_eq!(ada["diagnosis"], "", "{year}: {ada:?}");
+        assert_eq!(ada["passed"], ada["cases"], "{year}: {ada:?}");
+        let ben = rows.iter().find(|r| r["id"] == "51002").expect("Ben");
+        assert_eq!(ben["status"], "graded", "{year}: {ben:?}");
+        assert_eq!(ben["diagnosis"], bugs.join("+"), "{year}: {ben:?}");
+        let json = result_json(&out, "51002");
+        let check = &json["extra_data"]["check"];
+        assert_eq!(check["cases"][0]["width"], width, "{year}");
+        let report =
+            std::fs::read_to_string(out.join("students/51001/report.html")).expect("report");
+        assert!(
+            report.contains("Tick1.java"),
+            "{year}: the ignored classes are said: {report}"
+        );
+        let ben = std::fs::read_to_string(out.join("students/51002/report.html")).expect("report");
+        assert!(ben.contains("Renderer.java"), "{year}: {ben}");
+        let index = std::fs::read_to_string(out.join("index.html")).expect("index");
+        assert!(
+            index.contains(&format!("clean-room {year} skeleton")),
+            "{year}: {index}"
+        );
+        if year == "2023-24" {
+            let cy = rows.iter().find(|r| r["id"] == "51003").expect("Cy");
+            let report =
+                std::fs::read_to_string(out.join("students/51003/report.html")).expect("report");
+            assert!(report.contains("Tick 1*"), "{cy:?}: {report}");
+            assert!(!report.contains("timeout"), "{report}");
+        }
+    }
+}
+
+/// `dir` zipped into `zip`, its files under the folder's own name.
+fn zip_folder(dir: &Path, zip: &Path) {
+    fn files(dir: &Path, into: &mut Vec<std::path::PathBuf>) {
+        for entry in std::fs::read_dir(dir).expect("folder").flatten() {
+            match entry.file_type().expect("type").is_dir() {
+                true => files(&entry.path(), into),
+                false => into.push(entry.path()),
+            }
+        }
+    }
+    let mut paths = Vec::new();
+    files(dir, &mut paths);
+    paths.sort();
+    let file = std::fs::File::create(zip).expect("zip");
+    let mut writer = zip::ZipWriter::new(file);
+    let options = zip::write::SimpleFileOptions::default();
+    for path in paths {
+        let name = path
+            .strip_prefix(dir.parent().expect("parent"))
+            .expect("inside");
+        writer
+            .start_file(name.to_string_lossy(), options)
+            .expect("entry");
+        let bytes = std::fs::read(&path).expect("read");
+        std::io::Write::write_all(&mut writer, &bytes).expect("write");
+    }
+    writer.finish().expect("finish");
 }

@@ -72,11 +72,27 @@ pub struct Holdings {
     pub folder: String,
     pub found: Vec<Found>,
     pub notes: Vec<String>,
+    /// The names of the other `.java` files it holds (its own Tick1.java, the course's classes):
+    /// never compiled, but said, since a student who edited them must know it did not count.
+    pub ignored_java: std::collections::BTreeSet<String>,
 }
+
+/// How many names of ignored `.java` files are kept, at most.
+const MAX_IGNORED_NAMES: usize = 100;
 
 impl Holdings {
     fn add(&mut self, path: String, bytes: std::result::Result<Vec<u8>, String>) {
         self.found.push(Found { path, bytes });
+    }
+
+    /// Notes `name` if it is a Java source the grade does not take.
+    fn saw(&mut self, name: &str) {
+        if name.ends_with(".java")
+            && wanted(name).is_none()
+            && self.ignored_java.len() < MAX_IGNORED_NAMES
+        {
+            self.ignored_java.insert(name.to_string());
+        }
     }
 }
 
@@ -127,6 +143,7 @@ pub fn search_zip<R: Read + Seek>(
         let name = file_name(path);
         let wanted = wanted(name).is_some();
         if !wanted && !is_zip_name(path) {
+            holdings.saw(name);
             continue;
         }
         let entry = match zip.by_index(*i) {
@@ -215,6 +232,9 @@ pub fn search_dir(dir: &Path, holdings: &mut Holdings) {
         };
         let (path, kind) = (entry.path(), entry.file_type());
         let name = entry.file_name().to_string_lossy().into_owned();
+        if kind.is_file() {
+            holdings.saw(&name);
+        }
         if kind.is_file() && (wanted(&name).is_some() || is_zip_name(&name)) {
             let label = shown(dir, path);
             let cap = if is_zip_name(&name) {

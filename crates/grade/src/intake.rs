@@ -230,6 +230,19 @@ fn from_folders(dir: &Path) -> Result<Vec<(String, String, Holdings)>> {
 
 /// The id as a file name: letters, digits, `-`, `_`, `.` kept, anything else `_`, never `.` or
 /// `..` or empty.
+/// What is said of the other `.java` files a submission holds: not graded, the year's own
+/// classes used instead, as in the course's tester.
+fn ignored_note(names: &std::collections::BTreeSet<String>, course: Course) -> String {
+    let names: Vec<&str> = names.iter().map(String::as_str).collect();
+    let taken = archive::submitted(course).join(", ");
+    format!(
+        "{}: not graded. Only {taken} are taken from a submission; every other class is the \
+         course's own, so changes to {} do not count",
+        names.join(", "),
+        if names.len() == 1 { "it" } else { "them" }
+    )
+}
+
 pub fn safe_id(id: &str) -> String {
     let safe: String = id
         .chars()
@@ -268,6 +281,9 @@ fn settle(students: Vec<(String, String, Holdings)>, course: Course) -> Vec<Subm
             } else {
                 choose(&holdings, &mut notes, &mut warnings, course)
             };
+            if !holdings.ignored_java.is_empty() {
+                notes.push(ignored_note(&holdings.ignored_java, course));
+            }
             Submission {
                 id: safe,
                 name,
