@@ -13,7 +13,7 @@ use whitted_grade::{Grading, Rerun};
 pub struct GradeArgs {
     /// Moodle's "Download all submissions" zip, a folder with a folder per student, or one
     /// student's project folder
-    #[arg(value_name = "SUBMISSIONS", required_unless_present = "calibrate")]
+    #[arg(value_name = "SUBMISSIONS", required_unless_present_any = ["calibrate", "write_skeleton"])]
     pub submissions: Option<PathBuf>,
 
     /// Where the reports, class.csv, mistakes.csv, moodle.csv and index.html go (made if
@@ -32,9 +32,15 @@ pub struct GradeArgs {
     #[arg(long, conflicts_with_all = ["list", "only", "part", "rerun"])]
     pub calibrate: bool,
 
+    /// Grade no one: write whitted's clean-room skeleton of the --course year into OUTDIR (a new
+    /// folder), its sources under src/ in the course's package: the classes a student's files
+    /// are compiled against
+    #[arg(long, conflicts_with_all = ["list", "calibrate", "only", "part", "rerun", "skeleton", "submissions"])]
+    pub write_skeleton: bool,
+
     /// The course's sources to compile against: 2016-17's gfx/tick2, or from 2017-18 the
-    /// year's tick1 folder (found anywhere under DIR; required then) [default: whitted's
-    /// clean-room 2016-17 skeleton, with the same API]
+    /// year's tick1 folder (found anywhere under DIR) [default: whitted's clean-room skeleton of
+    /// the year, with the course's API]
     #[arg(long, value_name = "DIR")]
     pub skeleton: Option<PathBuf>,
 

@@ -422,3 +422,61 @@ fn each_year_s_tick1_reads_its_command_line_as_the_course_s_does() {
     assert!(run.status.success(), "{}", stderr(&run));
     assert_eq!(read_png(&d.join("t2.png")).width, 640);
 }
+
+/// `grade --write-skeleton` writes the year's classes, which a student's files compile against,
+/// into a new folder, and never into an existing one.
+#[test]
+fn the_year_s_skeleton_is_written_out_whole_and_never_over_a_folder() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let run = whitted(
+        d,
+        &[
+            "grade",
+            "--write-skeleton",
+            "--course",
+            "2018-19",
+            "-o",
+            "sk",
+        ],
+    );
+    assert!(run.status.success(), "{}", stderr(&run));
+    let folder = d.join("sk/src/uk/ac/cam/cl/gfxintro/crsid/tick1");
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(&folder)
+        .expect("written")
+        .flatten()
+        .map(|e| e.path())
+        .collect();
+    assert_eq!(paths.len(), 12);
+    let vector = std::fs::read_to_string(folder.join("Vector3.java")).expect("Vector3");
+    assert!(vector.contains("public Vector3 inv()") && !vector.contains("isZero"));
+    for (name, text) in fixture("2018-19", "crsid", &[]) {
+        let path = folder.join(name);
+        std::fs::write(&path, text).expect("write");
+        paths.push(path);
+    }
+    let javac = std::process::Command::new("javac")
+        .args(["-proc:none", "-d"])
+        .arg(d.join("classes"))
+        .args(&paths)
+        .output()
+        .expect("javac");
+    assert!(javac.status.success(), "{}", stderr(&javac));
+    let again = whitted(
+        d,
+        &[
+            "grade",
+            "--write-skeleton",
+            "--course",
+            "2018-19",
+            "-o",
+            "sk",
+        ],
+    );
+    assert_eq!(again.status.code(), Some(2));
+    assert!(
+        stderr(&again).contains("already exists"),
+        "{}",
+        stderr(&again)
+    );
+}
