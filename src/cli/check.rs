@@ -62,8 +62,8 @@ pub struct CheckArgs {
     #[arg(long, value_name = "SECONDS", default_value_t = 60, value_parser = parse_timeout)]
     pub timeout: u64,
 
-    /// Print the catalogue of mistakes and exit
-    #[arg(long, exclusive = true)]
+    /// Print the catalogue of mistakes and exit (with --course, that year's entries in its words)
+    #[arg(long, conflicts_with_all = ["image", "program", "scene", "json", "heatmap", "report", "view", "bounces"])]
     pub list_bugs: bool,
 
     /// Open the check in the viewer: the image against the reference, the error maps, the

@@ -27,7 +27,7 @@ use whitted_io::output::stdout;
 /// Returns whether every image passed.
 pub fn run(args: &CheckArgs) -> Result<bool> {
     if args.list_bugs {
-        stdout::print_line(&catalogue())?;
+        stdout::print_line(&catalogue(args.course.map(Course::from)))?;
         return Ok(true);
     }
     let serve = &args.serve;
@@ -47,18 +47,21 @@ pub fn run(args: &CheckArgs) -> Result<bool> {
 }
 
 /// The catalogue: each entry's id and statement on a line (with the years that offer it,
-/// where not every year does), then where and how to fix it.
-fn catalogue() -> String {
+/// where not every year does), then where and how to fix it; for one year, its entries only,
+/// in its words.
+fn catalogue(course: Option<Course>) -> String {
+    let words = course.unwrap_or_default();
     Bug::ALL
         .iter()
+        .filter(|b| course.is_none_or(|c| b.offered_in(c)))
         .map(|b| {
-            let [place, fix] = b.advice();
+            let [place, fix] = b.advice(words);
             let years: Vec<&str> = Course::ALL
                 .into_iter()
                 .filter(|&c| b.offered_in(c))
                 .map(Course::name)
                 .collect();
-            let years = if years.len() == Course::ALL.len() {
+            let years = if years.len() == Course::ALL.len() || course.is_some() {
                 String::new()
             } else {
                 format!(" [--course {}]", years.join(", "))
@@ -66,7 +69,7 @@ fn catalogue() -> String {
             format!(
                 "{:<24} {}{years}\n{:25}{place}\n{:25}{fix}",
                 b.id(),
-                b.description(),
+                b.description(words),
                 "",
                 ""
             )

@@ -699,8 +699,9 @@ fn every_entry_says_where_and_how_to_fix_it() {
     ];
     for bug in Bug::ALL {
         assert!(methods.contains(&bug.place()), "{}", bug.id());
-        assert!(!bug.fix().is_empty() && !bug.looks_like().is_empty());
-        let [place, fix] = bug.advice();
+        let y2016 = Course::Y2016;
+        assert!(!bug.fix(y2016).is_empty() && !bug.looks_like(y2016).is_empty());
+        let [place, fix] = bug.advice(y2016);
         assert!(
             listed.contains(&place) && listed.contains(&fix),
             "{}",
@@ -708,8 +709,27 @@ fn every_entry_says_where_and_how_to_fix_it() {
         );
     }
     let reflect = Bug::from_id("reflect-unclamped").expect("id");
-    assert!(reflect.looks_like().contains("L.reflectIn(N)"));
-    assert!(reflect.fix().contains("R = 2 max(0, N.L) N - L"));
+    assert!(reflect.looks_like(Course::Y2016).contains("L.reflectIn(N)"));
+    assert!(reflect
+        .fix(Course::Y2016)
+        .contains("R = 2 max(0, N.L) N - L"));
+    // One year's catalogue: its entries only, in its words.
+    let run = whitted(dir.path(), &["check", "--list-bugs", "--course", "2019-20"]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let listed = String::from_utf8_lossy(&run.stdout);
+    assert!(listed.contains("view-to-camera") && listed.contains("shadow-bias-along-n"));
+    assert!(
+        !listed.contains("specular-gated"),
+        "the year's rule is no mistake: {listed}"
+    );
+    assert!(
+        listed.contains("ColorRGB colour = new ColorRGB(0)"),
+        "{listed}"
+    );
+    assert!(
+        !listed.contains("inShadow stays false") && !listed.contains("[--course"),
+        "{listed}"
+    );
 }
 
 #[test]

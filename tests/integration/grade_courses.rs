@@ -313,6 +313,14 @@ fn every_api_group_is_graded_on_its_own_skeleton_as_submissions_arrive() {
         );
         let ben = std::fs::read_to_string(out.join("students/51002/report.html")).expect("report");
         assert!(ben.contains("Renderer.java"), "{year}: {ben}");
+        // In the year's own words: no 2016-17 names.
+        assert!(
+            !ben.contains("inShadow stays false") && !ben.contains("|X - P|"),
+            "{year}: {ben}"
+        );
+        if year == "2018-19" {
+            assert!(ben.contains("no shadow ray is cast"), "{ben}");
+        }
         let index = std::fs::read_to_string(out.join("index.html")).expect("index");
         assert!(
             index.contains(&format!("clean-room {year} skeleton")),

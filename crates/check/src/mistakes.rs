@@ -7,8 +7,11 @@
 
 mod catalogue;
 mod variant;
+mod year_words;
 
 pub use variant::{Number, Output, Parameter, Rounding, Variant};
+
+use std::borrow::Cow;
 
 use whitted_core::course::Course;
 use whitted_core::frame::limits::MAX_BOUNCES;
@@ -241,9 +244,9 @@ impl Bug {
         catalogue::entry(self).id
     }
 
-    /// The entry in one line, stated against docs/rendering.md.
-    pub fn description(self) -> &'static str {
-        catalogue::entry(self).description
+    /// The entry in one line, stated against docs/rendering.md, in `course`'s names.
+    pub fn description(self, course: Course) -> Cow<'static, str> {
+        year_words::in_year(catalogue::entry(self).description, course)
     }
 
     /// The stage of the handout whose code this entry is in.
@@ -251,34 +254,31 @@ impl Bug {
         catalogue::entry(self).stage
     }
 
-    /// The class and method of the course's code the entry is in.
+    /// The class and method of the course's code the entry is in (the same in every year).
     pub fn place(self) -> &'static str {
         catalogue::entry(self).place
     }
 
     /// What the wrong code typically looks like; for a stage, what is not written yet.
-    pub fn looks_like(self) -> &'static str {
-        catalogue::entry(self).looks_like
+    pub fn looks_like(self, course: Course) -> Cow<'static, str> {
+        year_words::in_year(catalogue::entry(self).looks_like, course)
     }
 
-    /// The course's formula and the line that computes it.
-    pub fn fix(self) -> &'static str {
-        catalogue::entry(self).fix
+    /// The course's formula and the line that computes it, in `course`'s names.
+    pub fn fix(self, course: Course) -> Cow<'static, str> {
+        year_words::in_year(catalogue::entry(self).fix, course)
     }
 
     /// Where and how to fix it, as two lines of a report: where (and what the wrong code
     /// looks like, or which TODO is open), then the fix.
-    pub fn advice(self) -> [String; 2] {
+    pub fn advice(self, course: Course) -> [String; 2] {
+        let looks_like = self.looks_like(course);
         let place = if self.is_unfinished() {
-            format!(
-                "where: {}, not written yet: {}",
-                self.place(),
-                self.looks_like()
-            )
+            format!("where: {}, not written yet: {looks_like}", self.place())
         } else {
-            format!("where: {}, often `{}`", self.place(), self.looks_like())
+            format!("where: {}, often `{looks_like}`", self.place())
         };
-        [place, format!("fix: {}", self.fix())]
+        [place, format!("fix: {}", self.fix(course))]
     }
 
     /// Whether this entry is a stage not written yet rather than a mistake in written code.

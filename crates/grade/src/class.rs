@@ -83,7 +83,7 @@ pub fn counts(rows: &[StudentResult]) -> Vec<(Bug, usize)> {
     counts
 }
 
-pub fn mistakes_csv(rows: &[StudentResult]) -> String {
+pub fn mistakes_csv(rows: &[StudentResult], course: whitted_core::course::Course) -> String {
     let graded = rows
         .iter()
         .filter(|r| r.extra.status == StudentStatus::Graded)
@@ -99,12 +99,10 @@ pub fn mistakes_csv(rows: &[StudentResult]) -> String {
                 "mistake"
             }
             .to_string(),
-            bug.stage()
-                .key(whitted_core::course::Course::Y2016)
-                .to_string(),
+            bug.stage().key(course).to_string(),
             n.to_string(),
             fraction_of(n, graded),
-            bug.description().to_string(),
+            bug.description(course).to_string(),
         ]);
     }
     out

@@ -194,7 +194,13 @@ pub fn run(options: &Options) -> Result<Summary> {
             },
         ];
         let title = format!("{}: the class", tick(options.course));
-        summary.index = Some(write_class(&options.outdir, &rows, &title, &settings)?);
+        summary.index = Some(write_class(
+            &options.outdir,
+            &rows,
+            &title,
+            &settings,
+            options.course,
+        )?);
     }
     Ok(summary)
 }
@@ -552,12 +558,13 @@ fn write_class(
     rows: &[StudentResult],
     title: &str,
     settings: &[String],
+    course: Course,
 ) -> Result<PathBuf> {
     let now = moodle::modified_now();
     write_atomic(&outdir.join("class.csv"), class::class_csv(rows).as_bytes())?;
     write_atomic(
         &outdir.join("mistakes.csv"),
-        class::mistakes_csv(rows).as_bytes(),
+        class::mistakes_csv(rows, course).as_bytes(),
     )?;
     write_atomic(
         &outdir.join("moodle.csv"),

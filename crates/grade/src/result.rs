@@ -396,7 +396,15 @@ fn feedback(run: &SuiteRun, policy: &Policy) -> String {
             let bugs: Vec<Bug> = top.mistakes.bugs();
             let said: Vec<String> = bugs
                 .iter()
-                .map(|b| format!("{} ({}; {})", b.id(), b.description(), b.advice()[1]))
+                .map(|b| {
+                    let course = top.course;
+                    format!(
+                        "{} ({}; {})",
+                        b.id(),
+                        b.description(course),
+                        b.advice(course)[1]
+                    )
+                })
                 .collect();
             line += &format!("; looks like {}", said.join(" and "));
         }

@@ -170,7 +170,12 @@ fn load_check(
         .diagnosis
         .iter()
         .flat_map(|d| d.mistakes.bugs())
-        .map(|b| (b.id().to_string(), Value::from(b.description())))
+        .map(|b| {
+            (
+                b.id().to_string(),
+                Value::from(b.description(chosen.course)),
+            )
+        })
         .collect();
     report["descriptions"] = Value::Object(named);
     report["course"] = Value::from(chosen.course.name());

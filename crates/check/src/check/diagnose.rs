@@ -62,6 +62,8 @@ pub struct Diagnosis {
     /// Entries that, added to these, render every case byte for byte the same: the images
     /// cannot tell whether the program has them too. Most common first.
     pub image_identical_with: Vec<Bug>,
+    /// The year it is a diagnosis of: its words are that year's (`Bug::advice`).
+    pub course: Course,
 }
 
 impl Diagnosis {
@@ -330,7 +332,7 @@ impl Search {
         let differing: usize = cases.iter().map(|c| c.wrong.len()).sum();
         let mut order: Vec<&Scored> = self.useful().filter(|s| s.cost() < null).collect();
         order.sort_by(ranking);
-        rank(order, differing)
+        rank(order, differing, course_of(cases))
     }
 
     /// What the suite's best explanation `top` says of case `i`: the part of it that shows
@@ -363,6 +365,7 @@ impl Search {
             exact: here.is_whole(),
             number: None,
             by_rounding: explained_share(here.by_rounding, wrong),
+            course: course_of(cases),
             image_identical_with: Vec::new(),
         };
         CaseFinding {
@@ -412,6 +415,11 @@ impl CaseFinding {
 const LABELLED: f64 = 0.5;
 
 /// Lower cost first; then fewer entries, then catalogue order.
+/// The year the cases are of (their renderers'; 2016-17 for none).
+pub fn course_of(cases: &[Case]) -> Course {
+    cases.first().map_or(Course::Y2016, |c| c.renderer.course())
+}
+
 fn ranking(a: &&Scored, b: &&Scored) -> std::cmp::Ordering {
     a.cost()
         .total_cmp(&b.cost())
@@ -426,7 +434,7 @@ fn simpler(a: Mistakes, b: Mistakes) -> std::cmp::Ordering {
 
 /// The listed diagnoses from candidates in ranking order: twins fold into the first of them,
 /// and after an exact explanation of everything only its twins remain.
-fn rank(order: Vec<&Scored>, differing: usize) -> Vec<Diagnosis> {
+fn rank(order: Vec<&Scored>, differing: usize, course: Course) -> Vec<Diagnosis> {
     let mut listed: Vec<(&Scored, Diagnosis)> = Vec::new();
     for s in order {
         let mistakes = s.variant.mistakes;
@@ -457,6 +465,7 @@ fn rank(order: Vec<&Scored>, differing: usize) -> Vec<Diagnosis> {
             number: None,
             by_rounding: explained_share(s.by_rounding(), differing),
             image_identical_with: Vec::new(),
+            course,
         };
         listed.push((s, diagnosis));
     }

@@ -32,8 +32,8 @@ pub fn diagnosis_json(list: &[Diagnosis]) -> Value {
             "explained_by_rounding": three_decimals(d.by_rounding),
             "image_identical_with": d.image_identical_with.iter().map(|b| b.id()).collect::<Vec<_>>(),
             "where": d.mistakes.bugs().iter().map(|b| b.place()).collect::<Vec<_>>(),
-            "looks_like": d.mistakes.bugs().iter().map(|b| b.looks_like()).collect::<Vec<_>>(),
-            "fix": d.mistakes.bugs().iter().map(|b| b.fix()).collect::<Vec<_>>(),
+            "looks_like": d.mistakes.bugs().iter().map(|b| b.looks_like(d.course)).collect::<Vec<_>>(),
+            "fix": d.mistakes.bugs().iter().map(|b| b.fix(d.course)).collect::<Vec<_>>(),
             "text": summary::diagnosis_lines(d),
         }))
         .collect::<Vec<_>>())

@@ -11,6 +11,7 @@ use crate::check::case::Case;
 use crate::check::diagnose::Diagnosis;
 use crate::check::score::{explained_share, Scored};
 use crate::mistakes::{Mistakes, Number, Parameter, Variant};
+use whitted_core::course::Course;
 use whitted_core::error::Result;
 use whitted_core::numbers::plain;
 
@@ -35,6 +36,8 @@ pub struct NumberFit {
     pub wrongly_changed_pixels: u64,
     /// Per case, counted whole: what the fit explains of it, as a case's label.
     pub per_case: Vec<Diagnosis>,
+    /// The year it is fitted in: its words are that year's.
+    pub course: Course,
 }
 
 impl NumberFit {
@@ -44,7 +47,15 @@ impl NumberFit {
             .with
             .bugs()
             .into_iter()
-            .map(|b| format!("{} ({}; fix: {})", b.id(), b.description(), b.fix()))
+            .map(|b| {
+                let course = self.course;
+                format!(
+                    "{} ({}; fix: {})",
+                    b.id(),
+                    b.description(course),
+                    b.fix(course)
+                )
+            })
             .collect();
         let with = match with.is_empty() {
             true => String::new(),
@@ -219,6 +230,7 @@ pub fn fit(cases: &[Case], bases: &[Mistakes]) -> Result<Vec<NumberFit>> {
                 parameter: number.parameter,
                 fitted: number.value,
                 with: whole.variant.mistakes,
+                course: crate::check::diagnose::course_of(cases),
                 explained: explained_share(whole.explained(), differing),
                 wrongly_changed_pixels: whole.wrongly_changed().round() as u64,
                 per_case: cases
@@ -237,6 +249,7 @@ pub fn fit(cases: &[Case], bases: &[Mistakes]) -> Result<Vec<NumberFit>> {
                             number: Some(number),
                             by_rounding: explained_share(here.by_rounding, wrong),
                             image_identical_with: Vec::new(),
+                            course: crate::check::diagnose::course_of(cases),
                         }
                     })
                     .collect(),

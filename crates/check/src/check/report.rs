@@ -107,7 +107,12 @@ impl ReportRow {
                     top.mistakes.ids().join(" + "),
                     100.0 * top.explained
                 ));
-                caption.extend(top.mistakes.bugs().iter().flat_map(|b| b.advice()));
+                caption.extend(
+                    top.mistakes
+                        .bugs()
+                        .iter()
+                        .flat_map(|b| b.advice(top.course)),
+                );
             }
             None => caption.push("no catalogued mistake fits".into()),
         }

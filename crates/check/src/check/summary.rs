@@ -110,8 +110,8 @@ pub fn diagnosis_lines(d: &Diagnosis) -> Vec<String> {
     let mut lines = Vec::new();
     for (i, bug) in d.mistakes.bugs().into_iter().enumerate() {
         let and = if i == 0 { "" } else { "and " };
-        lines.push(format!("{and}{}: {}", bug.id(), bug.description()));
-        lines.extend(bug.advice().map(|line| format!("  {line}")));
+        lines.push(format!("{and}{}: {}", bug.id(), bug.description(d.course)));
+        lines.extend(bug.advice(d.course).map(|line| format!("  {line}")));
     }
     lines.push(format!(
         "explains {}% of the differing pixels ({} not explained; changes {} pixels you had right){}",
@@ -146,9 +146,9 @@ pub fn diagnosis_lines(d: &Diagnosis) -> Vec<String> {
             "  with {} in place, {} ({}) renders the same: if fixing it leaves a difference, look at {}: {}",
             d.mistakes.name(),
             bug.id(),
-            bug.description(),
+            bug.description(d.course),
             bug.place(),
-            bug.fix()
+            bug.fix(d.course)
         ));
     }
     if !d.indistinguishable_from.is_empty() {

@@ -1,0 +1,103 @@
+//! The catalogue in each year's own words (docs/courses.md: "The `where` and `fix` texts use
+//! that year's names"). The catalogue is written once, in 2016-17's `gfx.tick2` names; from
+//! 2017-18 colours are `ColorRGB`s, the exponent is `getPhong_alpha`, and the shipped
+//! `illuminate` names the light's distance `distanceToLight`. One table of phrases rewrites
+//! every text for the later years, so that no entry is written twice.
+
+use std::borrow::Cow;
+
+use whitted_core::course::Course;
+
+/// 2016-17's phrase, and the later years'. Replaced in one pass from left to right, the first
+/// phrase of the table that starts at a place winning, so a replacement is never read again.
+const LATER: [(&str, &str); 13] = [
+    ("Vector3 colour", "ColorRGB colour"),
+    ("Vector3 I ", "ColorRGB I "),
+    ("Vector3 diffuse", "ColorRGB diffuse"),
+    ("Vector3 specular", "ColorRGB specular"),
+    ("new Vector3(0)", "new ColorRGB(0)"),
+    ("getPhong_n()", "getPhong_alpha()"),
+    ("d = |X - P|", "distanceToLight = |light.getPosition() - P|"),
+    ("X - P", "light.getPosition() - P"),
+    ("getIlluminationAt(d)", "getIlluminationAt(distanceToLight)"),
+    ("getDistance() < d", "getDistance() < distanceToLight"),
+    ("nearer than d", "nearer than distanceToLight"),
+    (
+        "inShadow stays false: the shadow stage not written yet",
+        "no shadow ray is cast: the shadow stage not written yet",
+    ),
+    (
+        "the specular term is white: I kS max(0, R.V)^n, without C",
+        "the specular term has the light's colour, not the object's: C_spec I kS max(0, R.V)^n, without C",
+    ),
+];
+
+/// `text` (a catalogue text in 2016-17's names) in `course`'s names.
+pub fn in_year(text: &'static str, course: Course) -> Cow<'static, str> {
+    if course.is_default() || !LATER.iter().any(|(from, _)| text.contains(from)) {
+        return Cow::Borrowed(text);
+    }
+    let mut out = String::with_capacity(text.len() + 32);
+    let mut rest = text;
+    while let Some(c) = rest.chars().next() {
+        match LATER.iter().find(|(from, _)| rest.starts_with(from)) {
+            Some((from, to)) => {
+                out.push_str(to);
+                rest = &rest[from.len()..];
+            }
+            None => {
+                out.push(c);
+                rest = &rest[c.len_utf8()..];
+            }
+        }
+    }
+    Cow::Owned(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mistakes::Bug;
+
+    #[test]
+    fn the_later_years_read_their_own_names_and_2016_17_its_own() {
+        let no_shadows = Bug::NoShadows;
+        assert!(no_shadows
+            .description(Course::Y2016)
+            .contains("inShadow stays false"));
+        let later = no_shadows.description(Course::Y2019);
+        assert!(!later.contains("inShadow"), "{later}");
+        let fix = no_shadows.fix(Course::Y2023);
+        assert!(
+            fix.contains("nearer than distanceToLight = |light.getPosition() - P|"),
+            "{fix}"
+        );
+        assert!(Bug::NoAmbient
+            .looks_like(Course::Y2017)
+            .contains("ColorRGB colour = new ColorRGB(0)"));
+        assert!(Bug::NoAmbient
+            .looks_like(Course::Y2016)
+            .contains("Vector3 colour = new Vector3(0)"));
+        // No later year's text keeps a colour as a Vector3 or 2016-17's exponent getter.
+        for course in Course::ALL.into_iter().filter(|c| !c.is_default()) {
+            for bug in Bug::ALL.into_iter().filter(|b| b.offered_in(course)) {
+                for text in [
+                    bug.description(course),
+                    bug.looks_like(course),
+                    bug.fix(course),
+                ] {
+                    for old in [
+                        "Vector3 colour",
+                        "Vector3 I ",
+                        "Vector3 diffuse",
+                        "Vector3 specular",
+                        "getPhong_n",
+                        "|X - P|",
+                    ] {
+                        assert!(!text.contains(old), "{course} {}: {text}", bug.id());
+                    }
+                }
+            }
+        }
+    }
+}
