@@ -364,3 +364,63 @@ fn zip_folder(dir: &Path, zip: &Path) {
     }
     writer.finish().expect("finish");
 }
+
+/// A Tick 1* program too slow for the timeout (hundreds of rays a pixel) is stopped at its first
+/// case out of time: the rest are not run and say why, never a row of timeouts.
+#[test]
+fn a_slow_tick1_star_project_is_one_timeout_and_said_to_be_tick1_star() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let class = dir.path().join("class");
+    let star: Vec<(&str, String)> = fixture("2023-24", "gh012", &[])
+        .into_iter()
+        .map(|(name, text)| {
+            let text = text.replace(".gh012.tick1;", ".gh012.tick1star;").replace(
+                "public BufferedImage render(Scene scene) {",
+                "public BufferedImage render(Scene scene) {\n        \
+                 try { Thread.sleep(600000); } catch (InterruptedException e) { }",
+            );
+            (name, text)
+        })
+        .collect();
+    student(
+        &class,
+        "gh012",
+        &star,
+        "src/uk/ac/cam/cl/gfxintro/gh012/tick1star",
+        "gh012",
+    );
+    let started = std::time::Instant::now();
+    let args = [
+        "class",
+        "-o",
+        "out",
+        "--course",
+        "2023-24",
+        "--timeout",
+        "4",
+    ];
+    let run = grade(dir.path(), &args);
+    assert_eq!(run.status.code(), Some(0), "{}", stderr(&run));
+    assert!(
+        started.elapsed() < std::time::Duration::from_secs(40),
+        "{:?}",
+        started.elapsed()
+    );
+    let json = result_json(&dir.path().join("out"), "gh012");
+    let statuses: Vec<&str> = json["extra_data"]["check"]["cases"]
+        .as_array()
+        .expect("cases")
+        .iter()
+        .map(|c| c["status"].as_str().expect("status"))
+        .collect();
+    // The cases that were running together (two at a time) may both run out.
+    let timeouts = statuses.iter().filter(|s| **s == "timeout").count();
+    assert!((1..=2).contains(&timeouts), "{statuses:?}");
+    assert!(
+        statuses.iter().filter(|s| **s == "not-run").count() >= 4,
+        "{statuses:?}"
+    );
+    let report =
+        std::fs::read_to_string(dir.path().join("out/students/gh012/report.html")).expect("report");
+    assert!(report.contains("a Tick 1* program"), "{report}");
+}

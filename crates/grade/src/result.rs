@@ -365,6 +365,14 @@ fn diagnosis_ids(run: &SuiteRun) -> Vec<&'static str> {
 /// The one line sent back to Moodle: how many counted cases pass, and the mistake with its fix
 /// (found over every case, the diagnostic ones too).
 fn feedback(run: &SuiteRun, policy: &Policy) -> String {
+    // A Tick 1* program stopped at its first case out of time: what it is, and what to do.
+    let not_run = run.cases.iter().find_map(|c| match &c.status {
+        RunStatus::NotRun(why) => Some(why),
+        _ => None,
+    });
+    if let Some(why) = not_run {
+        return format!("not auto-gradable: {why}");
+    }
     let counted: Vec<usize> = (0..run.cases.len()).filter(|&i| policy.counts(i)).collect();
     let cases = counted.len();
     let passed = counted.iter().filter(|&&i| run.cases[i].passed()).count();

@@ -152,7 +152,8 @@ fn outcome_json(run: &SuiteRun, outcome: &CaseOutcome, suite_dir: Option<&Path>)
     if let RunStatus::Crashed(message)
     | RunStatus::NoOutput(message)
     | RunStatus::OutOfMemory(message)
-    | RunStatus::OutputTooLarge(message) = &outcome.status
+    | RunStatus::OutputTooLarge(message)
+    | RunStatus::NotRun(message) = &outcome.status
     {
         object["message"] = json!(message);
     }

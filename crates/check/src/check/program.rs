@@ -56,6 +56,8 @@ pub enum RunStatus {
     OutOfMemory(String),
     /// It wrote more than a file may hold (the sandbox's file size limit).
     OutputTooLarge(String),
+    /// It was not run: a Tick 1* program ran out of time on an earlier case (why, in words).
+    NotRun(String),
 }
 
 impl RunStatus {
@@ -68,6 +70,7 @@ impl RunStatus {
             RunStatus::WrongSize { .. } => "wrong-size",
             RunStatus::OutOfMemory(_) => "out-of-memory",
             RunStatus::OutputTooLarge(_) => "output-too-large",
+            RunStatus::NotRun(_) => "not-run",
         }
     }
 
@@ -83,7 +86,8 @@ impl RunStatus {
             RunStatus::Crashed(message)
             | RunStatus::NoOutput(message)
             | RunStatus::OutOfMemory(message)
-            | RunStatus::OutputTooLarge(message) => format!("{}: {message}", self.name()),
+            | RunStatus::OutputTooLarge(message)
+            | RunStatus::NotRun(message) => format!("{}: {message}", self.name()),
             RunStatus::Timeout(seconds) => format!("timeout: still running after {seconds} s"),
         })
     }
@@ -190,7 +194,8 @@ pub fn run_suite_with(
     timeout: u64,
     cache: &Arc<ImageCache>,
 ) -> Result<SuiteRun> {
-    let finished = run_programs(launch, suite, Duration::from_secs(timeout))?;
+    let star = is_tick1_star(program);
+    let finished = run_programs(launch, suite, Duration::from_secs(timeout), star)?;
     let mut statuses: Vec<Option<RunStatus>> = Vec::new();
     let mut tails = Vec::new();
     let mut scenes: Vec<(usize, Scene)> = Vec::new();
@@ -328,6 +333,7 @@ fn rerun_differs(
         launch,
         std::slice::from_ref(case),
         Duration::from_secs(timeout),
+        false,
     )?;
     let first = &prepared[k];
     Ok(match again.into_iter().next() {
@@ -340,14 +346,30 @@ fn rerun_differs(
     })
 }
 
+/// Whether `program` (its command line) runs a class of the course's `tick1star` package: the
+/// optional Tick 1* (soft shadows, depth of field: hundreds of rays a pixel, a random image).
+pub fn is_tick1_star(program: &str) -> bool {
+    program.contains(".tick1star.")
+}
+
+/// What the cases a Tick 1* program did not run say.
+pub const STAR_NOT_RUN: &str = "a Tick 1* program (package tick1star: many random rays a pixel) \
+     ran out of time on an earlier case, so the rest were not run: its images are random draws, \
+     not auto-gradable; look at them by hand, give it a longer --timeout, or check the Tick 1 \
+     code without the Tick 1* additions";
+
+/// Runs every case, `AT_ONCE` at a time. With `star` (a Tick 1* program), the first case out of
+/// time stops the others: a row of timeouts would tell nothing more.
 fn run_programs(
     launch: &dyn Launch,
     suite: &[SuiteCase],
     timeout: Duration,
+    star: bool,
 ) -> Result<Vec<(Ran, String)>> {
     let mut results: Vec<Option<(Ran, String)>> = suite.iter().map(|_| None).collect();
     let mut running: Vec<Running> = Vec::new();
     let mut next = 0;
+    let mut stopped_star = false;
     let orphans = !launch.contains_descendants();
     let kill_orphans = || {
         if orphans {
@@ -392,6 +414,10 @@ fn run_programs(
                 Ok(None) if r.process.elapsed() > timeout => {
                     let index = r.index;
                     results[index] = Some(finish(launch, r, None, timeout));
+                    if star {
+                        next = suite.len();
+                        stopped_star = true;
+                    }
                 }
                 Ok(None) => still.push(r),
                 Err(e) => {
@@ -403,18 +429,22 @@ fn run_programs(
             }
         }
         running = still;
+        if stopped_star {
+            for mut r in running.drain(..) {
+                stop(&mut r);
+            }
+        }
         if !running.is_empty() {
             std::thread::sleep(POLL);
         }
     }
+    let not_run = match stopped_star {
+        true => RunStatus::NotRun(STAR_NOT_RUN.into()),
+        false => RunStatus::Crashed("not run".into()),
+    };
     Ok(results
         .into_iter()
-        .map(|r| {
-            r.unwrap_or((
-                Ran::Failed(RunStatus::Crashed("not run".into())),
-                String::new(),
-            ))
-        })
+        .map(|r| r.unwrap_or((Ran::Failed(not_run.clone()), String::new())))
         .collect())
 }
 
