@@ -17,6 +17,7 @@ mod golden_png;
 mod grade;
 mod grade_courses;
 mod grade_hostile;
+mod grade_machine;
 mod hostile;
 mod inspect;
 mod properties;

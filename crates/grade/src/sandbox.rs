@@ -140,9 +140,10 @@ pub enum Sandbox {
 }
 
 impl Sandbox {
-    /// Bubblewrap, tried once with `true` inside so that a system that forbids it (no user
-    /// namespaces) says so before any student runs.
-    pub fn bubblewrap(java: &Path) -> Result<Sandbox> {
+    /// Bubblewrap, tried once with `true` inside (in a folder under `scratch`, where the runs'
+    /// folders will be) so that a system that forbids it (no user namespaces, a folder its
+    /// users cannot reach) says so before any student runs.
+    pub fn bubblewrap(java: &Path, scratch: &Path) -> Result<Sandbox> {
         let bwrap = find_in_path("bwrap").ok_or_else(|| {
             Error::Environment(
                 "whitted grade runs every student's code in bubblewrap, which is not installed: \
@@ -161,8 +162,8 @@ impl Sandbox {
             root: rustix::process::geteuid().is_root(),
             cgroups: CgroupRoot::find(),
         };
-        let dir = tempfile::tempdir()
-            .map_err(|e| Error::io(std::env::temp_dir(), "cannot create a directory", e))?;
+        let dir = tempfile::tempdir_in(scratch)
+            .map_err(|e| Error::io(scratch, "cannot create a directory", e))?;
         let limits = Limits {
             memory_mib: 64,
             seconds: 10,
@@ -414,8 +415,8 @@ mod tests {
     /// tests need bubblewrap and a JDK; tools/test installs them).
     fn in_sandbox(script: &str) -> std::process::ExitStatus {
         let java = find_in_path("java").expect("a JDK on PATH");
-        let sandbox = Sandbox::bubblewrap(&java).expect("bubblewrap");
         let dir = tempfile::tempdir().expect("tempdir");
+        let sandbox = Sandbox::bubblewrap(&java, dir.path()).expect("bubblewrap");
         let limits = Limits {
             memory_mib: 256,
             seconds: 20,

@@ -14,6 +14,7 @@ use super::jvm;
 use super::policy::Policy;
 use super::sandbox::{Area, Limits, RunGuard, Sandbox, AREA_BYTES, AREA_FILES, AREA_FULL};
 use super::skeleton::Skeleton;
+use super::source_tree::write_sources;
 use super::status::StudentStatus;
 use super::warm_javac::WarmJavac;
 use whitted_check::check::image_cache::ImageCache;
@@ -81,7 +82,10 @@ pub fn grade(
             })
         }
     };
-    let work = setup.work.join("students").join(&submission.id);
+    let work = setup
+        .work
+        .join(super::work_area::STUDENTS)
+        .join(&submission.id);
     let _cleanup = WorkFolder(work.clone());
     let package = package_of(setup, files);
     let owned = sources(setup, files, package);
@@ -121,6 +125,8 @@ pub fn grade(
         }
         Compiled::Timeout => return Ok(Outcome::CompileTimeout),
     }
+    // The classes, however they were made, for the sandbox's users to read.
+    super::work_area::open_up(&work)?;
     let main = super::package::qualified(package, setup.skeleton.main);
     let launch = SandboxedJava {
         setup,
@@ -246,22 +252,8 @@ fn lay_out(sources: &[(&str, &[u8])], work: &Path) -> Result<Vec<String>> {
     let _ = std::fs::remove_dir_all(work);
     let classes = work.join("classes");
     std::fs::create_dir_all(&classes).map_err(|e| Error::io(&classes, "cannot create", e))?;
-    let src = work.join("src");
-    write_sources(&src, sources)
-}
-
-/// Writes `sources` (paths under the source root, as [`sources`] makes them: a package's
-/// folders, never `..`) under `src`; returns their paths.
-pub fn write_sources(src: &Path, sources: &[(&str, &[u8])]) -> Result<Vec<String>> {
-    let mut paths = Vec::new();
-    for (name, bytes) in sources {
-        let path = src.join(name);
-        if let Some(folder) = path.parent() {
-            std::fs::create_dir_all(folder).map_err(|e| Error::io(folder, "cannot create", e))?;
-        }
-        std::fs::write(&path, bytes).map_err(|e| Error::io(&path, "cannot write", e))?;
-        paths.push(path.display().to_string());
-    }
+    let paths = write_sources(&work.join("src"), sources)?;
+    super::work_area::open_up(work)?;
     Ok(paths)
 }
 
@@ -288,6 +280,8 @@ impl Launch for SandboxedJava<'_> {
             self.classes.display().to_string(),
             self.main.clone(),
         ]);
+        // The scene in it, for the sandbox's user to read.
+        super::work_area::open_up(dir)?;
         let classes = self.classes.as_path();
         let (command, run) = self.setup.sandbox.command(
             &program,
@@ -306,6 +300,10 @@ impl Launch for SandboxedJava<'_> {
 
     fn contains_descendants(&self) -> bool {
         !self.setup.sandbox.is_none()
+    }
+
+    fn scratch(&self) -> PathBuf {
+        self.setup.work.join(super::work_area::CASES)
     }
 
     fn ended(&self, dir: &Path) -> Option<LimitHit> {
