@@ -18,6 +18,7 @@
 //! them; the class files are made from the `result.json`s alone.
 
 mod archive;
+mod clash;
 mod class;
 mod compile;
 mod feedback_zip;
@@ -28,6 +29,7 @@ mod memory_cgroup;
 mod moodle;
 mod package;
 mod policy;
+mod reason;
 mod report;
 mod result;
 mod sandbox;

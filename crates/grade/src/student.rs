@@ -118,10 +118,7 @@ pub fn grade(
     match compiled {
         Compiled::Ok => {}
         Compiled::Errors(messages) => {
-            return Ok(Outcome::CompileError(skeleton_named(
-                &setup.skeleton,
-                messages,
-            )))
+            return Ok(Outcome::CompileError(blamed(setup, files, messages)))
         }
         Compiled::Timeout => return Ok(Outcome::CompileTimeout),
     }
@@ -164,6 +161,23 @@ fn offer_only_their_files(run: &mut SuiteRun, course: Course) {
         first = false;
         keep
     });
+}
+
+/// javac's messages, after a line saying whose the fault is when it is not plainly the
+/// student's: their file declares one of the skeleton's classes (`clash.rs`), or the first
+/// error is in the skeleton's own files.
+fn blamed(setup: &Setup, files: &Files, messages: String) -> String {
+    let theirs = files.sources.iter().map(|(n, b)| (*n, b.as_slice()));
+    let skeleton: Vec<&str> = setup
+        .skeleton
+        .files
+        .iter()
+        .map(|(n, _)| n.as_str())
+        .collect();
+    match super::clash::message(&super::clash::clashes(theirs, &skeleton)) {
+        Some(clash) => format!("{clash}\n{messages}"),
+        None => skeleton_named(&setup.skeleton, messages),
+    }
 }
 
 /// javac's messages, with a first line saying so when the first error is in one of the
