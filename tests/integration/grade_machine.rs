@@ -61,3 +61,84 @@ fn a_private_tmpdir_and_a_strict_umask_still_grade_the_class() {
     }
     chmod(&private, 0o755);
 }
+
+/// A program that prints what it can see of the machine to its standard error and crashes:
+/// its folder, its class path, its own command line, the sandbox's (`/proc/1/cmdline`) and
+/// the mounts that hold the grader's folders. The report shows that standard error; none of
+/// it names the grader's temporary folder or the sandbox's options, and the result names the
+/// skeleton given with --skeleton by its fingerprint, not its path.
+#[test]
+fn a_student_s_report_shows_nothing_of_the_grading_machine() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let spy = "try { \
+        java.util.function.Function<String, String> read = p -> { try { return new \
+        String(java.nio.file.Files.readAllBytes(java.nio.file.Path.of(p))).replace('\\0', ' ')\
+        .replace('\\n', ' '); } catch (java.io.IOException e) { return \"unreadable \" + p; } }; \
+        String mounts = java.util.Arrays.stream(read.apply(\"/proc/self/mountinfo\").split(\" \
+        [0-9]+ [0-9]+ [0-9]+:[0-9]+ \")).filter(l -> l.contains(\"whitted\")).findFirst()\
+        .orElse(\"none\"); \
+        System.err.println(\"spy-mount=\" + mounts); \
+        System.err.println(\"spy-cwd=\" + new java.io.File(\".\").getCanonicalPath()); \
+        System.err.println(\"spy-cp=\" + System.getProperty(\"java.class.path\")); \
+        System.err.println(\"spy-self=\" + read.apply(\"/proc/self/cmdline\")); \
+        System.err.println(\"spy-pid1=\" + read.apply(\"/proc/1/cmdline\")); \
+        } catch (java.io.IOException e) { throw new RuntimeException(e); } \
+        System.exit(3);";
+    student(&d.join("class"), "spy", crate::grade::hostile(spy));
+    let tmp = d.join("grader-tmp");
+    std::fs::create_dir_all(&tmp).expect("mkdir");
+    let skeleton = root().join("skeleton");
+    let run = grade_with(
+        d,
+        &tmp,
+        "022",
+        &[
+            "class",
+            "-o",
+            "out",
+            "--timeout",
+            "30",
+            "--skeleton",
+            s(&skeleton),
+        ],
+    );
+    assert!(run.status.success(), "{}", stderr(&run));
+    let out = d.join("out/students/spy");
+    let result = std::fs::read_to_string(out.join("result.json")).expect("result.json");
+    let report = std::fs::read_to_string(out.join("report.html")).expect("report.html");
+    // The program did print what it saw, with the work folder's place taken out.
+    for said in [
+        "spy-cwd=&lt;work&gt;/cases/",
+        "spy-cp=&lt;work&gt;/students/spy/classes",
+    ] {
+        assert!(report.contains(said), "{said} not in the report: {report}");
+    }
+    for said in [
+        "spy-cwd=<work>/cases/",
+        "spy-self=",
+        "spy-pid1=",
+        "bwrap --args ",
+    ] {
+        assert!(result.contains(said), "{said} not in result.json: {result}");
+    }
+    let grader = [
+        s(&tmp).to_string(),
+        "whitted-grade-".to_string(),
+        "--ro-bind".to_string(),
+        "--unshare-all".to_string(),
+        "--seccomp".to_string(),
+        s(&skeleton).to_string(),
+    ];
+    for text in [&result, &report] {
+        for secret in &grader {
+            assert!(!text.contains(secret.as_str()), "{secret} shown: {text}");
+        }
+    }
+    let result: serde_json::Value = serde_json::from_str(&result).expect("json");
+    let named = result["extra_data"]["skeleton"].as_str().expect("skeleton");
+    assert!(
+        named.starts_with("the course's skeleton given with --skeleton ("),
+        "{named}"
+    );
+}

@@ -30,6 +30,7 @@ mod moodle;
 mod package;
 mod policy;
 mod reason;
+mod redact;
 mod report;
 mod result;
 mod sandbox;
@@ -146,6 +147,7 @@ pub fn run(options: &Options) -> Result<Summary> {
         limits: options.limits,
         tolerance: options.tolerance,
         work: work.path().to_path_buf(),
+        skeleton_given: options.skeleton.is_some(),
         images: ImageCache::new(),
         report_images: SharedImages::default(),
         policy,
@@ -449,8 +451,10 @@ fn grade_one(
             message: e.to_string(),
         },
     };
+    // Nothing of the grading machine in what the student is sent (redact.rs).
+    let outcome = redact::Redactor::new(&setup.work).outcome(outcome);
     let sandboxed = !setup.sandbox.is_none();
-    let skeleton = &setup.skeleton.source;
+    let skeleton = &redact::skeleton_label(&setup.skeleton, setup.skeleton_given);
     let result = result::build(
         submission,
         &outcome,

@@ -29,6 +29,9 @@ pub struct Setup {
     pub java: PathBuf,
     pub javac: PathBuf,
     pub skeleton: Skeleton,
+    /// Whether the skeleton is the course's own (`--skeleton`), which a student's result names
+    /// by its fingerprint, not its path.
+    pub skeleton_given: bool,
     /// The year of the course the class is of (docs/courses.md).
     pub course: Course,
     pub suite: Vec<SuiteCase>,
