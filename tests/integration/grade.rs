@@ -874,3 +874,49 @@ fn moodle_round_trip_rubric_hidden_scenes_and_one_student_regraded() {
     assert_eq!(ids, ["101", "102", "103", "104"]);
     assert_eq!(records(&out.join("moodle.csv")).len(), 4);
 }
+
+/// A student's file that declares one of the skeleton's classes (a `Vector3` pasted into
+/// Renderer.java, a `Tick2` of their own beside Plane): javac's first error is then in the
+/// skeleton's file, and the report used to blame the skeleton given to grade. It names the
+/// student's file and the class instead.
+#[test]
+fn a_submission_declaring_a_skeleton_class_is_told_so_not_blamed_on_the_skeleton() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let (plane, renderer) = submission(&[]);
+    let vector3 = format!("{renderer}\nclass Vector3 {{ double x, y, z; }}\n");
+    let tick2 = format!("{plane}\nclass Tick2 {{ }}\n");
+    for (id, files) in [
+        ("vector3", (plane.clone(), vector3)),
+        ("tick2", (tick2, renderer.clone())),
+    ] {
+        let dir = d.join("class").join(id).join("src/gfx/tick2");
+        std::fs::create_dir_all(&dir).expect("mkdir");
+        std::fs::write(dir.join("Plane.java"), files.0).expect("Plane.java");
+        std::fs::write(dir.join("Renderer.java"), files.1).expect("Renderer.java");
+    }
+    let run = grade(d, &["class", "-o", "out", "--timeout", "30"]);
+    assert!(run.status.success(), "{}", stderr(&run));
+    let out = d.join("out");
+    for (id, file, class) in [
+        ("vector3", "Renderer.java", "Vector3"),
+        ("tick2", "Plane.java", "Tick2"),
+    ] {
+        let result = result_json(&out, id);
+        assert_eq!(result["extra_data"]["status"], "compile-error", "{id}");
+        let errors = result["extra_data"]["compile_errors"]
+            .as_str()
+            .expect("compile errors");
+        let said = format!(
+            "Your {file} declares class {class}, which the course's skeleton provides \
+             ({class}.java): remove it from {file} and use the skeleton's."
+        );
+        assert!(errors.starts_with(&said), "{id}: {errors}");
+        assert!(!errors.contains("may not compile"), "{id}: {errors}");
+        // javac's own messages follow, and the report shows the sentence too.
+        assert!(errors.contains("duplicate class"), "{id}: {errors}");
+        let report = std::fs::read_to_string(out.join("students").join(id).join("report.html"))
+            .expect("report");
+        assert!(report.contains(&format!("Your {file} declares class {class}")));
+    }
+}

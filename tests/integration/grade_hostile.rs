@@ -192,6 +192,21 @@ fn hostile_programs_get_their_status_and_nothing_escapes() {
     assert_eq!(status_of("correct"), "graded");
     assert_eq!(status_of("compile-error"), "compile-error");
     assert_eq!(status_of("no-renderer"), "no-files");
+    // Why each scored what it did, in class.csv itself: a 0 says which limit or failure.
+    let reason_of = |id: &str| {
+        rows.iter()
+            .find(|r| r["id"] == id)
+            .map(|r| r["reason"].clone())
+            .unwrap_or_default()
+    };
+    assert_eq!(reason_of("correct"), "");
+    assert_eq!(reason_of("compile-error"), "compile-error");
+    assert_eq!(reason_of("no-renderer"), "no-files");
+    for (name, _, expected) in &cases {
+        if *expected != "any" {
+            assert_eq!(reason_of(name), *expected, "{name}");
+        }
+    }
     let report =
         std::fs::read_to_string(out.join("students/compile-error/report.html")).expect("report");
     assert!(

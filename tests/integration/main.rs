@@ -18,6 +18,7 @@ mod golden_png;
 mod grade;
 mod grade_courses;
 mod grade_hostile;
+mod grade_machine;
 mod grade_skeletons;
 mod hostile;
 mod inspect;

@@ -48,6 +48,7 @@ pub fn class_csv(rows: &[StudentResult]) -> String {
             "cases",
             "diagnosis",
             "grade",
+            "reason",
         ]
         .map(String::from),
     );
@@ -60,6 +61,7 @@ pub fn class_csv(rows: &[StudentResult]) -> String {
             r.extra.cases.to_string(),
             r.extra.diagnosis.join("+"),
             grade_text(r.extra.grade),
+            super::reason::reason(r),
         ]);
     }
     out

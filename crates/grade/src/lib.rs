@@ -20,6 +20,7 @@
 mod archive;
 mod beyond;
 mod calibrate;
+mod clash;
 mod class;
 mod compile;
 mod feedback_zip;
@@ -30,6 +31,8 @@ mod memory_cgroup;
 mod moodle;
 mod package;
 mod policy;
+mod reason;
+mod redact;
 mod report;
 mod result;
 mod sandbox;
@@ -37,9 +40,11 @@ mod scenes;
 mod seccomp;
 mod similar;
 mod skeleton;
+mod source_tree;
 mod status;
 mod student;
 mod warm_javac;
+mod work_area;
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -63,6 +68,7 @@ use whitted_core::course::Course;
 use whitted_core::error::{Error, Result};
 use whitted_core::fingerprint::fingerprint;
 use whitted_io::output::atomic::AtomicFile;
+use work_area::WorkArea;
 
 /// Which finished students a run grades again.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -125,17 +131,16 @@ pub fn run(options: &Options) -> Result<Summary> {
     let only = only(options, &submissions)?;
     let java = jdk_tool("java")?;
     let javac = jdk_tool("javac")?;
+    // Run as root, the sandboxes run as users of their own, who must reach the work folder.
+    let others = !options.no_sandbox && rustix::process::geteuid().is_root();
+    let work = WorkArea::create(others)?;
     let sandbox = match options.no_sandbox {
         true => Sandbox::None,
-        false => Sandbox::bubblewrap(&java)?,
+        false => Sandbox::bubblewrap(&java, work.path())?,
     };
     let students_dir = options.outdir.join("students");
     std::fs::create_dir_all(&students_dir)
         .map_err(|e| Error::io(&students_dir, "cannot create", e))?;
-    let work = tempfile::Builder::new()
-        .prefix("whitted-grade-")
-        .tempdir()
-        .map_err(|e| Error::io(std::env::temp_dir(), "cannot create a folder", e))?;
     let setup = Setup {
         sandbox,
         java,
@@ -146,6 +151,7 @@ pub fn run(options: &Options) -> Result<Summary> {
         limits: options.limits,
         tolerance: policy.rule,
         work: work.path().to_path_buf(),
+        skeleton_given: options.skeleton.is_some(),
         images: ImageCache::new(),
         report_images: SharedImages::default(),
         policy,
@@ -423,7 +429,7 @@ fn grade_all(setup: &Setup, todo: &[(&Submission, String)], jobs: usize) -> Resu
     let next = AtomicUsize::new(0);
     let failure: Mutex<Option<Error>> = Mutex::new(None);
     let workers = jobs.min(todo.len());
-    let root = setup.work.join("javac");
+    let root = setup.work.join(work_area::COMPILERS);
     let compilers: Vec<Mutex<WarmJavac>> = (0..workers.div_ceil(WORKERS_PER_COMPILER))
         .map(|c| {
             let javac = WarmJavac::new(&setup.sandbox, &setup.java, &root, c, setup.limits);
@@ -480,8 +486,10 @@ fn grade_one(
             message: e.to_string(),
         },
     };
+    // Nothing of the grading machine in what the student is sent (redact.rs).
+    let outcome = redact::Redactor::new(&setup.work).outcome(outcome);
     let sandboxed = !setup.sandbox.is_none();
-    let skeleton = &setup.skeleton.source;
+    let skeleton = &redact::skeleton_label(&setup.skeleton, setup.skeleton_given);
     let result = result::build(
         submission,
         &outcome,

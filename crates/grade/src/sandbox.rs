@@ -80,7 +80,8 @@ exit $status
 /// descriptor its seccomp filter was handed over in.
 pub struct RunGuard {
     cgroup: Option<RunCgroup>,
-    _filter: Option<std::os::fd::OwnedFd>,
+    /// The descriptors bubblewrap reads when it starts: its filter, its options.
+    _descriptors: Vec<std::os::fd::OwnedFd>,
 }
 
 impl RunGuard {
@@ -90,21 +91,33 @@ impl RunGuard {
     }
 }
 
-/// The seccomp filter (`seccomp.rs`) in a descriptor bubblewrap can read: a memfd, left open
-/// across exec (only that way does bwrap get it), closed here when the run's guard drops.
+/// The seccomp filter (`seccomp.rs`) in a descriptor bubblewrap can read (None on an
+/// architecture without one).
 fn filter_fd() -> Result<Option<std::os::fd::OwnedFd>> {
-    let Some(program) = super::seccomp::program() else {
-        return Ok(None);
-    };
-    let fail = |e: std::io::Error| {
-        Error::Environment(format!("cannot hand bubblewrap its seccomp filter: {e}"))
-    };
-    let fd = rustix::fs::memfd_create("whitted-seccomp", rustix::fs::MemfdFlags::empty())
+    match super::seccomp::program() {
+        Some(program) => descriptor("whitted-seccomp", &program).map(Some),
+        None => Ok(None),
+    }
+}
+
+/// `bytes` in a descriptor bubblewrap can read from its start: a memfd, left open across exec
+/// (only that way does bwrap get it), closed when the run's guard drops.
+fn descriptor(name: &str, bytes: &[u8]) -> Result<std::os::fd::OwnedFd> {
+    let fail =
+        |e: std::io::Error| Error::Environment(format!("cannot hand bubblewrap its {name}: {e}"));
+    let fd = rustix::fs::memfd_create(name, rustix::fs::MemfdFlags::empty())
         .map_err(|e| fail(e.into()))?;
     let mut file = std::fs::File::from(fd);
-    std::io::Write::write_all(&mut file, &program).map_err(fail)?;
+    std::io::Write::write_all(&mut file, bytes).map_err(fail)?;
     std::io::Seek::seek(&mut file, std::io::SeekFrom::Start(0)).map_err(fail)?;
-    Ok(Some(file.into()))
+    Ok(file.into())
+}
+
+/// Arguments as `bwrap --args` reads them: each ended by a NUL.
+fn nul_separated<'a>(args: impl Iterator<Item = &'a std::ffi::OsStr>) -> Vec<u8> {
+    use std::os::unix::ffi::OsStrExt;
+    args.flat_map(|a| a.as_bytes().iter().copied().chain([0]))
+        .collect()
 }
 
 /// What a run may write: its folder as it is (javac's classes), or a capped area (a program's
@@ -140,9 +153,10 @@ pub enum Sandbox {
 }
 
 impl Sandbox {
-    /// Bubblewrap, tried once with `true` inside so that a system that forbids it (no user
-    /// namespaces) says so before any student runs.
-    pub fn bubblewrap(java: &Path) -> Result<Sandbox> {
+    /// Bubblewrap, tried once with `true` inside (in a folder under `scratch`, where the runs'
+    /// folders will be) so that a system that forbids it (no user namespaces, a folder its
+    /// users cannot reach) says so before any student runs.
+    pub fn bubblewrap(java: &Path, scratch: &Path) -> Result<Sandbox> {
         let bwrap = find_in_path("bwrap").ok_or_else(|| {
             Error::Environment(
                 "whitted grade runs every student's code in bubblewrap, which is not installed: \
@@ -161,8 +175,8 @@ impl Sandbox {
             root: rustix::process::geteuid().is_root(),
             cgroups: CgroupRoot::find(),
         };
-        let dir = tempfile::tempdir()
-            .map_err(|e| Error::io(std::env::temp_dir(), "cannot create a directory", e))?;
+        let dir = tempfile::tempdir_in(scratch)
+            .map_err(|e| Error::io(scratch, "cannot create a directory", e))?;
         let limits = Limits {
             memory_mib: 64,
             seconds: 10,
@@ -216,7 +230,7 @@ impl Sandbox {
             command.args(&program[1..]).current_dir(writable);
             let guard = RunGuard {
                 cgroup: None,
-                _filter: None,
+                _descriptors: Vec::new(),
             };
             return Ok((command, guard));
         };
@@ -260,8 +274,11 @@ impl Sandbox {
             ),
             "--core=0".to_string(),
         ]);
-        command.arg(bwrap);
-        command.args([
+        // bubblewrap's own options are handed over through a descriptor (`--args`), not its
+        // command line, which a program reads as `/proc/1/cmdline` (bwrap's init is pid 1):
+        // the binds, the JDK's place, the filter are nothing a student's report should show.
+        let mut options = Command::new("bwrap");
+        options.args([
             "--unshare-all",
             "--unshare-user",
             "--die-with-parent",
@@ -272,12 +289,12 @@ impl Sandbox {
         let filter = filter_fd()?;
         if let Some(fd) = &filter {
             use std::os::fd::AsRawFd;
-            command.args(["--seccomp", &fd.as_raw_fd().to_string()]);
+            options.args(["--seccomp", &fd.as_raw_fd().to_string()]);
         }
         if area == Area::Capped {
             // The wrapper mounts the capped area, then drops every capability before the
             // program runs.
-            command.args([
+            options.args([
                 "--uid",
                 "0",
                 "--gid",
@@ -289,28 +306,36 @@ impl Sandbox {
             ]);
         }
         for dir in ["/bin", "/lib", "/lib64", "/sbin"] {
-            system_dir(&mut command, dir);
+            system_dir(&mut options, dir);
         }
-        command.args(["--ro-bind", "/usr", "/usr"]);
+        options.args(["--ro-bind", "/usr", "/usr"]);
         // What the JDK reads in /etc, and the loader's cache; nothing else of /etc (no passwd).
         for etc in etc_for_java() {
-            command.arg("--ro-bind").arg(&etc).arg(&etc);
+            options.arg("--ro-bind").arg(&etc).arg(&etc);
         }
         if let Some(jdk) = jdk {
-            command.arg("--ro-bind").arg(jdk).arg(jdk);
+            options.arg("--ro-bind").arg(jdk).arg(jdk);
         }
-        command.args(["--proc", "/proc", "--dev", "/dev"]);
-        command.args(["--size", &TMP_SIZE.to_string(), "--tmpfs", "/tmp"]);
+        options.args(["--proc", "/proc", "--dev", "/dev"]);
+        options.args(["--size", &TMP_SIZE.to_string(), "--tmpfs", "/tmp"]);
         for dir in readable {
-            command.arg("--ro-bind").arg(dir).arg(dir);
+            options.arg("--ro-bind").arg(dir).arg(dir);
         }
-        command.arg("--bind").arg(writable).arg(writable);
+        options.arg("--bind").arg(writable).arg(writable);
         // The sandbox's own root and /dev are tmpfs that bubblewrap made: read-only once
         // made, so that a program (the owner of everything there when it runs as the
         // namespace's uid 0) writes only where its limits are, the case's folder and /tmp.
         // Devices are still written through (/dev/null).
-        command.args(["--remount-ro", "/dev", "--remount-ro", "/"]);
-        command.arg("--chdir").arg(writable);
+        options.args(["--remount-ro", "/dev", "--remount-ro", "/"]);
+        options.arg("--chdir").arg(writable);
+        let args = descriptor("whitted-bwrap-args", &nul_separated(options.get_args()))?;
+        {
+            use std::os::fd::AsRawFd;
+            command
+                .arg(bwrap)
+                .arg("--args")
+                .arg(args.as_raw_fd().to_string());
+        }
         command.arg("--");
         command.env_clear();
         command.envs([
@@ -331,7 +356,7 @@ impl Sandbox {
         command.args(program);
         let guard = RunGuard {
             cgroup,
-            _filter: filter,
+            _descriptors: filter.into_iter().chain([args]).collect(),
         };
         Ok((command, guard))
     }
@@ -414,8 +439,8 @@ mod tests {
     /// tests need bubblewrap and a JDK; tools/test installs them).
     fn in_sandbox(script: &str) -> std::process::ExitStatus {
         let java = find_in_path("java").expect("a JDK on PATH");
-        let sandbox = Sandbox::bubblewrap(&java).expect("bubblewrap");
         let dir = tempfile::tempdir().expect("tempdir");
+        let sandbox = Sandbox::bubblewrap(&java, dir.path()).expect("bubblewrap");
         let limits = Limits {
             memory_mib: 256,
             seconds: 20,

@@ -14,6 +14,7 @@ use super::jvm;
 use super::policy::Policy;
 use super::sandbox::{Area, Limits, RunGuard, Sandbox, AREA_BYTES, AREA_FILES, AREA_FULL};
 use super::skeleton::Skeleton;
+use super::source_tree::write_sources;
 use super::status::StudentStatus;
 use super::warm_javac::WarmJavac;
 use whitted_check::check::image_cache::ImageCache;
@@ -28,6 +29,9 @@ pub struct Setup {
     pub java: PathBuf,
     pub javac: PathBuf,
     pub skeleton: Skeleton,
+    /// Whether the skeleton is the course's own (`--skeleton`), which a student's result names
+    /// by its fingerprint, not its path.
+    pub skeleton_given: bool,
     /// The year of the course the class is of (docs/courses.md).
     pub course: Course,
     pub suite: Vec<SuiteCase>,
@@ -81,7 +85,10 @@ pub fn grade(
             })
         }
     };
-    let work = setup.work.join("students").join(&submission.id);
+    let work = setup
+        .work
+        .join(super::work_area::STUDENTS)
+        .join(&submission.id);
     let _cleanup = WorkFolder(work.clone());
     let package = package_of(setup, files);
     let owned = sources(setup, files, package);
@@ -114,13 +121,12 @@ pub fn grade(
     match compiled {
         Compiled::Ok => {}
         Compiled::Errors(messages) => {
-            return Ok(Outcome::CompileError(skeleton_named(
-                &setup.skeleton,
-                messages,
-            )))
+            return Ok(Outcome::CompileError(blamed(setup, files, messages)))
         }
         Compiled::Timeout => return Ok(Outcome::CompileTimeout),
     }
+    // The classes, however they were made, for the sandbox's users to read.
+    super::work_area::open_up(&work)?;
     let main = super::package::qualified(package, setup.skeleton.main);
     let launch = SandboxedJava {
         setup,
@@ -158,6 +164,23 @@ fn offer_only_their_files(run: &mut SuiteRun, course: Course) {
         first = false;
         keep
     });
+}
+
+/// javac's messages, after a line saying whose the fault is when it is not plainly the
+/// student's: their file declares one of the skeleton's classes (`clash.rs`), or the first
+/// error is in the skeleton's own files.
+fn blamed(setup: &Setup, files: &Files, messages: String) -> String {
+    let theirs = files.sources.iter().map(|(n, b)| (*n, b.as_slice()));
+    let skeleton: Vec<&str> = setup
+        .skeleton
+        .files
+        .iter()
+        .map(|(n, _)| n.as_str())
+        .collect();
+    match super::clash::message(&super::clash::clashes(theirs, &skeleton)) {
+        Some(clash) => format!("{clash}\n{messages}"),
+        None => skeleton_named(&setup.skeleton, messages),
+    }
 }
 
 /// javac's messages, with a first line saying so when the first error is in one of the
@@ -246,22 +269,8 @@ fn lay_out(sources: &[(&str, &[u8])], work: &Path) -> Result<Vec<String>> {
     let _ = std::fs::remove_dir_all(work);
     let classes = work.join("classes");
     std::fs::create_dir_all(&classes).map_err(|e| Error::io(&classes, "cannot create", e))?;
-    let src = work.join("src");
-    write_sources(&src, sources)
-}
-
-/// Writes `sources` (paths under the source root, as [`sources`] makes them: a package's
-/// folders, never `..`) under `src`; returns their paths.
-pub fn write_sources(src: &Path, sources: &[(&str, &[u8])]) -> Result<Vec<String>> {
-    let mut paths = Vec::new();
-    for (name, bytes) in sources {
-        let path = src.join(name);
-        if let Some(folder) = path.parent() {
-            std::fs::create_dir_all(folder).map_err(|e| Error::io(folder, "cannot create", e))?;
-        }
-        std::fs::write(&path, bytes).map_err(|e| Error::io(&path, "cannot write", e))?;
-        paths.push(path.display().to_string());
-    }
+    let paths = write_sources(&work.join("src"), sources)?;
+    super::work_area::open_up(work)?;
     Ok(paths)
 }
 
@@ -288,6 +297,8 @@ impl Launch for SandboxedJava<'_> {
             self.classes.display().to_string(),
             self.main.clone(),
         ]);
+        // The scene in it, for the sandbox's user to read.
+        super::work_area::open_up(dir)?;
         let classes = self.classes.as_path();
         let (command, run) = self.setup.sandbox.command(
             &program,
@@ -306,6 +317,10 @@ impl Launch for SandboxedJava<'_> {
 
     fn contains_descendants(&self) -> bool {
         !self.setup.sandbox.is_none()
+    }
+
+    fn scratch(&self) -> PathBuf {
+        self.setup.work.join(super::work_area::CASES)
     }
 
     fn ended(&self, dir: &Path) -> Option<LimitHit> {

@@ -126,8 +126,8 @@ impl<'a> WarmJavac<'a> {
             std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, "cannot create", e))?;
             empty(dir)?;
         }
-        super::student::write_sources(&src, sources)?;
-        Ok(())
+        super::source_tree::write_sources(&src, sources)?;
+        super::work_area::open_up(&self.dir)
     }
 
     /// One compilation by the running compiler (started first if there is none). None: it
@@ -183,6 +183,7 @@ impl<'a> WarmJavac<'a> {
     fn start(&self) -> Result<Server> {
         let source = self.dir.join("WarmJavac.java");
         std::fs::write(&source, SOURCE).map_err(|e| Error::io(&source, "cannot write", e))?;
+        super::work_area::open_up(&source)?;
         let (src, classes) = (self.dir.join("src"), self.dir.join("classes"));
         let mut program = vec![self.java.display().to_string()];
         program.extend(jvm::options(self.limits));

@@ -150,6 +150,11 @@ pub trait Launch: Sync {
     fn ended(&self, _dir: &Path) -> Option<LimitHit> {
         None
     }
+    /// Where each case's folder is made: the system's temporary folder, unless the launcher
+    /// needs its own (a sandbox whose users must be able to reach it).
+    fn scratch(&self) -> PathBuf {
+        std::env::temp_dir()
+    }
 }
 
 /// A limit of a launcher's that a run hit, which only the launcher can see.
@@ -450,16 +455,11 @@ fn run_programs(
 
 /// Starts case `index`'s program in a fresh temporary directory and process group.
 fn start(launch: &dyn Launch, case: &SuiteCase, index: usize) -> Result<Running> {
+    let scratch = launch.scratch();
     let dir = tempfile::Builder::new()
         .prefix("whitted-check-")
-        .tempdir()
-        .map_err(|e| {
-            Error::io(
-                std::env::temp_dir(),
-                "cannot create a temporary directory",
-                e,
-            )
-        })?;
+        .tempdir_in(&scratch)
+        .map_err(|e| Error::io(&scratch, "cannot create a temporary directory", e))?;
     let scene = dir.path().join(&*case.file);
     std::fs::write(&scene, case.xml.as_bytes())
         .map_err(|e| Error::io(&scene, "cannot write", e))?;
