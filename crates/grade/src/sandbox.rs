@@ -233,6 +233,8 @@ impl Sandbox {
     /// seeing `readable` read-only and `writable` read-write at the same paths, within
     /// `limits`, and the cgroup holding its memory limit where there is one (keep it until the
     /// run has ended). `writable` is handed to the slot's user first.
+    // Each argument is a fact of its own about the run, given by every caller.
+    #[allow(clippy::too_many_arguments)]
     pub fn command(
         &self,
         program: &[String],
