@@ -25,6 +25,7 @@
 //!   `process_vm_writev` 540, `kexec_load` 528, need a table kept by hand), where one `JGE`
 //!   refuses them all here;
 //! - 201 instructions to these 48, and an allowed call walks two per listed call.
+//!
 //! A call of another architecture is killed there rather than refused: as good here.
 
 /// One classic BPF instruction, as the kernel's `struct sock_filter` lays it out.
