@@ -1,14 +1,16 @@
 //! `javac` over a student's two files and the skeleton, in the sandbox: the first errors it
 //! prints are what the student's report shows for `compile-error`. A JVM of its own per
 //! student: what the warm compiler (`warm_javac.rs`) falls back to, and what names the end of
-//! a compilation that killed it.
+//! a compilation that killed it. A source the warm compiler could not finish is compiled in
+//! the background (`Priority::Background`: nice 19, its deadline in CPU seconds), so that the
+//! minute it may keep javac busy is not taken from the students graded beside it.
 
 use std::path::Path;
 use std::process::Stdio;
 use std::time::Duration;
 
 use super::jvm;
-use super::sandbox::{Area, Limits, Sandbox};
+use super::sandbox::{hit_cpu_limit, Area, Limits, Priority, Sandbox};
 use whitted_core::error::{Error, Result};
 use whitted_process::{Capture, Ended, Process};
 
@@ -28,7 +30,7 @@ pub enum Compiled {
 }
 
 /// Compiles `sources` (paths inside `work/src`, which javac sees read-only) into
-/// `work/classes` (the only folder it may write).
+/// `work/classes` (the only folder it may write), at `priority`.
 pub fn compile(
     sandbox: &Sandbox,
     javac: &Path,
@@ -36,22 +38,36 @@ pub fn compile(
     sources: &[String],
     slot: usize,
     limits: Limits,
+    priority: Priority,
 ) -> Result<Compiled> {
-    // Its own deadline, whatever --timeout says.
+    // Its own deadline, whatever --timeout says: wall-clock seconds, or CPU seconds for one
+    // that yields the CPU to every other run (`Priority::Background`), with a wall-clock
+    // backstop.
     let limits = jvm::compiling(limits);
+    let wall = match priority {
+        Priority::Normal => limits.seconds,
+        Priority::Background => limits.seconds.saturating_mul(WALL_PER_CPU_SECOND),
+    };
     let mut program = vec![javac.display().to_string()];
     program.extend(jvm::javac_options(limits));
     program.extend(javac_options(&work.join("classes")));
     program.extend(sources.iter().cloned());
     let (src, classes) = (work.join("src"), work.join("classes"));
-    let (mut command, run) =
-        sandbox.command(&program, &[&src], &classes, Area::Folder, slot, limits)?;
+    let (mut command, run) = sandbox.command(
+        &program,
+        &[&src],
+        &classes,
+        Area::Folder,
+        slot,
+        limits,
+        priority,
+    )?;
     command.stdin(Stdio::null()).stdout(Stdio::null());
     let mut javac = Process::spawn(command, Capture::Head(MESSAGES))
         .map_err(|e| Error::Environment(format!("cannot run javac: {e}")))?;
     let ended = javac
         .wait(
-            Duration::from_secs(limits.seconds),
+            Duration::from_secs(wall),
             Duration::from_millis(20),
             whitted_core::interrupt::requested,
         )
@@ -65,10 +81,8 @@ pub fn compile(
             "javac was killed at its memory limit (--memory {} MiB)",
             limits.memory_mib
         )),
-        // Stopped at its CPU time limit (SIGXCPU): as out of time as a timeout.
-        Ended::Exited(s) if std::os::unix::process::ExitStatusExt::signal(&s) == Some(SIGXCPU) => {
-            Compiled::Timeout
-        }
+        // Stopped at its CPU time limit (SIGXCPU): its deadline.
+        Ended::Exited(s) if hit_cpu_limit(s) => Compiled::Timeout,
         Ended::Exited(s) if messages.is_empty() => {
             Compiled::Errors(format!("javac failed without a message ({s})"))
         }
@@ -76,7 +90,11 @@ pub fn compile(
     })
 }
 
-const SIGXCPU: i32 = 24;
+/// The wall-clock backstop of a compilation, in seconds per CPU second of its deadline: a
+/// javac that yields the CPU gets little of it on a machine busy with other students' programs
+/// (nice 19 against two busy JVMs on its core: ~1%), and a Tick 2's ~1.1 s of CPU must still
+/// fit (the deadline is 60 CPU seconds, so 300 s of wall time).
+const WALL_PER_CPU_SECOND: u64 = 5;
 
 /// What javac is told besides its sources: no annotation processors (they would run code
 /// from the classpath), the course's encoding, the first 20 errors, where the classes go.

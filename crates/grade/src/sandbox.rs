@@ -128,6 +128,28 @@ pub enum Area {
     Capped,
 }
 
+/// How a run shares the CPU with the others, and what its CPU time limit means.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Priority {
+    /// A case's program, the warm compiler: the machine's priority, and a CPU time limit of
+    /// twice the wall-clock one, a backstop.
+    Normal,
+    /// A student's javac of their own: it yields the CPU to every other run (`nice -n 19`),
+    /// so that a source that makes javac work for a minute does not halve the speed of the
+    /// students graded beside it, and its deadline is counted in CPU seconds
+    /// (`limits.seconds`, then SIGXCPU; SIGKILL 5 s later), since a yielding javac's wall time
+    /// says how busy the machine is, not how slow the source is.
+    Background,
+}
+
+/// Whether a sandboxed run ended at its CPU time limit: killed by SIGXCPU, which bubblewrap
+/// reports as its exit status 128 + SIGXCPU.
+pub fn hit_cpu_limit(status: std::process::ExitStatus) -> bool {
+    use std::os::unix::process::ExitStatusExt;
+    const SIGXCPU: i32 = 24;
+    status.signal() == Some(SIGXCPU) || status.code() == Some(128 + SIGXCPU)
+}
+
 /// The limits one run gets.
 #[derive(Debug, Clone, Copy)]
 pub struct Limits {
@@ -188,6 +210,7 @@ impl Sandbox {
             Area::Capped,
             0,
             limits,
+            Priority::Normal,
         )?;
         let out = probe
             .output()
@@ -210,6 +233,8 @@ impl Sandbox {
     /// seeing `readable` read-only and `writable` read-write at the same paths, within
     /// `limits`, and the cgroup holding its memory limit where there is one (keep it until the
     /// run has ended). `writable` is handed to the slot's user first.
+    // Each argument is a fact of its own about the run, given by every caller.
+    #[allow(clippy::too_many_arguments)]
     pub fn command(
         &self,
         program: &[String],
@@ -218,6 +243,7 @@ impl Sandbox {
         area: Area,
         slot: usize,
         limits: Limits,
+        priority: Priority,
     ) -> Result<(Command, RunGuard)> {
         let Sandbox::Bubblewrap {
             bwrap,
@@ -258,7 +284,11 @@ impl Sandbox {
             command.args(["--reuid", &uid.to_string(), "--regid", &uid.to_string()]);
             command.arg("--clear-groups");
         }
-        command.arg("--no-new-privs").arg("prlimit");
+        command.arg("--no-new-privs");
+        if priority == Priority::Background {
+            command.args(["nice", "-n", "19"]);
+        }
+        command.arg("prlimit");
         let processes = if *root {
             PROCESSES
         } else {
@@ -268,10 +298,17 @@ impl Sandbox {
             format!("--nproc={processes}"),
             format!("--fsize={FILE_SIZE}"),
             format!("--nofile={OPEN_FILES}"),
-            format!(
-                "--cpu={}",
-                limits.seconds.saturating_mul(2).saturating_add(5)
-            ),
+            match priority {
+                Priority::Normal => format!(
+                    "--cpu={}",
+                    limits.seconds.saturating_mul(2).saturating_add(5)
+                ),
+                Priority::Background => format!(
+                    "--cpu={}:{}",
+                    limits.seconds,
+                    limits.seconds.saturating_add(5)
+                ),
+            },
             "--core=0".to_string(),
         ]);
         // bubblewrap's own options are handed over through a descriptor (`--args`), not its
@@ -438,16 +475,20 @@ mod tests {
     /// The exit status of `script` run by sh in the sandbox, with a capped area (the grade
     /// tests need bubblewrap and a JDK; tools/test installs them).
     fn in_sandbox(script: &str) -> std::process::ExitStatus {
+        in_sandbox_at(script, 20, Priority::Normal)
+    }
+
+    fn in_sandbox_at(script: &str, seconds: u64, priority: Priority) -> std::process::ExitStatus {
         let java = find_in_path("java").expect("a JDK on PATH");
         let dir = tempfile::tempdir().expect("tempdir");
         let sandbox = Sandbox::bubblewrap(&java, dir.path()).expect("bubblewrap");
         let limits = Limits {
             memory_mib: 256,
-            seconds: 20,
+            seconds,
         };
         let program = ["/bin/sh", "-c", script].map(String::from);
         let (mut command, _run) = sandbox
-            .command(&program, &[], dir.path(), Area::Capped, 0, limits)
+            .command(&program, &[], dir.path(), Area::Capped, 0, limits, priority)
             .expect("command");
         command.status().expect("runs")
     }
@@ -482,5 +523,19 @@ mod tests {
         ] {
             assert!(!in_sandbox(denied).success(), "allowed: {denied}");
         }
+    }
+
+    #[test]
+    fn a_background_run_yields_the_cpu_and_ends_at_its_cpu_seconds() {
+        // nice 19 inside (the 19th field of /proc/self/stat), the machine's priority otherwise.
+        let nice_is = |n: &str| format!("test \"$(cut -d' ' -f19 /proc/self/stat)\" = {n}");
+        assert!(in_sandbox_at(&nice_is("19"), 20, Priority::Background).success());
+        assert!(!in_sandbox_at(&nice_is("19"), 20, Priority::Normal).success());
+        // A busy loop is stopped by its CPU time limit, 1 s here, and said to be.
+        let started = std::time::Instant::now();
+        let spin = in_sandbox_at("while :; do :; done", 1, Priority::Background);
+        assert!(hit_cpu_limit(spin), "{spin:?}");
+        assert!(started.elapsed() < std::time::Duration::from_secs(20));
+        assert!(!hit_cpu_limit(in_sandbox("exit 3")));
     }
 }

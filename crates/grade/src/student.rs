@@ -12,11 +12,13 @@ use super::html::SharedImages;
 use super::intake::{Files, Submission};
 use super::jvm;
 use super::policy::Policy;
-use super::sandbox::{Area, Limits, RunGuard, Sandbox, AREA_BYTES, AREA_FILES, AREA_FULL};
+use super::sandbox::{
+    Area, Limits, Priority, RunGuard, Sandbox, AREA_BYTES, AREA_FILES, AREA_FULL,
+};
 use super::skeleton::Skeleton;
 use super::source_tree::write_sources;
 use super::status::StudentStatus;
-use super::warm_javac::WarmJavac;
+use super::warm_javac::{Warm, WarmJavac};
 use whitted_check::check::image_cache::ImageCache;
 use whitted_check::check::program::{run_suite_with, Launch, LimitHit, SuiteRun};
 use whitted_check::check::suite::SuiteCase;
@@ -102,11 +104,17 @@ pub fn grade(
     // them, and this student is compiled by a javac of their own.
     let warm = match lock_within(javac, PATIENCE) {
         Some(mut warm) => warm.compile(&sources, &classes)?,
-        None => None,
+        None => Warm::Unavailable,
+    };
+    let priority = match warm {
+        Warm::Done(_) | Warm::Unavailable => Priority::Normal,
+        // A source the warm compiler could not finish may keep javac busy for a minute: it
+        // must not take the CPU of the students graded beside it.
+        Warm::Suspect => Priority::Background,
     };
     let compiled = match warm {
-        Some(compiled) => compiled,
-        None => {
+        Warm::Done(compiled) => compiled,
+        Warm::Unavailable | Warm::Suspect => {
             let paths = lay_out(&sources, &work)?;
             compile(
                 &setup.sandbox,
@@ -115,6 +123,7 @@ pub fn grade(
                 &paths,
                 slot,
                 setup.limits,
+                priority,
             )?
         }
     };
@@ -307,6 +316,7 @@ impl Launch for SandboxedJava<'_> {
             Area::Capped,
             self.slot,
             limits,
+            Priority::Normal,
         )?;
         self.runs
             .lock()

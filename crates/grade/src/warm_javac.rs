@@ -18,7 +18,7 @@ use std::time::{Duration, Instant};
 
 use super::compile::{first_lines, javac_options, Compiled, MESSAGES};
 use super::jvm;
-use super::sandbox::{Area, Limits, RunGuard, Sandbox};
+use super::sandbox::{Area, Limits, Priority, RunGuard, Sandbox};
 use whitted_core::error::{Error, Result};
 use whitted_process::{Capture, Process};
 
@@ -35,8 +35,21 @@ const GIVE_UP_AFTER: usize = 3;
 /// How often a compilation is looked at (and Ctrl-C noticed).
 const POLL: Duration = Duration::from_millis(10);
 /// How long the warm compiler spends on one student: a Tick 2's two files take a tenth of a
-/// second once it is warm, and every student of its slots waits while it works.
-const WARM_DEADLINE: Duration = Duration::from_secs(10);
+/// second once it is warm, and every student of its slots waits while it works. Past it the
+/// student is compiled by a javac of their own, which yields the CPU to every other run
+/// (`Priority::Background`): the warm compiler does not, so this is how long a source that
+/// makes javac work for minutes takes CPU from the students beside it at full priority.
+const WARM_DEADLINE: Duration = Duration::from_secs(2);
+/// How long a new compiler may take to start and compile [`WARM_UP`]: a JVM's start and
+/// javac's first compilation, seconds of CPU on a busy machine.
+const START_DEADLINE: Duration = Duration::from_secs(10);
+/// What a new compiler compiles first, so that javac's classes are loaded and compiled before
+/// a student's sources are timed against [`WARM_DEADLINE`].
+const WARM_UP: (&str, &[u8]) = (
+    "Warm.java",
+    b"class Warm { double f(double[] x) { double s = 0; for (double v : x) s += v * v; \
+      return Math.sqrt(s); } }",
+);
 
 /// A slot's warm compiler, started on its first student.
 pub struct WarmJavac<'a> {
@@ -58,6 +71,20 @@ struct Server {
     compiled: usize,
     /// Its memory limit's cgroup, removed after it (fields drop after `stop` killed it).
     _run: RunGuard,
+}
+
+/// What the warm compiler made of a student.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Warm {
+    /// Its verdict, final.
+    Done(Compiled),
+    /// There is none to ask (it could not start, or the slot gave up on it): compile the
+    /// student otherwise, as any other.
+    Unavailable,
+    /// It was warm and running, and this source kept it past its deadline or ended it (out of
+    /// memory, a stack overflow): compile the student otherwise, yielding the CPU to everyone
+    /// else (`Priority::Background`), since the source may make javac work for minutes.
+    Suspect,
 }
 
 /// One answer read from the compiler.
@@ -91,13 +118,17 @@ impl<'a> WarmJavac<'a> {
     }
 
     /// Compiles `sources` (file name, bytes; all in package gfx.tick2) into `into`
-    /// (`into/gfx/tick2/*.class`). None: the warm compiler could not say, compile otherwise.
-    pub fn compile(&mut self, sources: &[(&str, &[u8])], into: &Path) -> Result<Option<Compiled>> {
+    /// (`into/gfx/tick2/*.class`), or says why it could not.
+    pub fn compile(&mut self, sources: &[(&str, &[u8])], into: &Path) -> Result<Warm> {
         if self.failures >= GIVE_UP_AFTER {
-            return Ok(None);
+            return Ok(Warm::Unavailable);
         }
-        self.lay_out(sources)?;
-        let verdict = match self.ask() {
+        let verdict = match self.ready() {
+            Ok(true) => self.lay_out(sources).and_then(|()| self.ask(WARM_DEADLINE)),
+            Ok(false) => return Ok(Warm::Unavailable),
+            Err(e) => Err(e),
+        };
+        let verdict = match verdict {
             Ok(verdict) => verdict,
             Err(e) => {
                 self.stop();
@@ -105,16 +136,17 @@ impl<'a> WarmJavac<'a> {
             }
         };
         match verdict {
+            // A running, warm compiler that did not answer on this source in time.
             None => {
                 self.failures += 1;
                 self.stop();
-                Ok(None)
+                Ok(Warm::Suspect)
             }
             Some(Compiled::Ok) => {
                 copy_tree(&self.dir.join("classes"), into)?;
-                Ok(Some(Compiled::Ok))
+                Ok(Warm::Done(Compiled::Ok))
             }
-            Some(other) => Ok(Some(other)),
+            Some(other) => Ok(Warm::Done(other)),
         }
     }
 
@@ -130,9 +162,10 @@ impl<'a> WarmJavac<'a> {
         super::work_area::open_up(&self.dir)
     }
 
-    /// One compilation by the running compiler (started first if there is none). None: it
-    /// did not answer.
-    fn ask(&mut self) -> Result<Option<Compiled>> {
+    /// Whether a warm compiler is running: the one running unless it is worn out, else a new
+    /// one, started and warmed up on a source of its own ([`WARM_UP`]) within
+    /// [`START_DEADLINE`], so that no student's compilation pays for a JVM's start.
+    fn ready(&mut self) -> Result<bool> {
         if self
             .running
             .as_ref()
@@ -140,9 +173,23 @@ impl<'a> WarmJavac<'a> {
         {
             self.stop();
         }
-        if self.running.is_none() {
-            self.running = self.start().ok();
+        if self.running.is_some() {
+            return Ok(true);
         }
+        self.lay_out(&[WARM_UP])?;
+        self.running = self.start().ok();
+        match self.ask(START_DEADLINE)? {
+            Some(Compiled::Ok) => Ok(true),
+            _ => {
+                self.stop();
+                Ok(false)
+            }
+        }
+    }
+
+    /// One compilation by the running compiler, within `deadline`. None: there is none, or it
+    /// did not answer in time (it is then stopped).
+    fn ask(&mut self, deadline: Duration) -> Result<Option<Compiled>> {
         let Some(server) = self.running.as_mut() else {
             return Ok(None);
         };
@@ -158,7 +205,7 @@ impl<'a> WarmJavac<'a> {
         let started = Instant::now();
         loop {
             whitted_core::interrupt::check()?;
-            if started.elapsed() > WARM_DEADLINE {
+            if started.elapsed() > deadline {
                 // Slow here, so not for the warm compiler, which other students wait for: the
                 // student is compiled by a javac of their own, with the full deadline.
                 self.stop();
@@ -199,6 +246,7 @@ impl<'a> WarmJavac<'a> {
             Area::Folder,
             self.slot,
             limits,
+            Priority::Normal,
         )?;
         command.stdin(Stdio::piped()).stdout(Stdio::piped());
         let mut process = Process::spawn(command, Capture::Nothing)
@@ -349,12 +397,12 @@ mod tests {
             let compiled = javac
                 .compile(&[("gfx/tick2/A.java", good)], &into)
                 .expect("compile");
-            assert_eq!(compiled, Some(Compiled::Ok));
+            assert_eq!(compiled, Warm::Done(Compiled::Ok));
             assert!(into.join("gfx/tick2/A.class").is_file());
             let refused = javac
                 .compile(&[("gfx/tick2/A.java", bad)], &into)
                 .expect("compile");
-            let Some(Compiled::Errors(messages)) = refused else {
+            let Warm::Done(Compiled::Errors(messages)) = refused else {
                 panic!("{refused:?}");
             };
             // The slot's folders are out of the messages: the path is the package's.
@@ -363,7 +411,8 @@ mod tests {
                 "{messages}"
             );
         }
-        assert_eq!(javac.running.as_ref().map(|s| s.compiled), Some(6));
+        // Its warm-up, then the six students.
+        assert_eq!(javac.running.as_ref().map(|s| s.compiled), Some(7));
     }
 
     #[test]
@@ -376,7 +425,7 @@ mod tests {
             javac
                 .compile(&[("gfx/tick2/A.java", good)], &into)
                 .expect("compile"),
-            Some(Compiled::Ok)
+            Warm::Done(Compiled::Ok)
         );
         if let Some(server) = &mut javac.running {
             server.process.kill();
@@ -386,14 +435,14 @@ mod tests {
             javac
                 .compile(&[("gfx/tick2/A.java", good)], &into)
                 .expect("compile"),
-            None
+            Warm::Suspect
         );
         // The next student gets a new one.
         assert_eq!(
             javac
                 .compile(&[("gfx/tick2/A.java", good)], &into)
                 .expect("compile"),
-            Some(Compiled::Ok)
+            Warm::Done(Compiled::Ok)
         );
     }
 }
