@@ -63,7 +63,7 @@ pub struct CheckArgs {
     pub timeout: u64,
 
     /// Print the catalogue of mistakes and exit (with --course, that year's entries in its words)
-    #[arg(long, conflicts_with_all = ["image", "program", "scene", "json", "heatmap", "report", "view", "bounces"])]
+    #[arg(long, conflicts_with_all = ["image", "program", "input", "json", "heatmap", "report", "view", "suite_dir"])]
     pub list_bugs: bool,
 
     /// Open the check in the viewer: the image against the reference, the error maps, the
