@@ -44,8 +44,8 @@ pub struct CheckArgs {
     pub heatmap: Option<PathBuf>,
 
     /// Write a contact sheet: per failing case the student's image, the reference, a heat map
-    /// and the top diagnosis
-    #[arg(long, value_name = "REPORT.png")]
+    /// and the top diagnosis (the file must end in .png)
+    #[arg(long, value_name = "REPORT.png", value_parser = parse_report_png)]
     pub report: Option<PathBuf>,
 
     /// Run this program (split into words as a shell would; no shell is run) over the suite:

@@ -169,3 +169,18 @@ fn a_failed_render_keeps_the_previous_output() {
         b"previous good output"
     );
 }
+
+/// `check --report` writes the PNG sheet only: a report named otherwise is refused before
+/// anything runs, never silently written as a PNG under that name.
+#[test]
+fn a_check_report_not_named_png_is_refused() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let image = reference("tick2_b2.png");
+    for name in ["r.html", "r", "r.pdf"] {
+        let run = whitted(d, &["check", s(&image), "--report", name]);
+        assert_eq!(run.status.code(), Some(2), "{name}");
+        assert!(stderr(&run).contains("PNG sheet"), "{}", stderr(&run));
+        assert!(!d.join(name).exists(), "{name}");
+    }
+}
