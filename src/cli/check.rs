@@ -43,10 +43,19 @@ pub struct CheckArgs {
     #[arg(long, value_name = "H.png", conflicts_with = "program")]
     pub heatmap: Option<PathBuf>,
 
-    /// Write a contact sheet: per failing case the student's image, the reference, a heat map
-    /// and the top diagnosis (the file must end in .png)
-    #[arg(long, value_name = "REPORT.png", value_parser = parse_report_png)]
+    /// Write a report file, its format by its extension: REPORT.html, one self-contained page
+    /// (per failing case your image, the reference and the difference side by side, with the
+    /// worst region enlarged; the verdict, progress and findings in full); REPORT.png, a
+    /// contact sheet (per failing case the images and the top diagnosis)
+    #[arg(long, value_name = "REPORT.html|REPORT.png", value_parser = parse_report)]
     pub report: Option<PathBuf>,
+
+    /// Print everything: every candidate and what its images cannot tell apart, a program's
+    /// whole standard error, and the commands that rerun and explain each failing case (the
+    /// default is one screen: the verdict, progress, the finding with where and fix, a line
+    /// per case)
+    #[arg(short, long, conflicts_with = "json")]
+    pub verbose: bool,
 
     /// Run this program (split into words as a shell would; no shell is run) over the suite:
     /// each case as `CMD ARGS --input S --output O.png --bounces B`
@@ -54,7 +63,7 @@ pub struct CheckArgs {
     pub program: Option<String>,
 
     /// Write the suite's scenes into DIR (made if missing), so that every failing case can be
-    /// rerun and explained from your own directory; the report's commands then name them
+    /// rerun and explained from your own directory: without it no rerun command is printed
     #[arg(long, value_name = "DIR", requires = "program")]
     pub suite_dir: Option<PathBuf>,
 
@@ -63,12 +72,12 @@ pub struct CheckArgs {
     pub timeout: u64,
 
     /// Print the catalogue of mistakes and exit (with --course, that year's entries in its words)
-    #[arg(long, conflicts_with_all = ["image", "program", "input", "json", "heatmap", "report", "view", "suite_dir"])]
+    #[arg(long, conflicts_with_all = ["image", "program", "input", "json", "heatmap", "report", "view", "suite_dir", "verbose"])]
     pub list_bugs: bool,
 
     /// Open the check in the viewer: the image against the reference, the error maps, the
     /// diagnosis, and a click's two ray trees (the reference's and the top mistake's)
-    #[arg(long, conflicts_with_all = ["program", "json", "heatmap", "report"])]
+    #[arg(long, conflicts_with_all = ["program", "json", "heatmap", "report", "verbose"])]
     pub view: bool,
 
     /// The year of the course the image or program is of (docs/courses.md) [default: what the

@@ -114,15 +114,15 @@ pub(super) fn parse_threads(s: &str) -> Result<usize, String> {
     }
 }
 
-/// `check --report`'s file: its format follows the extension, and only the PNG sheet is
-/// written, so any other name is refused rather than silently given a PNG.
-pub(super) fn parse_report_png(s: &str) -> Result<std::path::PathBuf, String> {
+/// `check --report`'s file: its format follows the extension (`.html` or `.png`); any other
+/// name is refused before anything runs.
+pub(super) fn parse_report(s: &str) -> Result<std::path::PathBuf, String> {
     let path = std::path::PathBuf::from(s);
-    match path.extension().and_then(|e| e.to_str()) {
-        Some(e) if e.eq_ignore_ascii_case("png") => Ok(path),
-        _ => Err(format!(
-            "`{s}`: the report is a PNG sheet (REPORT.png); an HTML report is not written by \
-             check (grade writes one per student)"
+    match whitted_check::check::print::ReportFormat::of(&path) {
+        Some(_) => Ok(path),
+        None => Err(format!(
+            "`{s}`: the report's format follows its extension: REPORT.html (a page with the \
+             images) or REPORT.png (a contact sheet)"
         )),
     }
 }

@@ -4,17 +4,18 @@
 //! through the handout they are.
 
 use super::compile::SHOWN_LINES;
-use super::html::{escape, image, SharedImages, STYLE};
+use super::html::{escape, SharedImages, STYLE};
 use super::intake::Submission;
 use super::policy::Policy;
 use super::student::Outcome;
+use whitted_check::check::print::html::{case_block, findings_block};
 use whitted_check::check::program::CaseOutcome;
 use whitted_check::check::program::{RunStatus, SuiteRun};
-use whitted_check::check::report::{contact_sheet, failing_rows, heat_map, ReportRow};
+use whitted_check::check::report::{contact_sheet, failing_rows, ReportRow};
 use whitted_check::check::suite::Role;
-use whitted_check::check::{summary, words};
+use whitted_check::check::words;
 use whitted_io::canvas::Canvas;
-use whitted_io::output::png::{PngImage, PngPixels};
+use whitted_io::output::png::PngImage;
 
 /// What a report shows beyond the student's own findings: the policy it was graded under, and
 /// whether hidden cases are shown in full.
@@ -100,27 +101,7 @@ fn ran(run: &SuiteRun, shown: &Shown, feedback: &str) -> String {
     if !feedback.contains(&progress) {
         out += &format!("<p>{}</p>\n", escape(&progress));
     }
-    if !findings.diagnosis.is_empty() && !findings.settled_by_fit() {
-        out += &format!(
-            "<h2>{}</h2>\n<ol>\n",
-            escape(&summary::candidates_heading(findings))
-        );
-        for d in &findings.diagnosis {
-            let lines = summary::diagnosis_lines(d);
-            out += &format!(
-                "<li>{}</li>\n",
-                lines
-                    .iter()
-                    .map(|l| escape(l))
-                    .collect::<Vec<_>>()
-                    .join("<br>")
-            );
-        }
-        out += "</ol>\n";
-    }
-    for line in summary::opening(findings).iter().skip(1) {
-        out += &format!("<p>{}</p>\n", escape(line));
-    }
+    out += &findings_block(findings);
     out += "<h2>The cases</h2>\n<table><tr><th>case</th><th>result</th><th>counts</th></tr>\n";
     for (i, case) in run.cases.iter().enumerate() {
         let class = if case.passed() { "pass" } else { "fail" };
@@ -142,29 +123,7 @@ fn ran(run: &SuiteRun, shown: &Shown, feedback: &str) -> String {
     out += "</table>\n";
     for case in run.cases.iter().filter(|c| !shown.withheld(c)) {
         match &case.status {
-            RunStatus::Ok(r) if !case.passed() => {
-                let (w, h) = (r.student.width, r.student.height);
-                let heat = heat_map(&r.student, &r.reference, r.difference.rule.tolerance);
-                let PngPixels::Eight(heat) = heat.pixels else {
-                    continue;
-                };
-                out += &format!("<h2>{}</h2>\n", escape(&case.name));
-                for (alt, html) in [
-                    (
-                        "your image",
-                        image(w, h, r.student.bytes.clone(), "your image"),
-                    ),
-                    (
-                        "the reference",
-                        shown
-                            .images
-                            .image(w, h, &r.reference.bytes, "the reference"),
-                    ),
-                    ("where they differ", image(w, h, heat, "where they differ")),
-                ] {
-                    out += &format!("<figure>{html}<figcaption>{alt}</figcaption></figure>\n");
-                }
-            }
+            RunStatus::Ok(r) if !case.passed() => out += &case_block(&case.name, r, shown.images),
             RunStatus::Ok(_) => {}
             _ if !case.stderr_tail.is_empty() => {
                 out += &format!(

@@ -12,7 +12,7 @@ use super::intake::Submission;
 use super::policy::Policy;
 use super::status::StudentStatus;
 use super::student::Outcome;
-use whitted_check::check::json::suite_json;
+use whitted_check::check::print::json::suite_json;
 use whitted_check::check::program::{CaseOutcome, RunStatus, SuiteRun};
 use whitted_check::check::suite::Role;
 use whitted_check::check::words;

@@ -1,7 +1,8 @@
 //! whitted-io: files in and out. Writing a render (EXR layers, PNG through a tone map, atomically,
 //! never clobbering on failure), reading images back (EXR, PNG, JPEG, TIFF, HDR) with bounded
 //! allocation, and the tools over them: comparison, statistics, merging farm parts, contact
-//! sheets, relighting, and the plan that checks a render's outputs before it runs.
+//! sheets, relighting, the plan that checks a render's outputs before it runs, and what HTML
+//! pages need ([`html`]).
 //!
 //! # What it may depend on
 //! whitted-core, and the image crates (exr, png, image, zlib-rs). Never clap, hyper, tokio or
@@ -14,6 +15,7 @@
 
 pub mod canvas;
 pub mod compare;
+pub mod html;
 pub mod input;
 pub mod merge;
 pub mod openexr;

@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use serde_json::Value;
 
 use whitted_check::check::pass_rule::PassRule;
-use whitted_check::check::{check_image, json::case_json, student_png, which_course, words};
+use whitted_check::check::{check_image, print::json::case_json, student_png, which_course, words};
 use whitted_check::mistakes::Mistakes;
 use whitted_core::course::Course;
 use whitted_core::error::{Error, Result};

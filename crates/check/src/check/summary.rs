@@ -105,8 +105,17 @@ pub fn difference_sentence(d: &Difference) -> String {
     )
 }
 
-/// One diagnosis in words: each entry, where and how to fix it, and what it explains.
+/// One diagnosis in words: each entry, where and how to fix it, and what it explains, then
+/// what the images cannot tell (`diagnosis_details`).
 pub fn diagnosis_lines(d: &Diagnosis) -> Vec<String> {
+    let mut lines = finding_lines(d);
+    lines.extend(diagnosis_details(d));
+    lines
+}
+
+/// The finding a student acts on, as the one-screen report gives it: each entry, where and
+/// how to fix it, what it explains, and what the pixels rounding decides look like.
+pub fn finding_lines(d: &Diagnosis) -> Vec<String> {
     let mut lines = Vec::new();
     for (i, bug) in d.mistakes.bugs().into_iter().enumerate() {
         let and = if i == 0 { "" } else { "and " };
@@ -131,6 +140,13 @@ pub fn diagnosis_lines(d: &Diagnosis) -> Vec<String> {
             rounding_words(d.mistakes)
         ));
     }
+    lines
+}
+
+/// What a diagnosis leaves open, for the full report: the entries its images cannot rule
+/// out, and the candidates that render the same.
+pub fn diagnosis_details(d: &Diagnosis) -> Vec<String> {
+    let mut lines = Vec::new();
     for (i, bug) in d.image_identical_with.iter().enumerate() {
         if i == 0 {
             lines.push(format!(

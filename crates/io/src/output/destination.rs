@@ -110,6 +110,15 @@ impl Destination {
         out.flush().map_err(|e| fail(e.to_string()))
     }
 
+    /// Writes `bytes` (a page, a document) into this destination as they are.
+    pub fn write_bytes(&mut self, bytes: &[u8]) -> Result<()> {
+        let path = self.path();
+        self.file()
+            .write_all(bytes)
+            .and_then(|()| self.file().flush())
+            .map_err(|e| Error::io(&path, "cannot write", e))
+    }
+
     /// A PNG written into this destination as its rows arrive.
     pub fn stream_png(
         &mut self,

@@ -1,17 +1,17 @@
-//! A check as JSON: what `whitted check --json` prints (docs/check.md) and what the viewer's
-//! check panel shows.
+//! A check's result as JSON: what `whitted check --json` prints (docs/check.md), what the
+//! viewer's check panel shows and what `grade` keeps of a student's run.
 
 use serde_json::{json, Value};
 
-use super::diagnose::Diagnosis;
-use super::numbers::NumberFit;
-use super::progress::Stages;
-use super::terms::TermFit;
 use std::path::Path;
 
-use super::program::{CaseOutcome, RunStatus, SuiteRun};
-use super::reproduce::Reproduce;
-use super::{summary, CaseReport, Findings};
+use crate::check::diagnose::Diagnosis;
+use crate::check::numbers::NumberFit;
+use crate::check::program::{RunStatus, SuiteRun};
+use crate::check::progress::Stages;
+use crate::check::result::{CaseResult, CheckResult, Subject};
+use crate::check::terms::TermFit;
+use crate::check::{summary, words, CaseReport, Findings};
 
 /// A number (a share of the differing pixels, a factor) rounded to three decimals for the JSON.
 fn three_decimals(x: f64) -> f64 {
@@ -105,7 +105,7 @@ pub fn case_json(case: &CaseReport, findings: Option<&Findings>) -> Value {
     let d = &case.difference;
     let mut object = json!({
         "verdict": d.verdict.name(),
-        "verdict_text": super::words::verdict_name(case),
+        "verdict_text": words::verdict_name(case),
         "width": d.width,
         "height": d.height,
         "bounces": case.bounces,
@@ -128,21 +128,20 @@ pub fn case_json(case: &CaseReport, findings: Option<&Findings>) -> Value {
     object
 }
 
-fn outcome_json(run: &SuiteRun, outcome: &CaseOutcome, suite_dir: Option<&Path>) -> Value {
-    let report = match &outcome.status {
-        RunStatus::Ok(case) => Some(case.as_ref()),
-        _ => None,
-    };
-    let mut object = report.map_or_else(|| json!({}), |case| case_json(case, None));
-    object["reproduce"] = Reproduce::of(&run.program, suite_dir, &outcome.case, report).json();
-    object["case"] = json!(outcome.name);
-    object["status"] = json!(outcome.status.name());
-    object["stderr_tail"] = json!(outcome.stderr_tail);
+/// A suite case: its status, its check when it wrote an image, and how to reproduce it.
+fn outcome_json(case: &CaseResult) -> Value {
+    let mut object = case
+        .report()
+        .map_or_else(|| json!({}), |report| case_json(report, None));
+    object["reproduce"] = case.reproduce.json();
+    object["case"] = json!(case.name);
+    object["status"] = json!(case.status.name());
+    object["stderr_tail"] = json!(case.stderr_tail);
     if let RunStatus::WrongSize {
         width,
         height,
         expected,
-    } = outcome.status
+    } = case.status
     {
         object["width"] = json!(width);
         object["height"] = json!(height);
@@ -153,20 +152,42 @@ fn outcome_json(run: &SuiteRun, outcome: &CaseOutcome, suite_dir: Option<&Path>)
     | RunStatus::NoOutput(message)
     | RunStatus::OutOfMemory(message)
     | RunStatus::OutputTooLarge(message)
-    | RunStatus::NotRun(message) = &outcome.status
+    | RunStatus::NotRun(message) = &case.status
     {
         object["message"] = json!(message);
     }
     object
 }
 
-/// A `--program` run: every case's status and check, and the suite's findings.
-pub fn suite_json(run: &SuiteRun, suite_dir: Option<&Path>) -> Value {
-    let mut object = json!({
-        "program": run.program,
-        "passed": run.passed(),
-        "cases": run.cases.iter().map(|c| outcome_json(run, c, suite_dir)).collect::<Vec<_>>(),
-    });
-    add_findings(&mut object, &run.findings);
+/// The whole result: one image's check, or a program's run with every case, and the year
+/// checked against (`"course"`, and `"course_chosen_because"` where it was not asked for).
+pub fn json(result: &CheckResult) -> Value {
+    let mut object = match (&result.subject, result.image()) {
+        (Subject::Image { .. }, Some(case)) => case_json(case, Some(&result.findings)),
+        (subject, _) => {
+            let program = match subject {
+                Subject::Program { program, .. } => program,
+                Subject::Image { image } => image,
+            };
+            let mut object = json!({
+                "program": program,
+                "passed": result.passed(),
+                "cases": result.cases.iter().map(outcome_json).collect::<Vec<_>>(),
+            });
+            add_findings(&mut object, &result.findings);
+            object
+        }
+    };
+    object["course"] = Value::from(result.course.name());
+    if let Some(why) = &result.course_why {
+        object["course_chosen_because"] = Value::from(why.as_str());
+    }
     object
+}
+
+/// A `--program` run as [`json`] prints it, for a caller that holds the run itself
+/// (`grade`); `suite_dir` is where its scenes were written, if they were.
+pub fn suite_json(run: &SuiteRun, suite_dir: Option<&Path>) -> Value {
+    let course = run.findings.progress.course;
+    json(&CheckResult::of_suite(run.clone(), course, None, suite_dir))
 }

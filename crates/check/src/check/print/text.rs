@@ -1,0 +1,275 @@
+//! A check's result as text. By default one screen (`screen.rs`): the verdict, the course
+//! line, the progress, a line per case, the finding with where and fix, and a line saying
+//! what `--verbose` adds. `--verbose` prints everything: every candidate with what its images
+//! cannot tell, a program's whole standard error tail, and the commands that rerun and
+//! explain each case.
+
+use super::screen::{Keep, Screen, SCREEN_LINES};
+use crate::check::reproduce::SUITE_DIR_HINT;
+use crate::check::result::{CaseResult, CheckResult, Subject};
+use crate::check::summary::{self, candidates_heading, opening};
+use crate::check::{words, CaseReport, Findings};
+use whitted_core::numbers::plain;
+
+/// How much of the result is printed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Detail {
+    /// What fits one screen (`SCREEN_LINES`).
+    Screen,
+    /// Everything (`--verbose`).
+    Full,
+}
+
+impl Detail {
+    fn full(self) -> bool {
+        self == Detail::Full
+    }
+}
+
+/// The text report of `result`.
+pub fn text(result: &CheckResult, detail: Detail) -> String {
+    let mut screen = Screen::default();
+    let mut hidden = Hidden::default();
+    match (&result.subject, result.image()) {
+        (Subject::Image { .. }, Some(case)) => {
+            image(result, case, detail, &mut screen, &mut hidden)
+        }
+        _ => program(result, detail, &mut screen, &mut hidden),
+    }
+    if let Some(line) = hidden.line() {
+        screen.line(Keep::Always, line);
+    }
+    let max = (!detail.full()).then_some(SCREEN_LINES);
+    screen.render(max).trim_end().to_string()
+}
+
+/// What the one-screen text left out, for its last line.
+#[derive(Default)]
+struct Hidden {
+    candidates: usize,
+    details: bool,
+    /// The commands left out, in words.
+    commands: Option<&'static str>,
+    stderr: bool,
+    /// The suite's scenes were not written, so there are no commands to rerun a case.
+    suite_dir: bool,
+}
+
+impl Hidden {
+    fn line(&self) -> Option<String> {
+        let mut parts = Vec::new();
+        match self.candidates {
+            0 => {}
+            1 => parts.push("1 more candidate".to_string()),
+            n => parts.push(format!("{n} more candidates")),
+        }
+        if self.details {
+            parts.push("what the images cannot tell apart".into());
+        }
+        if self.stderr {
+            parts.push("the program's standard error".into());
+        }
+        parts.extend(self.commands.map(String::from));
+        let mut line = match parts.is_empty() {
+            true => String::new(),
+            false => format!("--verbose adds {}; ", parts.join(", ")),
+        };
+        if self.suite_dir {
+            line += "--suite-dir DIR writes the scenes to rerun each case; ";
+        }
+        (!line.is_empty()).then(|| line + "--report FILE.html shows the images")
+    }
+}
+
+/// The course line after the first, then the opening lines.
+fn opening_lines(result: &CheckResult, first: String, screen: &mut Screen) {
+    screen.line(Keep::Always, first);
+    if let Some(why) = &result.course_why {
+        screen.line(Keep::Always, why.clone());
+    }
+    screen.push(Keep::Always, opening(&result.findings));
+}
+
+fn image(
+    result: &CheckResult,
+    case: &CaseReport,
+    detail: Detail,
+    screen: &mut Screen,
+    hidden: &mut Hidden,
+) {
+    let d = &case.difference;
+    let first = format!(
+        "{}, {}x{}, {} bounces: {} (tolerance: {})",
+        case.scene_name,
+        d.width,
+        d.height,
+        case.bounces,
+        words::verdict_name(case),
+        d.rule.words()
+    );
+    opening_lines(result, first, screen);
+    if d.differing_pixels == 0 {
+        screen.line(
+            Keep::Always,
+            "every byte of every pixel equals the reference",
+        );
+        return;
+    }
+    screen.push(Keep::Always, words::passes_but_hidden(case));
+    screen.line(Keep::Always, summary::difference_sentence(d));
+    if let (Some((x0, y0, x1, y1)), Some((x, y))) = (d.bounds, d.worst_pixel) {
+        screen.line(
+            Keep::IfRoom,
+            format!("they lie in x {x0}..={x1}, y {y0}..={y1}; the worst pixel is ({x}, {y})"),
+        );
+    }
+    findings_lines(&result.findings, detail, screen, hidden);
+    let commands = &result.cases[0].reproduce.explain;
+    if detail.full() {
+        if let Some(reference) = commands.first() {
+            screen.push(
+                Keep::Always,
+                [
+                    "the worst pixel, as the reference traces it:".to_string(),
+                    format!("  {reference}"),
+                ],
+            );
+        }
+        if let Some(compare) = commands.get(1) {
+            screen.push(
+                Keep::Always,
+                [
+                    "and beside it as the top diagnosis traces it, the steps that differ:"
+                        .to_string(),
+                    format!("  {compare}"),
+                ],
+            );
+        }
+    } else if !commands.is_empty() {
+        hidden.commands = Some("the commands that trace the worst pixel");
+    }
+}
+
+fn program(result: &CheckResult, detail: Detail, screen: &mut Screen, hidden: &mut Hidden) {
+    let name = match &result.subject {
+        Subject::Program { program, .. } => program.as_str(),
+        Subject::Image { image } => image.as_str(),
+    };
+    opening_lines(
+        result,
+        format!("{name} over {} cases:", result.cases.len()),
+        screen,
+    );
+    if detail.full() && result.needs_suite_dir() {
+        screen.line(Keep::Always, SUITE_DIR_HINT);
+    }
+    let mut tails_shown: Vec<&str> = Vec::new();
+    for c in &result.cases {
+        screen.line(Keep::Always, format!("  {:<28} {}", c.name, case_line(c)));
+        if c.report().is_none() && !c.stderr_tail.is_empty() {
+            let lines = c.stderr_tail.lines();
+            if detail.full() {
+                screen.push(Keep::Always, lines.map(|l| format!("      | {l}")));
+            } else {
+                // The last line is where the exception is; the same one is said once, and
+                // at most two are said at all.
+                let last = lines.filter(|l| !l.trim().is_empty()).last().unwrap_or("");
+                hidden.stderr |= c.stderr_tail.lines().count() > 1;
+                if tails_shown.len() < 2 && !last.is_empty() && !tails_shown.contains(&last) {
+                    tails_shown.push(last);
+                    screen.line(Keep::IfRoom, format!("      | {last}"));
+                } else {
+                    hidden.stderr = true;
+                }
+            }
+        }
+        if c.worth_rerunning() {
+            let lines = c.reproduce.lines();
+            match detail.full() {
+                true => screen.push(Keep::Always, lines.iter().map(|l| format!("      {l}"))),
+                false if !lines.is_empty() => {
+                    hidden.commands = Some("the commands that rerun and explain each failing case")
+                }
+                false => hidden.suite_dir = result.needs_suite_dir(),
+            }
+        }
+    }
+    let (passed, hiding) = result.pass_counts();
+    screen.line(
+        Keep::Always,
+        words::pass_count(passed, result.cases.len(), hiding),
+    );
+    if !result.any_image() {
+        screen.line(
+            Keep::Always,
+            "diagnosis: no case wrote an image to diagnose",
+        );
+    } else if !result.passed() {
+        findings_lines(&result.findings, detail, screen, hidden);
+    }
+}
+
+/// A case's line after its name: its verdict and what of the diagnosis shows in it, or how
+/// it ended without an image.
+fn case_line(c: &CaseResult) -> String {
+    match c.report() {
+        Some(case) => words::case_line(case),
+        None => c.status.failure_line().unwrap_or_default(),
+    }
+}
+
+/// The candidates, after the opening lines (which hold the fits beyond the catalogue). On one
+/// screen only the best, and only when it explains the images well; else every one.
+fn findings_lines(findings: &Findings, detail: Detail, screen: &mut Screen, hidden: &mut Hidden) {
+    let list = &findings.diagnosis;
+    if list.is_empty() {
+        screen.line(
+            Keep::Always,
+            "diagnosis: no catalogued mistake reproduces the images better than the reference does",
+        );
+        return;
+    }
+    if findings.settled_by_fit() {
+        // The fit in the opening lines is the story; weak candidates would tell another.
+        return;
+    }
+    if !detail.full() {
+        hidden.candidates = list.len() - 1;
+        if findings.weak() {
+            // A weak candidate is no finding: named, its where and fix left to --verbose.
+            hidden.candidates = list.len();
+            screen.line(
+                Keep::Always,
+                format!(
+                    "the best catalogued candidate, {}, explains only {}% of the differing pixels",
+                    list[0].name(),
+                    plain(100.0 * list[0].explained)
+                ),
+            );
+            return;
+        }
+        hidden.details |= !summary::diagnosis_details(&list[0]).is_empty();
+        screen.line(Keep::Always, candidates_heading(findings));
+        screen.push(Keep::Always, numbered(1, summary::finding_lines(&list[0])));
+        return;
+    }
+    screen.line(Keep::Always, candidates_heading(findings));
+    for (rank, d) in list.iter().enumerate() {
+        screen.push(
+            Keep::Always,
+            numbered(rank + 1, summary::diagnosis_lines(d)),
+        );
+    }
+}
+
+/// A candidate's lines under its rank: "  1. first", then indented.
+fn numbered(rank: usize, lines: Vec<String>) -> Vec<String> {
+    lines
+        .into_iter()
+        .enumerate()
+        .map(|(i, line)| match i {
+            0 => format!("  {rank}. {line}"),
+            _ => format!("     {line}"),
+        })
+        .collect()
+}
