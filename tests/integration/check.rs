@@ -395,7 +395,15 @@ fn a_whitted_render_is_identical_and_explains_its_worst_pixel() {
     // Checked against the wrong bounce count: it differs, and says where.
     let run = whitted(
         d,
-        &["check", "mine.png", "-b", "2", "--heatmap", "heat.png"],
+        &[
+            "check",
+            "mine.png",
+            "-b",
+            "2",
+            "--heatmap",
+            "heat.png",
+            "--verbose",
+        ],
     );
     assert_eq!(run.status.code(), Some(1), "{}", stderr(&run));
     let text = String::from_utf8_lossy(&run.stdout);
@@ -615,7 +623,10 @@ fn a_mistake_the_top_one_masks_is_named_as_image_identical() {
     let top = &json["diagnosis"][0];
     assert_eq!(top["bugs"], serde_json::json!(["specular-gated"]), "{json}");
     assert_eq!(top["image_identical_with"][0], "reflect-unclamped", "{top}");
-    let run = whitted(dir.path(), &["check", "--program", &program(&pair)]);
+    let run = whitted(
+        dir.path(),
+        &["check", "--program", &program(&pair), "--verbose"],
+    );
     let text = String::from_utf8_lossy(&run.stdout);
     assert!(
         text.contains("with specular-gated in place, reflect-unclamped"),
@@ -800,7 +811,7 @@ fn the_report_tells_one_story_in_plain_words_and_each_case_can_be_rerun() {
         }
     }
     // The text: possible numbers in plain words, the hidden mistake, the commands.
-    let run = whitted(d, &args);
+    let run = whitted(d, &[&args[..], &["--verbose"]].concat());
     let text = String::from_utf8_lossy(&run.stdout);
     assert!(
         !text.contains("LSB") && !text.contains("; estimated)"),

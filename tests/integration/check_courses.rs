@@ -276,7 +276,12 @@ fn tick1_star_s_random_soft_shadows_are_noise_not_mistakes() {
 fn suite_dir_writes_the_year_s_own_scenes() {
     let dir = tempfile::tempdir().expect("tempdir");
     let program = program("2021-22", &["no-ambient"]);
-    let out = check_program(dir.path(), "2021-22", &program, &["--suite-dir", "suite"]);
+    let out = check_program(
+        dir.path(),
+        "2021-22",
+        &program,
+        &["--suite-dir", "suite", "--verbose"],
+    );
     assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
     let test1 = std::fs::read(dir.path().join("suite/test1.xml")).expect("test1.xml");
     let ours = std::fs::read(root().join("crates/check/scenes/courses/2021-24/test1.xml"))

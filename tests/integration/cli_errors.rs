@@ -170,17 +170,21 @@ fn a_failed_render_keeps_the_previous_output() {
     );
 }
 
-/// `check --report` writes the PNG sheet only: a report named otherwise is refused before
-/// anything runs, never silently written as a PNG under that name.
+/// `check --report`'s format follows its extension (`.html` or `.png`): a report named
+/// otherwise is refused before anything runs, never silently written under that name.
 #[test]
-fn a_check_report_not_named_png_is_refused() {
+fn a_check_report_neither_html_nor_png_is_refused() {
     let dir = tempfile::tempdir().expect("tempdir");
     let d = dir.path();
     let image = reference("tick2_b2.png");
-    for name in ["r.html", "r", "r.pdf"] {
+    for name in ["r", "r.pdf", "r.html.txt"] {
         let run = whitted(d, &["check", s(&image), "--report", name]);
         assert_eq!(run.status.code(), Some(2), "{name}");
-        assert!(stderr(&run).contains("PNG sheet"), "{}", stderr(&run));
+        let message = stderr(&run);
+        assert!(
+            message.contains("REPORT.html") && message.contains("REPORT.png"),
+            "{message}"
+        );
         assert!(!d.join(name).exists(), "{name}");
     }
 }

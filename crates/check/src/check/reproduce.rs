@@ -111,6 +111,16 @@ impl Reproduce {
         let explain = report
             .map(|r| worst_pixel_commands(r, Some(&scene), case.course))
             .unwrap_or_default();
+        // The program's words as `--program` split them, quoted for a shell: the line runs
+        // as printed even where the words hold what a shell reads otherwise (`<`, `$`).
+        let program = match crate::check::program::words(program) {
+            Ok(words) => words
+                .iter()
+                .map(|w| shell_word(w))
+                .collect::<Vec<_>>()
+                .join(" "),
+            Err(_) => program.to_string(),
+        };
         Reproduce {
             run: Some(format!(
                 "{program} --input {quoted} --output {output} --bounces {}{}",
