@@ -4,6 +4,7 @@
 //! to the worst region and enlarged). Every string is escaped: scene names, program lines and
 //! error output are a student's and must never become markup.
 
+use super::text::image_heading;
 use super::zoom::worst_region;
 use crate::check::report::heat_map;
 use crate::check::result::{CheckResult, Subject};
@@ -153,9 +154,13 @@ pub fn page(result: &CheckResult) -> String {
         false => ("fail", "fails"),
     };
     let (n, _) = result.pass_counts();
+    let heading = match result.image() {
+        Some(case) => image_heading(case),
+        None => format!("{n} of {} cases pass", result.cases.len()),
+    };
     body += &format!(
-        "<p class=\"{class}\"><strong>{verdict}</strong>: {n} of {} cases pass (course {})</p>\n",
-        result.cases.len(),
+        "<p class=\"{class}\"><strong>{verdict}</strong>: {} (course {})</p>\n",
+        escape(&heading),
         escape(result.course.name())
     );
     if let Some(why) = &result.course_why {

@@ -81,6 +81,21 @@ impl Hidden {
     }
 }
 
+/// The first line of an image's report: the scene, the size, the bounces, the verdict and
+/// the rule it was given by.
+pub fn image_heading(case: &CaseReport) -> String {
+    let d = &case.difference;
+    format!(
+        "{}, {}x{}, {} bounces: {} (tolerance: {})",
+        case.scene_name,
+        d.width,
+        d.height,
+        case.bounces,
+        words::verdict_name(case),
+        d.rule.words()
+    )
+}
+
 /// The course line after the first, then the opening lines.
 fn opening_lines(result: &CheckResult, first: String, screen: &mut Screen) {
     screen.line(Keep::Always, first);
@@ -98,16 +113,7 @@ fn image(
     hidden: &mut Hidden,
 ) {
     let d = &case.difference;
-    let first = format!(
-        "{}, {}x{}, {} bounces: {} (tolerance: {})",
-        case.scene_name,
-        d.width,
-        d.height,
-        case.bounces,
-        words::verdict_name(case),
-        d.rule.words()
-    );
-    opening_lines(result, first, screen);
+    opening_lines(result, image_heading(case), screen);
     if d.differing_pixels == 0 {
         screen.line(
             Keep::Always,
