@@ -29,7 +29,10 @@ impl Detail {
 /// The text report of `result`.
 pub fn text(result: &CheckResult, detail: Detail) -> String {
     let mut screen = Screen::default();
-    let mut hidden = Hidden::default();
+    let mut hidden = Hidden {
+        images: result.any_image() && !result.passed(),
+        ..Hidden::default()
+    };
     match (&result.subject, result.image()) {
         (Subject::Image { .. }, Some(case)) => {
             image(result, case, detail, &mut screen, &mut hidden)
@@ -53,6 +56,8 @@ struct Hidden {
     stderr: bool,
     /// The suite's scenes were not written, so there are no commands to rerun a case.
     suite_dir: bool,
+    /// Some case wrote an image, which a report page would show.
+    images: bool,
 }
 
 impl Hidden {
@@ -77,7 +82,11 @@ impl Hidden {
         if self.suite_dir {
             line += "--suite-dir DIR writes the scenes to rerun each case; ";
         }
-        (!line.is_empty()).then(|| line + "--report FILE.html shows the images")
+        if self.images {
+            line += "--report FILE.html shows the images; ";
+        }
+        let line = line.trim_end_matches("; ");
+        (!line.is_empty()).then(|| line.to_string())
     }
 }
 
@@ -177,9 +186,9 @@ fn program(result: &CheckResult, detail: Detail, screen: &mut Screen, hidden: &m
             if detail.full() {
                 screen.push(Keep::Always, lines.map(|l| format!("      | {l}")));
             } else {
-                // The last line is where the exception is; the same one is said once, and
-                // at most two are said at all.
-                let last = lines.filter(|l| !l.trim().is_empty()).last().unwrap_or("");
+                // The line that names the error; the same one is said once, and at most two
+                // are said at all.
+                let last = telling_line(lines);
                 hidden.stderr |= c.stderr_tail.lines().count() > 1;
                 if tails_shown.len() < 2 && !last.is_empty() && !tails_shown.contains(&last) {
                     tails_shown.push(last);
@@ -213,6 +222,16 @@ fn program(result: &CheckResult, detail: Detail, screen: &mut Screen, hidden: &m
     } else if !result.passed() {
         findings_lines(&result.findings, detail, screen, hidden);
     }
+}
+
+/// The line of a standard error tail that says what went wrong: its last line that is not a
+/// stack frame (Java's `\tat ...` and `\t... 3 more`), so the exception or its cause.
+fn telling_line<'a>(lines: impl DoubleEndedIterator<Item = &'a str>) -> &'a str {
+    lines
+        .rev()
+        .map(str::trim)
+        .find(|l| !l.is_empty() && !l.starts_with("at ") && !l.starts_with("... "))
+        .unwrap_or("")
 }
 
 /// A case's line after its name: its verdict and what of the diagnosis shows in it, or how
@@ -278,4 +297,24 @@ fn numbered(rank: usize, lines: Vec<String>) -> Vec<String> {
             _ => format!("     {line}"),
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_stack_trace_is_told_by_its_exception_not_its_last_frame() {
+        let tail = "Exception in thread \"main\" java.lang.IllegalStateException: x\n\
+                    \tat Renderer.trace(Renderer.java:40)\n\
+                    Caused by: java.lang.NullPointerException\n\
+                    \tat Scene.get(Scene.java:9)\n\
+                    \t... 3 more\n";
+        assert_eq!(
+            telling_line(tail.lines()),
+            "Caused by: java.lang.NullPointerException"
+        );
+        assert_eq!(telling_line("one\ntwo\n\n".lines()), "two");
+        assert_eq!(telling_line("".lines()), "");
+    }
 }

@@ -88,7 +88,7 @@ pub fn worst_region(student: &Rgb8, reference: &Rgb8) -> Option<Region> {
             }
         }
     }
-    (best.0 > 0).then(|| Region {
+    (best.0 > 0).then_some(Region {
         x: best.1 as u32,
         y: best.2 as u32,
         size: s as u32,
