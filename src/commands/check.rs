@@ -2,6 +2,8 @@
 //! verdict, where the image differs, and which mistake made it (docs/check.md). Exit 0 when
 //! every image passes, 1 when one differs, 2 when they cannot be compared.
 
+mod project;
+
 use std::path::Path;
 
 use serde_json::Value;
@@ -38,11 +40,17 @@ pub fn run(args: &CheckArgs) -> Result<bool> {
     }
     match (&args.program, &args.image) {
         (Some(program), _) => run_program(args, program),
+        (None, Some(dir)) if project::is_project_arg(dir) => project::run(args, dir),
         (None, Some(image)) if args.view => view(args, image),
         (None, Some(image)) => run_image(args, image),
-        (None, None) => Err(whitted_core::Error::Usage(
-            "give the PNG to check, or --program 'CMD ARGS'".into(),
-        )),
+        (None, None) => match project::here() {
+            Some(dir) => project::run(args, &dir),
+            None => Err(whitted_core::Error::Usage(
+                "give the PNG to check, a project folder, or --program 'CMD ARGS' (the current \
+                 folder holds no Tick1.java or Tick2.java)"
+                    .into(),
+            )),
+        },
     }
 }
 
@@ -156,11 +164,31 @@ fn run_program(args: &CheckArgs, program: &str) -> Result<bool> {
         refuse_clashes(&[], &[report])?;
     }
     let chosen = which_course::for_program(args.course.map(Course::from), program)?;
+    report_suite(args, &chosen, |course| {
+        let run = run_suite(program, args.rule(), args.timeout, course)?;
+        Ok((run, Preamble::default()))
+    })
+}
+
+/// What a project folder adds to its suite's report (`check DIR`): lines after the year's, and
+/// the JSON's `"project"`.
+#[derive(Default)]
+struct Preamble {
+    lines: Vec<String>,
+    json: Option<Value>,
+}
+
+/// The suite `run` runs under `chosen`'s year, reported as `--program` reports it.
+fn report_suite(
+    args: &CheckArgs,
+    chosen: &Chosen,
+    run: impl FnOnce(Course) -> Result<(SuiteRun, Preamble)>,
+) -> Result<bool> {
     if let Some(dir) = &args.suite_dir {
         suite::write_scenes(dir, chosen.course)?;
     }
     let mut report = args.report.as_deref().map(Destination::open).transpose()?;
-    let run = run_suite(program, args.rule(), args.timeout, chosen.course)?;
+    let (run, preamble) = run(chosen.course)?;
     if let Some(out) = report.as_mut() {
         let rows = failing_rows(&run, |_| true);
         out.write_png(&contact_sheet(&rows))?;
@@ -171,10 +199,15 @@ fn run_program(args: &CheckArgs, program: &str) -> Result<bool> {
     let suite_dir = args.suite_dir.as_deref();
     let text = if args.json {
         let mut json = suite_json(&run, suite_dir);
-        add_course(&mut json, &chosen);
+        add_course(&mut json, chosen);
+        if let Some(project) = preamble.json {
+            json["project"] = project;
+        }
         pretty(&json)
     } else {
-        with_course_line(suite_text(&run, suite_dir), &chosen)
+        let mut lines: Vec<String> = chosen.why.iter().cloned().collect();
+        lines.extend(preamble.lines);
+        after_first_line(suite_text(&run, suite_dir), &lines)
     };
     stdout::print_line(&text)?;
     Ok(run.passed())
@@ -191,12 +224,19 @@ fn add_course(json: &mut Value, chosen: &Chosen) {
 
 /// The report with the line saying which year was picked and why, after its first line.
 fn with_course_line(text: String, chosen: &Chosen) -> String {
-    let Some(why) = &chosen.why else {
+    let lines: Vec<String> = chosen.why.iter().cloned().collect();
+    after_first_line(text, &lines)
+}
+
+/// The report with `lines` after its first line.
+fn after_first_line(text: String, lines: &[String]) -> String {
+    if lines.is_empty() {
         return text;
-    };
+    }
+    let lines = lines.join("\n");
     match text.split_once('\n') {
-        Some((first, rest)) => format!("{first}\n{why}\n{rest}"),
-        None => format!("{text}\n{why}"),
+        Some((first, rest)) => format!("{first}\n{lines}\n{rest}"),
+        None => format!("{text}\n{lines}"),
     }
 }
 
