@@ -78,12 +78,9 @@ impl Found {
             .map(|(_, p)| p.as_path())
     }
 
-    /// `path` as the student knows it: relative to the folder they gave.
+    /// `path` as the student can use it where they ran whitted: under the folder they gave.
     pub fn shown(&self, path: &Path) -> String {
-        path.strip_prefix(&self.root)
-            .unwrap_or(path)
-            .display()
-            .to_string()
+        shown(path)
     }
 }
 
@@ -134,7 +131,6 @@ pub fn find(dir: &Path, want: Option<Main>) -> Result<Found> {
         Error::Usage(format!("{}: {why}", best.display()))
     })?;
     let mut warnings = Vec::new();
-    let shown = |p: &Path| p.strip_prefix(dir).unwrap_or(p).display().to_string();
     let others: Vec<String> = kinds
         .iter()
         .filter(|p| **p != best)
@@ -167,6 +163,16 @@ pub fn find(dir: &Path, want: Option<Main>) -> Result<Found> {
         sources,
         warnings,
     })
+}
+
+/// `path` without a leading `./` (a search from `.` gives `./src/...`); `.` for the folder
+/// itself.
+pub fn shown(path: &Path) -> String {
+    let path = path.strip_prefix(".").unwrap_or(path);
+    match path.as_os_str().is_empty() {
+        true => ".".into(),
+        false => path.display().to_string(),
+    }
 }
 
 fn is_named(path: &Path, name: &str) -> bool {
@@ -289,7 +295,6 @@ fn copies_elsewhere(dir: &Path, folder: &Path, name: &str, path: &Path, warnings
             continue;
         }
         if std::fs::read(other).is_ok_and(|bytes| bytes != ours) {
-            let shown = |p: &Path| p.strip_prefix(dir).unwrap_or(p).display().to_string();
             warnings.push(format!(
                 "another {name} at {} differs from {}: the one beside the main class is compiled",
                 shown(other),
@@ -346,10 +351,11 @@ mod tests {
         assert_eq!(found.source_root.as_deref(), Some(d.join("src").as_path()));
         assert_eq!(found.sources.len(), 4);
         let said = found.warnings.join("\n");
-        assert!(said.contains("2 copies of Tick1.java: using src/"), "{said}");
-        assert!(said.contains("not old/Tick1.java"), "{said}");
+        let d = d.display();
+        assert!(said.contains(&format!("2 copies of Tick1.java: using {d}/src/")), "{said}");
+        assert!(said.contains(&format!("not {d}/old/Tick1.java")), "{said}");
         assert!(said.contains("Renderer (1).java"), "{said}");
-        assert!(said.contains("another Renderer.java at old/Renderer.java"), "{said}");
+        assert!(said.contains(&format!("another Renderer.java at {d}/old/Renderer.java")), "{said}");
         assert!(!said.contains("out/"), "{said}");
     }
 

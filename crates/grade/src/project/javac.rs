@@ -60,9 +60,11 @@ pub fn jdk_tool(name: &str) -> Result<PathBuf> {
 pub fn project(found: &Found) -> Result<Build> {
     let javac = jdk_tool("javac")?;
     let dir = private_dir()?;
-    let files: Vec<PathBuf> = found.sources.iter().map(|(_, p)| relative(found, p)).collect();
-    let source_root = found.source_root.as_ref().map(|r| relative(found, r));
-    match run(&javac, &found.root, &dir, source_root.as_deref(), &files)? {
+    // javac runs where whitted was run, on the paths as found, so that its messages name the
+    // files as the student reaches them from there.
+    let files: Vec<PathBuf> = found.sources.iter().map(|(_, p)| PathBuf::from(found.shown(p))).collect();
+    let source_root = found.source_root.as_ref().map(|r| PathBuf::from(found.shown(r)));
+    match run(&javac, None, &dir, source_root.as_deref(), &files)? {
         None => Ok(Build {
             dir,
             main: found.main_class(),
@@ -89,7 +91,7 @@ pub fn sources(
         std::fs::write(&path, bytes).map_err(|e| Error::io(&path, "cannot write", e))?;
         files.push(PathBuf::from(name));
     }
-    Ok(match run(&javac, &src, &dir, None, &files)? {
+    Ok(match run(&javac, Some(&src), &dir, None, &files)? {
         None => Ok(Build { dir, main }),
         Some(messages) => Err(first_errors(&messages)),
     })
@@ -112,33 +114,25 @@ fn private_dir() -> Result<tempfile::TempDir> {
     Ok(dir)
 }
 
-/// `path` relative to the project's folder (javac runs there, so its messages name files as
-/// the student does).
-fn relative(found: &Found, path: &Path) -> PathBuf {
-    path.strip_prefix(&found.root).unwrap_or(path).to_path_buf()
-}
-
-/// javac over `files` (relative to `cwd`) into `dir/classes`: None when it compiled, else
-/// its messages.
+/// javac over `files` (relative to `cwd`, or to this process's folder) into `dir/classes`:
+/// None when it compiled, else its messages.
 fn run(
     javac: &Path,
-    cwd: &Path,
+    cwd: Option<&Path>,
     dir: &tempfile::TempDir,
     source_root: Option<&Path>,
     files: &[PathBuf],
 ) -> Result<Option<String>> {
     let mut command = Command::new(javac);
+    if let Some(cwd) = cwd {
+        command.current_dir(cwd);
+    }
     command
-        .current_dir(cwd)
         .args(["-proc:none", "-encoding", "UTF-8", "-Xmaxerrs", "20", "-nowarn"])
         .arg("-implicit:class")
         .arg("-d")
         .arg(dir.path().join("classes"));
     if let Some(root) = source_root {
-        let root = match root.as_os_str().is_empty() {
-            true => Path::new("."),
-            false => root,
-        };
         command.arg("-sourcepath").arg(root);
     }
     command.args(files).stdin(Stdio::null()).stdout(Stdio::null());

@@ -114,10 +114,7 @@ impl Project {
         let mut lines = vec![format!(
             "project: {} in {}, compiled by javac{}",
             f.main_class(),
-            match f.shown(&f.folder) {
-                s if s.is_empty() => ".".to_string(),
-                s => s,
-            },
+            f.shown(&f.folder),
             match self.ide_output() {
                 Some(_) => String::new(),
                 None => " (CLASSES below: where your IDE or `javac -d` puts the classes)".into(),
