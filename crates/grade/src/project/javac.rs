@@ -252,6 +252,22 @@ mod tests {
     }
 
     #[test]
+    fn the_build_folder_is_private_and_goes_with_the_build() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = private_dir().expect("dir");
+        let mode = std::fs::metadata(dir.path()).expect("meta").permissions().mode();
+        assert_eq!(mode & 0o777, 0o700);
+        let build = Build {
+            dir,
+            main: "a.Tick1".into(),
+        };
+        let classes = build.classes();
+        assert!(classes.is_dir());
+        drop(build);
+        assert!(!classes.exists());
+    }
+
+    #[test]
     fn the_2023_24_bumpy_sphere_is_named_as_the_known_cause() {
         let messages = "src/x/BumpySphere.java:47: error: missing return statement\n    }\n    ^\n1 error\n";
         let cause = known_cause(messages).expect("known");

@@ -162,3 +162,66 @@ impl Project {
         })
     }
 }
+
+/// A project of `course`'s clean-room classes alone, in a student's package, for the tests.
+#[cfg(test)]
+fn clean_project(course: Course) -> (tempfile::TempDir, find::Found) {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let package = match course.is_default() {
+        true => None,
+        false => Some("uk.ac.cam.cl.gfxintro.ab123.tick1"),
+    };
+    for (path, bytes) in crate::clean_room_skeleton(course, package).expect("skeleton") {
+        let path = dir.path().join("src").join(path);
+        std::fs::create_dir_all(path.parent().expect("parent")).expect("folder");
+        std::fs::write(path, bytes).expect("write");
+    }
+    let found = find::find(dir.path(), None).expect("found");
+    (dir, found)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_year_s_classes_say_their_year_and_match_their_own_members() {
+        for course in Course::ALL {
+            let (_dir, found) = clean_project(course);
+            let chosen = year::year(&found, None).expect("a year");
+            // 2019-20's classes are 2020-21's: the later is taken, and said.
+            let expected = match course {
+                Course::Y2019 => Course::Y2020,
+                other => other,
+            };
+            assert_eq!(chosen.course, expected, "{course}: {:?}", chosen.why);
+            assert!(chosen.notes.is_empty(), "{course}: {:?}", chosen.notes);
+            let differ = compare::members_differ(&found, course).expect("compared");
+            assert!(differ.is_empty(), "{course}: {differ:?}");
+        }
+        let (_dir, found) = clean_project(Course::Y2019);
+        let why = year::year(&found, None).expect("a year").why.expect("why");
+        assert!(why.contains("as in 2019-20 and 2020-21"), "{why}");
+    }
+
+    #[test]
+    fn another_year_s_classes_are_named_with_what_differs() {
+        let (_dir, found) = clean_project(Course::Y2021);
+        let differ = compare::members_differ(&found, Course::Y2023).expect("compared");
+        let lines: Vec<&str> = differ.iter().map(|(_, l)| l.as_str()).collect();
+        let said = lines.join("\n");
+        assert!(
+            said.contains("ColorRGB.java is not 2023-24's: it lacks isZero(), subtract(double)"),
+            "{said}"
+        );
+        assert!(
+            said.contains("SceneObject.java is not 2023-24's: it lacks getRefractiveIndex(), \
+                 getTransmittance(), isTransmissive(), field refractive_index, field transmittance"),
+            "{said}"
+        );
+        assert_eq!(lines.len(), 3, "{said}");
+        let asked = year::year(&found, Some(Course::Y2023)).expect("asked");
+        assert_eq!(asked.course, Course::Y2023);
+        assert!(asked.notes[0].contains("look like 2021-22's"), "{:?}", asked.notes);
+    }
+}
