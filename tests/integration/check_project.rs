@@ -33,7 +33,14 @@ fn project(d: &Path, name: &str, year: &str, layout: Layout, bugs: &[&str]) -> (
     let skeleton = d.join(format!("{name}-skeleton"));
     let wrote = whitted(
         d,
-        &["grade", "--write-skeleton", "--course", year, "-o", s(&skeleton)],
+        &[
+            "grade",
+            "--write-skeleton",
+            "--course",
+            year,
+            "-o",
+            s(&skeleton),
+        ],
     );
     assert!(wrote.status.success(), "{}", stderr(&wrote));
     let shipped = skeleton.join("src/uk/ac/cam/cl/gfxintro/crsid/tick1");
@@ -124,7 +131,10 @@ fn a_2021_22_intellij_project_passes_with_its_year_and_why_and_course_overrides(
         ),
         "{out}"
     );
-    assert!(!out.contains("note:"), "the year's own classes: nothing to say\n{out}");
+    assert!(
+        !out.contains("note:"),
+        "the year's own classes: nothing to say\n{out}"
+    );
     assert!(
         err.contains(
             "2 copies of Tick1.java: using tick1/src/uk/ac/cam/cl/gfxintro/ab123/tick1/Tick1.java"
@@ -164,14 +174,19 @@ fn a_2017_18_maven_project_and_a_2023_24_plain_folder_pass_with_their_years() {
         ),
         "{out}"
     );
-    assert!(out.contains("in maven/src/main/java/uk/ac/cam/cl/gfxintro/ab123/tick1"), "{out}");
+    assert!(
+        out.contains("in maven/src/main/java/uk/ac/cam/cl/gfxintro/ab123/tick1"),
+        "{out}"
+    );
 
     let (plain, _) = project(d, "plain", "2023-24", Layout::Plain, &[]);
     let run = check_in(&plain, &d.join("tmp"), &[]);
     let out = stdout(&run);
     assert_eq!(run.status.code(), Some(0), "{out}\n{}", stderr(&run));
     assert!(
-        out.contains("course: 2023-24, because Tick1.java renders 800x600 and ColorRGB has isZero()"),
+        out.contains(
+            "course: 2023-24, because Tick1.java renders 800x600 and ColorRGB has isZero()"
+        ),
         "{out}"
     );
     assert!(out.contains(" in ., compiled by javac"), "{out}");
@@ -219,20 +234,26 @@ fn an_edited_scene_loader_is_told_up_front_with_the_class_named() {
     assert_eq!(run.status.code(), Some(1), "{out}\n{}", stderr(&run));
     let notes: Vec<&str> = out.lines().filter(|l| l.starts_with("note:")).collect();
     assert!(
-        notes.iter().any(|n| n.contains(
-            "SceneLoader.java is not 2021-22's: it has count() that 2021-22's has not"
-        )),
+        notes.iter().any(|n| n
+            .contains("SceneLoader.java is not 2021-22's: it has count() that 2021-22's has not")),
         "{out}"
     );
     assert!(
-        notes.iter().any(|n| n.contains("with your SceneLoader.java among 2021-22's own classes")
-            && n.contains("pixels differ")),
+        notes.iter().any(
+            |n| n.contains("with your SceneLoader.java among 2021-22's own classes")
+                && n.contains("pixels differ")
+        ),
         "{out}"
     );
     // Up front: the notes come before the cases.
     let first_case = out.find("test1.xml").expect("a case");
     assert!(out.find("note:").expect("a note") < first_case, "{out}");
-    assert!(!notes.iter().any(|n| n.contains("Camera") || n.contains("Tick1.java is")), "{out}");
+    assert!(
+        !notes
+            .iter()
+            .any(|n| n.contains("Camera") || n.contains("Tick1.java is")),
+        "{out}"
+    );
 }
 
 /// The 2023-24 skeleton as shipped (BumpySphere.getNormalAt with no return) does not compile:
@@ -253,12 +274,20 @@ fn the_2023_24_bumpy_sphere_as_shipped_is_said_once_with_its_cause() {
     assert_eq!(run.status.code(), Some(2), "{err}");
     assert!(run.stdout.is_empty());
     assert_eq!(err.matches("missing return statement").count(), 1, "{err}");
-    assert_eq!(err.matches("BumpySphere.getNormalAt has no return").count(), 1, "{err}");
+    assert_eq!(
+        err.matches("BumpySphere.getNormalAt has no return").count(),
+        1,
+        "{err}"
+    );
     assert!(
         err.contains("shipped/src/uk/ac/cam/cl/gfxintro/ab123/tick1/BumpySphere.java:"),
         "{err}"
     );
-    assert_eq!(err.matches("error:").count(), 2, "ours and javac's one\n{err}");
+    assert_eq!(
+        err.matches("error:").count(),
+        2,
+        "ours and javac's one\n{err}"
+    );
     assert_empty(&tmp);
 }
 
@@ -273,10 +302,18 @@ fn no_main_class_and_no_javac_are_clear_errors() {
     std::fs::write(empty.join("out/Tick1.java"), "class Tick1 {}").expect("w");
     let run = check_in(d, &d.join("tmp"), &["empty"]);
     assert_eq!(run.status.code(), Some(2));
-    assert!(stderr(&run).contains("empty: no Tick1.java (Tick 1, 2017-18 on) or Tick2.java"), "{}", stderr(&run));
+    assert!(
+        stderr(&run).contains("empty: no Tick1.java (Tick 1, 2017-18 on) or Tick2.java"),
+        "{}",
+        stderr(&run)
+    );
     let run = check_in(&empty, &d.join("tmp"), &[]);
     assert_eq!(run.status.code(), Some(2));
-    assert!(stderr(&run).contains("a project folder, or --program"), "{}", stderr(&run));
+    assert!(
+        stderr(&run).contains("a project folder, or --program"),
+        "{}",
+        stderr(&run)
+    );
 
     let (root, _) = project(d, "nojdk", "2021-22", Layout::Plain, &[]);
     let bin = d.join("bin");
@@ -293,7 +330,10 @@ fn no_main_class_and_no_javac_are_clear_errors() {
         .expect("runs");
     assert_eq!(run.status.code(), Some(2));
     let err = stderr(&run);
-    assert!(err.contains("`javac` is not on PATH") && err.contains("install a JDK"), "{err}");
+    assert!(
+        err.contains("`javac` is not on PATH") && err.contains("install a JDK"),
+        "{err}"
+    );
 }
 
 /// 2016-17's Tick 2 project (gfx/tick2, Tick2.java): its year from the main class; passes.
@@ -304,7 +344,14 @@ fn a_2016_17_tick2_project_is_checked_as_2016_17() {
     let tick2 = d.join("tick2");
     let wrote = whitted(
         d,
-        &["grade", "--write-skeleton", "--course", "2016-17", "-o", s(&tick2)],
+        &[
+            "grade",
+            "--write-skeleton",
+            "--course",
+            "2016-17",
+            "-o",
+            s(&tick2),
+        ],
     );
     assert!(wrote.status.success(), "{}", stderr(&wrote));
     let package = tick2.join("src/gfx/tick2");
@@ -321,6 +368,9 @@ fn a_2016_17_tick2_project_is_checked_as_2016_17() {
     let json: serde_json::Value = serde_json::from_slice(&run.stdout).expect("json");
     assert_eq!(json["course"], "2016-17");
     let why = json["course_chosen_because"].as_str().unwrap_or_default();
-    assert!(why.contains("the main class is Tick2.java, the 2016-17 Tick 2"), "{why}");
+    assert!(
+        why.contains("the main class is Tick2.java, the 2016-17 Tick 2"),
+        "{why}"
+    );
     assert_eq!(json["project"]["main_class"], "gfx.tick2.Tick2");
 }

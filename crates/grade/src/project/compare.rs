@@ -17,7 +17,7 @@ use std::time::Duration;
 
 use super::find::Found;
 use super::javac::{self, Build};
-use super::members::{members, Member};
+use super::members::{blank, members, Member};
 use crate::archive;
 use crate::package;
 use crate::skeleton::Skeleton;
@@ -47,9 +47,19 @@ const LIKELY: [&str; 12] = [
     "ColorRGB.java",
 ];
 
-/// The year's classes a project has its own copies of: (file name, the year's bytes in the
-/// project's package, the project's bytes), the student's own files left out.
-fn course_classes(found: &Found, course: Course) -> Result<Vec<(String, Vec<u8>, Option<Vec<u8>>)>> {
+/// One of the year's classes a project has (or lacks) its own copy of.
+struct CourseClass {
+    /// Its file's name, `SceneLoader.java`.
+    name: String,
+    /// The year's source, in the project's package.
+    year: Vec<u8>,
+    /// The project's source, if it has the class.
+    own: Option<Vec<u8>>,
+}
+
+/// The year's classes but the student's own files and the unit tests, each with the project's
+/// copy.
+fn course_classes(found: &Found, course: Course) -> Result<Vec<CourseClass>> {
     let skeleton = Skeleton::clean_room(course)?;
     let package = package_of(found, &skeleton);
     let theirs = archive::submitted(course);
@@ -58,10 +68,10 @@ fn course_classes(found: &Found, course: Course) -> Result<Vec<(String, Vec<u8>,
         .iter()
         .filter(|(name, _)| !theirs.contains(&name.as_str()))
         .filter(|(name, _)| !NOT_RENDERED.contains(&name.as_str()))
-        .map(|(name, bytes)| {
-            let year = package::moved(bytes, skeleton.package.as_deref(), package);
-            let own = found.file(name).and_then(|p| std::fs::read(p).ok());
-            (name.clone(), year, own)
+        .map(|(name, bytes)| CourseClass {
+            name: name.clone(),
+            year: package::moved(bytes, skeleton.package.as_deref(), package),
+            own: found.file(name).and_then(|p| std::fs::read(p).ok()),
         })
         .collect())
 }
@@ -79,7 +89,7 @@ fn package_of<'a>(found: &'a Found, skeleton: &'a Skeleton) -> Option<&'a str> {
 /// what differs from `course`'s.
 pub fn members_differ(found: &Found, course: Course) -> Result<Vec<(String, String)>> {
     let mut out = Vec::new();
-    for (name, year, own) in course_classes(found, course)? {
+    for CourseClass { name, year, own } in course_classes(found, course)? {
         let Some(own) = own else {
             out.push((
                 name.clone(),
@@ -87,9 +97,15 @@ pub fn members_differ(found: &Found, course: Course) -> Result<Vec<(String, Stri
             ));
             continue;
         };
-        let (year, own) = (String::from_utf8_lossy(&year), String::from_utf8_lossy(&own));
+        let (year, own) = (
+            String::from_utf8_lossy(&year),
+            String::from_utf8_lossy(&own),
+        );
         let visible = |source: &str| -> Vec<Member> {
-            let mut m: Vec<Member> = members(source).into_iter().filter(Member::visible).collect();
+            let mut m: Vec<Member> = members(source)
+                .into_iter()
+                .filter(Member::visible)
+                .collect();
             for member in &mut m {
                 // Public or protected: the API is who can call it, not how widely.
                 member.visibility = super::members::Visibility::Public;
@@ -111,13 +127,19 @@ pub fn members_differ(found: &Found, course: Course) -> Result<Vec<(String, Stri
             .collect();
         let mut what = Vec::new();
         if !added.is_empty() {
-            what.push(format!("it has {} that {course}'s has not", added.join(", ")));
+            what.push(format!(
+                "it has {} that {course}'s has not",
+                added.join(", ")
+            ));
         }
         if !lacks.is_empty() {
             what.push(format!("it lacks {}", lacks.join(", ")));
         }
         if name == "Tick1.java" {
-            if let (Some(a), Some(b)) = (super::year::size_of(&own), super::year::size_of(&year)) {
+            if let (Some(a), Some(b)) = (
+                super::year::size_of(&blank(&own, false)),
+                super::year::size_of(&blank(&year, false)),
+            ) {
                 if a != b {
                     what.push(format!(
                         "it renders {}x{}, {course}'s {}x{}",
@@ -156,12 +178,15 @@ impl Rendered {
                     .count();
                 format!("{pixels} pixels differ")
             }
-            (Rendered::Image(a), Rendered::Image(b)) => format!(
-                "{}x{} against {}x{}",
-                a.width, a.height, b.width, b.height
-            ),
-            (Rendered::Nothing, Rendered::Image(_)) => "one writes no image of the year's size".into(),
-            (Rendered::Image(_), Rendered::Nothing) => "one writes no image of the year's size".into(),
+            (Rendered::Image(a), Rendered::Image(b)) => {
+                format!("{}x{} against {}x{}", a.width, a.height, b.width, b.height)
+            }
+            (Rendered::Nothing, Rendered::Image(_)) => {
+                "one writes no image of the year's size".into()
+            }
+            (Rendered::Image(_), Rendered::Nothing) => {
+                "one writes no image of the year's size".into()
+            }
             (Rendered::Nothing, Rendered::Nothing) => "neither writes an image".into(),
         }
     }
@@ -190,18 +215,21 @@ pub fn renders_differ(
             return Ok(Vec::new());
         };
         let bytes = std::fs::read(path).map_err(|e| Error::io(path, "cannot read", e))?;
-        let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(&bytes).to_vec();
+        let bytes = bytes
+            .strip_prefix(b"\xEF\xBB\xBF")
+            .unwrap_or(&bytes)
+            .to_vec();
         student.push((format!("{folder}{name}"), bytes));
     }
     let build = |swapped: Option<&str>| {
         let mut sources: Vec<(String, Vec<u8>)> = classes
             .iter()
-            .map(|(name, year, own)| {
-                let bytes = match (swapped == Some(name.as_str()), own) {
+            .map(|class| {
+                let bytes = match (swapped == Some(class.name.as_str()), &class.own) {
                     (true, Some(own)) => own.clone(),
-                    _ => year.clone(),
+                    _ => class.year.clone(),
                 };
-                (format!("{folder}{name}"), bytes)
+                (format!("{folder}{}", class.name), bytes)
             })
             .collect();
         // Tick1Tests is not rendered, but the student's files may be written against it.
@@ -228,7 +256,12 @@ pub fn renders_differ(
     order.extend(LIKELY.iter().filter(|n| !suspects.iter().any(|s| s == *n)));
     let mut lines = Vec::new();
     for name in order {
-        let Some((_, year, Some(own))) = classes.iter().find(|(n, _, _)| n == name) else {
+        let Some(CourseClass {
+            year,
+            own: Some(own),
+            ..
+        }) = classes.iter().find(|c| c.name == name)
+        else {
             continue;
         };
         if same_code(year, own) {
@@ -275,7 +308,7 @@ fn submitted_names(course: Course) -> String {
 /// Whether two sources are the same code: comments and spacing aside.
 fn same_code(a: &[u8], b: &[u8]) -> bool {
     let squeeze = |bytes: &[u8]| -> String {
-        super::members::blank(&String::from_utf8_lossy(bytes), false)
+        blank(&String::from_utf8_lossy(bytes), false)
             .split_whitespace()
             .collect()
     };
@@ -289,7 +322,8 @@ pub fn render(build: &Build, java: &Path, case: &SuiteCase, timeout: u64) -> Res
         .tempdir()
         .map_err(|e| Error::io(std::env::temp_dir(), "cannot create a temporary folder", e))?;
     let scene = dir.path().join(&*case.file);
-    std::fs::write(&scene, case.xml.as_bytes()).map_err(|e| Error::io(&scene, "cannot write", e))?;
+    std::fs::write(&scene, case.xml.as_bytes())
+        .map_err(|e| Error::io(&scene, "cannot write", e))?;
     let output = dir.path().join("output.png");
     let words = build.command(java);
     let mut command = Command::new(&words[0]);

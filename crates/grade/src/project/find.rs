@@ -99,7 +99,10 @@ pub fn find(dir: &Path, want: Option<Main>) -> Result<Found> {
     let kinds: Vec<&PathBuf> = match want {
         Some(kind) => all
             .iter()
-            .filter(|p| p.file_name().is_some_and(|n| *n == *format!("{}.java", kind.class())))
+            .filter(|p| {
+                p.file_name()
+                    .is_some_and(|n| *n == *format!("{}.java", kind.class()))
+            })
             .collect(),
         None => {
             let tick1: Vec<&PathBuf> = all.iter().filter(|p| is_named(p, "Tick1.java")).collect();
@@ -127,9 +130,8 @@ pub fn find(dir: &Path, want: Option<Main>) -> Result<Found> {
     };
     let folder = best.parent().unwrap_or(dir).to_path_buf();
     let text = read(best)?;
-    let package = package::declared(&text).map_err(|why| {
-        Error::Usage(format!("{}: {why}", best.display()))
-    })?;
+    let package = package::declared(&text)
+        .map_err(|why| Error::Usage(format!("{}: {why}", best.display())))?;
     let mut warnings = Vec::new();
     let others: Vec<String> = kinds
         .iter()
@@ -262,7 +264,9 @@ fn sources(folder: &Path, warnings: &mut Vec<String>) -> Result<Vec<(String, Pat
             .chars()
             .next()
             .is_some_and(|c| c.is_alphabetic() || c == '_' || c == '$')
-            && stem.chars().all(|c| c.is_alphanumeric() || c == '_' || c == '$');
+            && stem
+                .chars()
+                .all(|c| c.is_alphanumeric() || c == '_' || c == '$');
         let len = std::fs::metadata(&path).map_or(0, |m| m.len());
         if !identifier || len > MAX_SOURCE {
             left_out.push(name);
@@ -284,7 +288,13 @@ fn sources(folder: &Path, warnings: &mut Vec<String>) -> Result<Vec<(String, Pat
 /// Says where the project holds another copy of the student's `name` outside `folder` that
 /// differs from it: the one beside the main class is compiled, and the student may be editing
 /// the other.
-fn copies_elsewhere(dir: &Path, folder: &Path, name: &str, path: &Path, warnings: &mut Vec<String>) {
+fn copies_elsewhere(
+    dir: &Path,
+    folder: &Path,
+    name: &str,
+    path: &Path,
+    warnings: &mut Vec<String>,
+) {
     if !["Sphere.java", "Plane.java", "Renderer.java"].contains(&name) {
         return;
     }
@@ -337,25 +347,51 @@ mod tests {
         let dir = tempfile::tempdir().expect("tempdir");
         let d = dir.path();
         let pkg = "package uk.ac.cam.cl.gfxintro.ab123.tick1;\n";
-        for file in ["Tick1.java", "Renderer.java", "Sphere.java", "SceneLoader.java"] {
-            write(d, &format!("src/uk/ac/cam/cl/gfxintro/ab123/tick1/{file}"), pkg);
+        for file in [
+            "Tick1.java",
+            "Renderer.java",
+            "Sphere.java",
+            "SceneLoader.java",
+        ] {
+            write(
+                d,
+                &format!("src/uk/ac/cam/cl/gfxintro/ab123/tick1/{file}"),
+                pkg,
+            );
         }
-        write(d, "out/production/p/uk/ac/cam/cl/gfxintro/ab123/tick1/Tick1.java", pkg);
+        write(
+            d,
+            "out/production/p/uk/ac/cam/cl/gfxintro/ab123/tick1/Tick1.java",
+            pkg,
+        );
         write(d, ".idea/Tick1.java", pkg);
         write(d, "old/Tick1.java", pkg);
         write(d, "old/Renderer.java", "// an older try\n");
-        write(d, "src/uk/ac/cam/cl/gfxintro/ab123/tick1/Renderer (1).java", pkg);
+        write(
+            d,
+            "src/uk/ac/cam/cl/gfxintro/ab123/tick1/Renderer (1).java",
+            pkg,
+        );
         let found = find(d, None).expect("found");
         assert_eq!(found.main, Main::Tick1);
-        assert_eq!(found.main_class(), "uk.ac.cam.cl.gfxintro.ab123.tick1.Tick1");
+        assert_eq!(
+            found.main_class(),
+            "uk.ac.cam.cl.gfxintro.ab123.tick1.Tick1"
+        );
         assert_eq!(found.source_root.as_deref(), Some(d.join("src").as_path()));
         assert_eq!(found.sources.len(), 4);
         let said = found.warnings.join("\n");
         let d = d.display();
-        assert!(said.contains(&format!("2 copies of Tick1.java: using {d}/src/")), "{said}");
+        assert!(
+            said.contains(&format!("2 copies of Tick1.java: using {d}/src/")),
+            "{said}"
+        );
         assert!(said.contains(&format!("not {d}/old/Tick1.java")), "{said}");
         assert!(said.contains("Renderer (1).java"), "{said}");
-        assert!(said.contains(&format!("another Renderer.java at {d}/old/Renderer.java")), "{said}");
+        assert!(
+            said.contains(&format!("another Renderer.java at {d}/old/Renderer.java")),
+            "{said}"
+        );
         assert!(!said.contains("out/"), "{said}");
     }
 

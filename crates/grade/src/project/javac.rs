@@ -62,8 +62,15 @@ pub fn project(found: &Found) -> Result<Build> {
     let dir = private_dir()?;
     // javac runs where whitted was run, on the paths as found, so that its messages name the
     // files as the student reaches them from there.
-    let files: Vec<PathBuf> = found.sources.iter().map(|(_, p)| PathBuf::from(found.shown(p))).collect();
-    let source_root = found.source_root.as_ref().map(|r| PathBuf::from(found.shown(r)));
+    let files: Vec<PathBuf> = found
+        .sources
+        .iter()
+        .map(|(_, p)| PathBuf::from(found.shown(p)))
+        .collect();
+    let source_root = found
+        .source_root
+        .as_ref()
+        .map(|r| PathBuf::from(found.shown(r)));
     match run(&javac, None, &dir, source_root.as_deref(), &files)? {
         None => Ok(Build {
             dir,
@@ -128,14 +135,24 @@ fn run(
         command.current_dir(cwd);
     }
     command
-        .args(["-proc:none", "-encoding", "UTF-8", "-Xmaxerrs", "20", "-nowarn"])
+        .args([
+            "-proc:none",
+            "-encoding",
+            "UTF-8",
+            "-Xmaxerrs",
+            "20",
+            "-nowarn",
+        ])
         .arg("-implicit:class")
         .arg("-d")
         .arg(dir.path().join("classes"));
     if let Some(root) = source_root {
         command.arg("-sourcepath").arg(root);
     }
-    command.args(files).stdin(Stdio::null()).stdout(Stdio::null());
+    command
+        .args(files)
+        .stdin(Stdio::null())
+        .stdout(Stdio::null());
     let mut process = Process::spawn(command, Capture::Head(MESSAGES))
         .map_err(|e| Error::Environment(format!("cannot run {}: {e}", javac.display())))?;
     let ended = process
@@ -194,7 +211,10 @@ pub fn first_errors(messages: &str) -> String {
 
 fn is_count(line: &str) -> bool {
     let line = line.trim();
-    line.ends_with(" error") || line.ends_with(" errors") || line.ends_with(" warning") || line.ends_with(" warnings")
+    line.ends_with(" error")
+        || line.ends_with(" errors")
+        || line.ends_with(" warning")
+        || line.ends_with(" warnings")
 }
 
 /// The message of a project that does not compile: javac's first errors, then the cause when
@@ -243,11 +263,17 @@ mod tests {
             src/a/Plane.java:1: error: a\nb\n^\n\
             src/a/Plane.java:2: error: b\nc\n^\n5 errors\n";
         let shown = first_errors(messages);
-        assert!(shown.starts_with("src/a/Renderer.java:3: error: ';' expected"), "{shown}");
+        assert!(
+            shown.starts_with("src/a/Renderer.java:3: error: ';' expected"),
+            "{shown}"
+        );
         assert!(shown.contains("symbol: method y()"), "{shown}");
         assert!(shown.contains("Plane.java:1"), "{shown}");
         assert!(!shown.contains("Plane.java:2"), "{shown}");
-        assert!(shown.ends_with("... and 1 more errors (javac stops at 20)"), "{shown}");
+        assert!(
+            shown.ends_with("... and 1 more errors (javac stops at 20)"),
+            "{shown}"
+        );
         assert!(!first_errors("a/B.java:1: error: x\n^\n1 error\n").contains("1 error\n"));
     }
 
@@ -255,7 +281,10 @@ mod tests {
     fn the_build_folder_is_private_and_goes_with_the_build() {
         use std::os::unix::fs::PermissionsExt;
         let dir = private_dir().expect("dir");
-        let mode = std::fs::metadata(dir.path()).expect("meta").permissions().mode();
+        let mode = std::fs::metadata(dir.path())
+            .expect("meta")
+            .permissions()
+            .mode();
         assert_eq!(mode & 0o777, 0o700);
         let build = Build {
             dir,
@@ -269,12 +298,18 @@ mod tests {
 
     #[test]
     fn the_2023_24_bumpy_sphere_is_named_as_the_known_cause() {
-        let messages = "src/x/BumpySphere.java:47: error: missing return statement\n    }\n    ^\n1 error\n";
+        let messages =
+            "src/x/BumpySphere.java:47: error: missing return statement\n    }\n    ^\n1 error\n";
         let cause = known_cause(messages).expect("known");
-        assert!(cause.contains("2023-24") && cause.contains("getNormalAt"), "{cause}");
+        assert!(
+            cause.contains("2023-24") && cause.contains("getNormalAt"),
+            "{cause}"
+        );
         let theirs = "src/x/Renderer.java:4: error: missing return statement\n";
         assert_eq!(known_cause(theirs), None);
         let loader = "src/x/SceneLoader.java:4: error: cannot find symbol\n";
-        assert!(known_cause(loader).expect("course class").contains("SceneLoader.java"));
+        assert!(known_cause(loader)
+            .expect("course class")
+            .contains("SceneLoader.java"));
     }
 }

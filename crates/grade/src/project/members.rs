@@ -133,10 +133,7 @@ pub fn blank(source: &str, literals: bool) -> String {
 /// `enum`.
 fn body_start(code: &str) -> Option<usize> {
     let words = ["class", "interface", "enum"];
-    let at = words
-        .iter()
-        .filter_map(|w| find_word(code, w))
-        .min()?;
+    let at = words.iter().filter_map(|w| find_word(code, w)).min()?;
     code[at..].find('{').map(|i| at + i)
 }
 
@@ -188,7 +185,10 @@ fn has_assignment(head: &str) -> bool {
 fn declaration(head: &str) -> Vec<Member> {
     let head = without_annotations(head);
     let head = head.trim();
-    if head.is_empty() || ["class", "interface", "enum"].iter().any(|w| find_word(head, w).is_some())
+    if head.is_empty()
+        || ["class", "interface", "enum"]
+            .iter()
+            .any(|w| find_word(head, w).is_some())
     {
         return Vec::new();
     }
@@ -200,11 +200,7 @@ fn declaration(head: &str) -> Vec<Member> {
                 return Vec::new();
             };
             let before: Vec<&str> = head[..paren].split_whitespace().collect();
-            let returns = before
-                .iter()
-                .filter(|w| !MODIFIERS.contains(w))
-                .count()
-                > 1;
+            let returns = before.iter().filter(|w| !MODIFIERS.contains(w)).count() > 1;
             vec![Member {
                 kind: if returns {
                     Kind::Method
@@ -254,7 +250,9 @@ fn fields(head: &str, visibility: Visibility) -> Vec<Member> {
         .enumerate()
         .filter_map(|(i, part)| {
             let left = part.split('=').next().unwrap_or("");
-            let name = last_identifier(left.trim_end_matches(|c: char| c == '[' || c == ']' || c.is_whitespace()));
+            let name = last_identifier(
+                left.trim_end_matches(|c: char| c == '[' || c == ']' || c.is_whitespace()),
+            );
             // The first part holds the type too; a later one is a name alone.
             let ok = !name.is_empty() && (i > 0 || left.split_whitespace().count() > 1);
             ok.then(|| Member {
@@ -274,10 +272,7 @@ fn params(list: &str) -> Vec<String> {
         .iter()
         .filter_map(|p| {
             let plain = strip_generics(p);
-            let words: Vec<&str> = plain
-                .split_whitespace()
-                .filter(|w| *w != "final")
-                .collect();
+            let words: Vec<&str> = plain.split_whitespace().filter(|w| *w != "final").collect();
             let (_, types) = words.split_last()?;
             let shown = types.join("").replace(' ', "");
             (!shown.is_empty()).then_some(shown)

@@ -98,7 +98,11 @@ impl Project {
     fn ide_output(&self) -> Option<PathBuf> {
         let class = format!("{}.class", self.build.main.replace('.', "/"));
         let root = &self.found.root;
-        let mut candidates = vec![root.join("target/classes"), root.join("bin"), root.join("out")];
+        let mut candidates = vec![
+            root.join("target/classes"),
+            root.join("bin"),
+            root.join("out"),
+        ];
         if let Ok(entries) = std::fs::read_dir(root.join("out/production")) {
             let mut modules: Vec<PathBuf> = entries.flatten().map(|e| e.path()).collect();
             modules.sort();
@@ -215,13 +219,19 @@ mod tests {
             "{said}"
         );
         assert!(
-            said.contains("SceneObject.java is not 2023-24's: it lacks getRefractiveIndex(), \
-                 getTransmittance(), isTransmissive(), field refractive_index, field transmittance"),
+            said.contains(
+                "SceneObject.java is not 2023-24's: it lacks getRefractiveIndex(), \
+                 getTransmittance(), isTransmissive(), field refractive_index, field transmittance"
+            ),
             "{said}"
         );
         assert_eq!(lines.len(), 3, "{said}");
         let asked = year::year(&found, Some(Course::Y2023)).expect("asked");
         assert_eq!(asked.course, Course::Y2023);
-        assert!(asked.notes[0].contains("look like 2021-22's"), "{:?}", asked.notes);
+        assert!(
+            asked.notes[0].contains("look like 2021-22's"),
+            "{:?}",
+            asked.notes
+        );
     }
 }
