@@ -141,14 +141,22 @@ impl Project {
             _ => compare::Rendered::Nothing,
         };
         let suspects: Vec<String> = self.members.iter().map(|(name, _)| name.clone()).collect();
-        let lines = compare::renders_differ(
+        let lines = match compare::renders_differ(
             &self.found,
             self.year.course,
             &failing.case,
             &theirs,
             &suspects,
             timeout,
-        )?;
+        ) {
+            Ok(lines) => lines,
+            Err(e @ whitted_core::Error::Interrupted { .. }) => return Err(e),
+            // The suite's report stands without the comparison; say why it is missing.
+            Err(e) => vec![format!(
+                "the project's classes could not be compared with {}'s: {e}",
+                self.year.course
+            )],
+        };
         Ok(lines.into_iter().map(|l| format!("note: {l}")).collect())
     }
 
