@@ -85,7 +85,8 @@ pub fn members(source: &str) -> Vec<Member> {
 }
 
 /// `source` without comments (and, with `literals`, with the insides of string and character
-/// literals blanked), lengths kept, so that braces and semicolons in them are not read.
+/// literals blanked), its line breaks kept, so that braces and semicolons in them are not read
+/// as code.
 pub fn blank(source: &str, literals: bool) -> String {
     let mut out = String::with_capacity(source.len());
     let mut chars = source.chars().peekable();
