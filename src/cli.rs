@@ -84,8 +84,8 @@ pub enum Command {
     Merge(MergeArgs),
     /// Explain one pixel: its ray tree in the course's model, with every term of its colour.
     Explain(ExplainArgs),
-    /// Test a Tick 1 (2017-18 on, --course YEAR) or Tick 2 image (or program) against the
-    /// course's expected image, and name the mistake that made it differ.
+    /// Test a Tick 1 (2017-18 on, --course YEAR) or Tick 2 image, project folder or program
+    /// against the course's expected images, and name the mistake that made it differ.
     Check(CheckArgs),
     /// Grade a whole class: every submission of Moodle's zip compiled and run in a sandbox,
     /// checked, and written up (a report per student, the class's mistakes, Moodle's grades).

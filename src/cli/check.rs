@@ -11,9 +11,10 @@ use whitted_check::check::pass_rule::{Allowance, PassRule};
 
 #[derive(Debug, Clone, Args)]
 pub struct CheckArgs {
-    /// The student's PNG (8-bit RGB): the size it has is the size rendered
-    #[arg(value_name = "IMAGE.png", required_unless_present_any = ["program", "list_bugs"],
-          conflicts_with = "program")]
+    /// The student's PNG (8-bit RGB; the size it has is the size rendered), or their project
+    /// folder: its Tick1.java (Tick2.java for 2016-17) found, compiled by javac and run over
+    /// the suite as --program is [default: the current folder, when it is a project]
+    #[arg(value_name = "IMAGE.png|DIR", conflicts_with = "program")]
     pub image: Option<PathBuf>,
 
     /// Scene XML file the image was rendered from [default: the embedded course tick2.xml]
@@ -80,8 +81,9 @@ pub struct CheckArgs {
     #[arg(long, conflicts_with_all = ["program", "json", "heatmap", "report", "verbose"])]
     pub view: bool,
 
-    /// The year of the course the image or program is of (docs/courses.md) [default: what the
-    /// image's size, the scene or the program's main class says, else 2016-17]
+    /// The year of the course the image, project or program is of (docs/courses.md) [default:
+    /// what the image's size, the scene, the project's classes or the program's main class
+    /// says, else 2016-17]
     #[arg(long = "course", value_name = "YEAR", value_enum)]
     pub course: Option<CourseArg>,
 

@@ -2,17 +2,19 @@
 //! verdict, where the image differs, and which mistake made it (docs/check.md). Exit 0 when
 //! every image passes, 1 when one differs, 2 when they cannot be compared.
 
+mod project;
+
 use serde_json::Value;
 
 use crate::cli::CheckArgs;
 use whitted_check::check::print::json::json;
 use whitted_check::check::print::text::{text, Detail};
 use whitted_check::check::print::write_report;
-use whitted_check::check::program::run_suite;
+use whitted_check::check::program::{run_suite, SuiteRun};
 use whitted_check::check::report::heat_map;
 use whitted_check::check::result::CheckResult;
 use whitted_check::check::suite;
-use whitted_check::check::which_course;
+use whitted_check::check::which_course::{self, Chosen};
 use whitted_check::check::{check_image, student_png};
 use whitted_check::mistakes::Bug;
 use whitted_core::course::Course;
@@ -35,11 +37,17 @@ pub fn run(args: &CheckArgs) -> Result<bool> {
     }
     match (&args.program, &args.image) {
         (Some(program), _) => run_program(args, program),
+        (None, Some(dir)) if project::is_project_arg(dir) => project::run(args, dir),
         (None, Some(image)) if args.view => view(args, image),
         (None, Some(image)) => run_image(args, image),
-        (None, None) => Err(whitted_core::Error::Usage(
-            "give the PNG to check, or --program 'CMD ARGS'".into(),
-        )),
+        (None, None) => match project::here() {
+            Some(dir) => project::run(args, &dir),
+            None => Err(whitted_core::Error::Usage(
+                "give the PNG to check, a project folder, or --program 'CMD ARGS' (the current \
+                 folder holds no Tick1.java or Tick2.java)"
+                    .into(),
+            )),
+        },
     }
 }
 
@@ -151,17 +159,39 @@ fn run_program(args: &CheckArgs, program: &str) -> Result<bool> {
         refuse_clashes(&[], &[report])?;
     }
     let chosen = which_course::for_program(args.course.map(Course::from), program)?;
+    report_suite(args, &chosen, |course| {
+        let run = run_suite(program, args.rule(), args.timeout, course)?;
+        Ok((run, Preamble::default()))
+    })
+}
+
+/// What a project folder adds to its suite's report (`check DIR`): lines after the year's, and
+/// the JSON's `"project"`.
+#[derive(Default)]
+struct Preamble {
+    lines: Vec<String>,
+    json: Option<Value>,
+}
+
+/// The suite `run` runs under `chosen`'s year, reported as `--program` reports it.
+fn report_suite(
+    args: &CheckArgs,
+    chosen: &Chosen,
+    run: impl FnOnce(Course) -> Result<(SuiteRun, Preamble)>,
+) -> Result<bool> {
     if let Some(dir) = &args.suite_dir {
         suite::write_scenes(dir, chosen.course)?;
     }
     let report = args.report.as_deref().map(Destination::open).transpose()?;
-    let run = run_suite(program, args.rule(), args.timeout, chosen.course)?;
-    let result = CheckResult::of_suite(
+    let (run, preamble) = run(chosen.course)?;
+    let mut result = CheckResult::of_suite(
         run,
         chosen.course,
         chosen.why.clone(),
         args.suite_dir.as_deref(),
     );
+    result.notes = preamble.lines;
+    result.project = preamble.json;
     if let Some(mut out) = report {
         write_report(&mut out, &result)?;
         out.commit()?;

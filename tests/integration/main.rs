@@ -5,6 +5,7 @@ mod allowance;
 mod check;
 mod check_courses;
 mod check_print;
+mod check_project;
 mod cli_errors;
 mod common;
 mod courses;

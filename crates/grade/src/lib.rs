@@ -31,6 +31,7 @@ mod memory_cgroup;
 mod moodle;
 mod package;
 mod policy;
+pub mod project;
 mod reason;
 mod redact;
 mod report;

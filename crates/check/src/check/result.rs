@@ -24,6 +24,11 @@ pub struct CheckResult {
     pub cases: Vec<CaseResult>,
     /// The diagnosis over every case with an image, the progress, the fits.
     pub findings: Findings,
+    /// Lines said before the cases by whoever ran the check (a project folder's: its main
+    /// class, its build, a course class that differs from the year's), after the course line.
+    pub notes: Vec<String>,
+    /// The JSON's `"project"` object, for a check of a project folder.
+    pub project: Option<serde_json::Value>,
 }
 
 /// What was checked.
@@ -101,6 +106,8 @@ impl CheckResult {
                 reproduce,
             }],
             findings,
+            notes: Vec::new(),
+            project: None,
         }
     }
 
@@ -139,6 +146,8 @@ impl CheckResult {
             },
             cases,
             findings: run.findings,
+            notes: Vec::new(),
+            project: None,
         }
     }
 

@@ -166,6 +166,7 @@ pub fn page(result: &CheckResult) -> String {
     if let Some(why) = &result.course_why {
         body += &paragraphs(std::slice::from_ref(why));
     }
+    body += &paragraphs(&result.notes);
     body += &paragraphs(&[result.findings.progress.sentence()]);
     if result.any_image() && !passed {
         body += &findings_block(&result.findings);

@@ -182,6 +182,9 @@ pub fn json(result: &CheckResult) -> Value {
     if let Some(why) = &result.course_why {
         object["course_chosen_because"] = Value::from(why.as_str());
     }
+    if let Some(project) = &result.project {
+        object["project"] = project.clone();
+    }
     object
 }
 

@@ -111,6 +111,7 @@ fn opening_lines(result: &CheckResult, first: String, screen: &mut Screen) {
     if let Some(why) = &result.course_why {
         screen.line(Keep::Always, why.clone());
     }
+    screen.push(Keep::Always, result.notes.clone());
     screen.push(Keep::Always, opening(&result.findings));
 }
 

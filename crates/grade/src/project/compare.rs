@@ -1,0 +1,361 @@
+//! Whether a project's own copies of the course's classes (the loader, `Tick1`, the camera:
+//! everything but the files the student hands in) are the year's, since an edit there changes
+//! images in ways no mistake of theirs explains, and the course's tester uses its own.
+//!
+//! Two ways, by cost. **Members** (always; milliseconds): each class's visible methods,
+//! constructors and fields against the year's clean-room class, which has exactly the course's
+//! (docs/grade.md), and `Tick1`'s size. **Renders** (only when a case fails, on that one case):
+//! the student's own files compiled on the year's clean-room classes beside the whole project;
+//! where the two render the case differently, the difference is in a class they were not
+//! meant to change, and it is found by putting the project's copy of one class at a time
+//! among the year's, first those whose members already differ. A project that passes costs
+//! nothing more than its compile.
+
+use std::path::Path;
+use std::process::{Command, Stdio};
+use std::time::Duration;
+
+use super::find::Found;
+use super::javac::{self, Build};
+use super::members::{blank, members, Member};
+use crate::archive;
+use crate::package;
+use crate::skeleton::Skeleton;
+use whitted_check::check::student_png::{self, Rgb8};
+use whitted_check::check::suite::SuiteCase;
+use whitted_core::course::Course;
+use whitted_core::error::{Error, Result};
+use whitted_process::{Capture, Ended, Process};
+
+/// Classes whose differences do not reach an image: the unit tests.
+const NOT_RENDERED: [&str; 1] = ["Tick1Tests.java"];
+
+/// The order classes are tried in when members say nothing: those students are known to edit
+/// first (docs/grade.md: `Tick1`, `SceneLoader`), then the rest.
+const LIKELY: [&str; 12] = [
+    "Tick1.java",
+    "Tick2.java",
+    "SceneLoader.java",
+    "Scene.java",
+    "Camera.java",
+    "SceneObject.java",
+    "PointLight.java",
+    "Sphere.java",
+    "Ray.java",
+    "RaycastHit.java",
+    "Vector3.java",
+    "ColorRGB.java",
+];
+
+/// One of the year's classes a project has (or lacks) its own copy of.
+struct CourseClass {
+    /// Its file's name, `SceneLoader.java`.
+    name: String,
+    /// The year's source, in the project's package.
+    year: Vec<u8>,
+    /// The project's source, if it has the class.
+    own: Option<Vec<u8>>,
+}
+
+/// The year's classes but the student's own files and the unit tests, each with the project's
+/// copy.
+fn course_classes(found: &Found, course: Course) -> Result<Vec<CourseClass>> {
+    let skeleton = Skeleton::clean_room(course)?;
+    let package = package_of(found, &skeleton);
+    let theirs = archive::submitted(course);
+    Ok(skeleton
+        .files
+        .iter()
+        .filter(|(name, _)| !theirs.contains(&name.as_str()))
+        .filter(|(name, _)| !NOT_RENDERED.contains(&name.as_str()))
+        .map(|(name, bytes)| CourseClass {
+            name: name.clone(),
+            year: package::moved(bytes, skeleton.package.as_deref(), package),
+            own: found.file(name).and_then(|p| std::fs::read(p).ok()),
+        })
+        .collect())
+}
+
+/// The package the project's classes are in: the student's own from 2017-18, 2016-17's
+/// `gfx.tick2` otherwise.
+fn package_of<'a>(found: &'a Found, skeleton: &'a Skeleton) -> Option<&'a str> {
+    match found.main {
+        super::find::Main::Tick1 => found.package.as_deref(),
+        super::find::Main::Tick2 => skeleton.package.as_deref(),
+    }
+}
+
+/// Per class of the course's the project changed the members of (or lacks), a line saying
+/// what differs from `course`'s.
+pub fn members_differ(found: &Found, course: Course) -> Result<Vec<(String, String)>> {
+    let mut out = Vec::new();
+    for CourseClass { name, year, own } in course_classes(found, course)? {
+        let Some(own) = own else {
+            out.push((
+                name.clone(),
+                format!("the project has no {name}, one of {course}'s course classes"),
+            ));
+            continue;
+        };
+        let (year, own) = (
+            String::from_utf8_lossy(&year),
+            String::from_utf8_lossy(&own),
+        );
+        let visible = |source: &str| -> Vec<Member> {
+            let mut m: Vec<Member> = members(source)
+                .into_iter()
+                .filter(Member::visible)
+                .collect();
+            for member in &mut m {
+                // Public or protected: the API is who can call it, not how widely.
+                member.visibility = super::members::Visibility::Public;
+            }
+            m.sort();
+            m.dedup();
+            m
+        };
+        let (year_members, own_members) = (visible(&year), visible(&own));
+        let added: Vec<String> = own_members
+            .iter()
+            .filter(|m| !year_members.contains(m))
+            .map(Member::shown)
+            .collect();
+        let lacks: Vec<String> = year_members
+            .iter()
+            .filter(|m| !own_members.contains(m))
+            .map(Member::shown)
+            .collect();
+        let mut what = Vec::new();
+        if !added.is_empty() {
+            what.push(format!(
+                "it has {} that {course}'s has not",
+                added.join(", ")
+            ));
+        }
+        if !lacks.is_empty() {
+            what.push(format!("it lacks {}", lacks.join(", ")));
+        }
+        if name == "Tick1.java" {
+            if let (Some(a), Some(b)) = (
+                super::year::size_of(&blank(&own, false)),
+                super::year::size_of(&blank(&year, false)),
+            ) {
+                if a != b {
+                    what.push(format!(
+                        "it renders {}x{}, {course}'s {}x{}",
+                        a.0, a.1, b.0, b.1
+                    ));
+                }
+            }
+        }
+        if !what.is_empty() {
+            out.push((
+                name.clone(),
+                format!("{name} is not {course}'s: {}", what.join("; ")),
+            ));
+        }
+    }
+    Ok(out)
+}
+
+/// What one run of a case gave: its image, or why there is none.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Rendered {
+    Image(Rgb8),
+    Nothing,
+}
+
+impl Rendered {
+    /// How `other` differs from this, in words ("12034 pixels differ").
+    fn against(&self, other: &Rendered) -> String {
+        match (self, other) {
+            (Rendered::Image(a), Rendered::Image(b)) if a.bytes.len() == b.bytes.len() => {
+                let pixels = a
+                    .bytes
+                    .chunks(3)
+                    .zip(b.bytes.chunks(3))
+                    .filter(|(x, y)| x != y)
+                    .count();
+                format!("{pixels} pixels differ")
+            }
+            (Rendered::Image(a), Rendered::Image(b)) => {
+                format!("{}x{} against {}x{}", a.width, a.height, b.width, b.height)
+            }
+            (Rendered::Nothing, Rendered::Image(_)) => {
+                "one writes no image of the year's size".into()
+            }
+            (Rendered::Image(_), Rendered::Nothing) => {
+                "one writes no image of the year's size".into()
+            }
+            (Rendered::Nothing, Rendered::Nothing) => "neither writes an image".into(),
+        }
+    }
+}
+
+/// The case run on the student's own files and `course`'s classes, against `theirs` (what the
+/// whole project rendered); where they differ, the course classes of the project's that make
+/// the difference, found one at a time (`suspects` first). Lines for the report.
+pub fn renders_differ(
+    found: &Found,
+    course: Course,
+    case: &SuiteCase,
+    theirs: &Rendered,
+    suspects: &[String],
+    timeout: u64,
+) -> Result<Vec<String>> {
+    let java = javac::jdk_tool("java")?;
+    let classes = course_classes(found, course)?;
+    let skeleton = Skeleton::clean_room(course)?;
+    let package = package_of(found, &skeleton).map(str::to_string);
+    let folder = package::folder(package.as_deref());
+    let main = package::qualified(package.as_deref(), skeleton.main);
+    let mut student = Vec::new();
+    for name in archive::submitted(course) {
+        let Some(path) = found.file(name) else {
+            return Ok(Vec::new());
+        };
+        let bytes = std::fs::read(path).map_err(|e| Error::io(path, "cannot read", e))?;
+        let bytes = bytes
+            .strip_prefix(b"\xEF\xBB\xBF")
+            .unwrap_or(&bytes)
+            .to_vec();
+        student.push((format!("{folder}{name}"), bytes));
+    }
+    let build = |swapped: Option<&str>| {
+        let mut sources: Vec<(String, Vec<u8>)> = classes
+            .iter()
+            .map(|class| {
+                let bytes = match (swapped == Some(class.name.as_str()), &class.own) {
+                    (true, Some(own)) => own.clone(),
+                    _ => class.year.clone(),
+                };
+                (format!("{folder}{}", class.name), bytes)
+            })
+            .collect();
+        // Tick1Tests is not rendered, but the student's files may be written against it.
+        sources.extend(student.iter().cloned());
+        javac::sources(&sources, main.clone())
+    };
+    let case_name = case.name();
+    let year_build = match build(None)? {
+        Ok(b) => b,
+        Err(errors) => {
+            let first = errors.lines().next().unwrap_or("").to_string();
+            return Ok(vec![format!(
+                "your {} do not compile beside {course}'s own classes, as the course's tester \
+                 compiles them: they lean on a change to the course's classes ({first})",
+                submitted_names(course)
+            )]);
+        }
+    };
+    let on_year = render(&year_build, &java, case, timeout)?;
+    if on_year == *theirs {
+        return Ok(Vec::new());
+    }
+    let mut order: Vec<&str> = suspects.iter().map(String::as_str).collect();
+    order.extend(LIKELY.iter().filter(|n| !suspects.iter().any(|s| s == *n)));
+    let mut lines = Vec::new();
+    for name in order {
+        let Some(CourseClass {
+            year,
+            own: Some(own),
+            ..
+        }) = classes.iter().find(|c| c.name == name)
+        else {
+            continue;
+        };
+        if same_code(year, own) {
+            continue;
+        }
+        let Ok(swapped) = build(Some(name))? else {
+            continue;
+        };
+        let with_theirs = render(&swapped, &java, case, timeout)?;
+        if with_theirs != on_year {
+            lines.push(format!(
+                "{name} is not {course}'s: with your {name} among {course}'s own classes, your \
+                 {} render {case_name} otherwise than with {course}'s ({}); the course's tester \
+                 uses its own {name}, so that difference is not a mistake of yours to find \
+                 below: undo the change to {name}",
+                submitted_names(course),
+                with_theirs.against(&on_year)
+            ));
+            if with_theirs == *theirs {
+                break;
+            }
+        }
+    }
+    if lines.is_empty() {
+        lines.push(format!(
+            "your project renders {case_name} otherwise than your {} do on {course}'s own \
+             classes ({}), but no one of its course classes alone makes the difference",
+            submitted_names(course),
+            theirs.against(&on_year)
+        ));
+    }
+    Ok(lines)
+}
+
+/// "Sphere.java, Plane.java and Renderer.java" for the year.
+fn submitted_names(course: Course) -> String {
+    match archive::submitted(course) {
+        [a, b] => format!("{a} and {b}"),
+        [a, b, c] => format!("{c}, {a} and {b}"),
+        other => other.join(", "),
+    }
+}
+
+/// Whether two sources are the same code: comments and spacing aside.
+fn same_code(a: &[u8], b: &[u8]) -> bool {
+    let squeeze = |bytes: &[u8]| -> String {
+        blank(&String::from_utf8_lossy(bytes), false)
+            .split_whitespace()
+            .collect()
+    };
+    squeeze(a) == squeeze(b)
+}
+
+/// One case run on `build`: its image when it wrote one of the year's size.
+pub fn render(build: &Build, java: &Path, case: &SuiteCase, timeout: u64) -> Result<Rendered> {
+    let dir = tempfile::Builder::new()
+        .prefix("whitted-project-case-")
+        .tempdir()
+        .map_err(|e| Error::io(std::env::temp_dir(), "cannot create a temporary folder", e))?;
+    let scene = dir.path().join(&*case.file);
+    std::fs::write(&scene, case.xml.as_bytes())
+        .map_err(|e| Error::io(&scene, "cannot write", e))?;
+    let output = dir.path().join("output.png");
+    let words = build.command(java);
+    let mut command = Command::new(&words[0]);
+    command
+        .args(&words[1..])
+        .arg("--input")
+        .arg(&scene)
+        .arg("--output")
+        .arg(&output)
+        .arg("--bounces")
+        .arg(case.bounces.to_string())
+        .args(case.size_option().into_iter().flatten())
+        .current_dir(dir.path())
+        .stdin(Stdio::null())
+        .stdout(Stdio::null());
+    let mut process = Process::spawn(command, Capture::Tail(4096))
+        .map_err(|e| Error::Environment(format!("cannot run java: {e}")))?;
+    let ended = process
+        .wait(
+            Duration::from_secs(timeout),
+            Duration::from_millis(20),
+            whitted_core::interrupt::requested,
+        )
+        .map_err(|e| Error::Environment(format!("cannot wait for java: {e}")))?;
+    process.finish();
+    whitted_core::interrupt::check()?;
+    let (w, h) = case.course.size();
+    Ok(match ended {
+        Ended::Exited(s) if s.success() => match student_png::read_expecting(&output, w, h) {
+            Ok(Ok(image)) => Rendered::Image(image),
+            _ => Rendered::Nothing,
+        },
+        _ => Rendered::Nothing,
+    })
+}
