@@ -213,9 +213,15 @@ impl Course {
                 include_str!("../scenes/courses/2019-20/test1.xml"),
                 "2019-20 test1.xml (embedded)",
             ),
+            // One scene (the same bytes) for three years, each named as its own year's: a
+            // 2023-24 student's report must not speak of 2020-21.
             Course::Y2020 | Course::Y2021 | Course::Y2023 => (
                 include_str!("../scenes/courses/2020-21/test1.xml"),
-                "2020-21 test1.xml (embedded)",
+                match self {
+                    Course::Y2020 => "2020-21 test1.xml (embedded)",
+                    Course::Y2021 => "2021-22 test1.xml (embedded)",
+                    _ => "2023-24 test1.xml (embedded)",
+                },
             ),
         }
     }
@@ -266,5 +272,17 @@ mod tests {
         assert_eq!(Course::Y2017.dialect().sphere.ks, 0.8);
         assert_eq!(Course::Y2017.tonemap(), ToneMap::Tick);
         assert_eq!(Course::Y2018.tonemap(), ToneMap::Sigmoid);
+    }
+
+    #[test]
+    fn each_year_names_its_embedded_scene_as_its_own() {
+        for course in [Course::Y2019, Course::Y2020, Course::Y2021, Course::Y2023] {
+            let (_, name) = course.default_scene();
+            assert!(name.starts_with(course.name()), "{course}: {name}");
+        }
+        assert_eq!(
+            Course::Y2021.default_scene().0,
+            Course::Y2023.default_scene().0
+        );
     }
 }
