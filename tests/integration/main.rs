@@ -4,6 +4,7 @@
 mod allowance;
 mod check;
 mod check_courses;
+mod check_histories;
 mod cli_errors;
 mod common;
 mod courses;
