@@ -302,7 +302,7 @@ fn suite_text(run: &SuiteRun, suite_dir: Option<&Path>) -> String {
             other => other.failure_line().unwrap_or_default(),
         };
         out += &format!("  {:<28} {detail}\n", c.name);
-        if !c.stderr_tail.is_empty() && report.is_none() {
+        if !c.stderr_tail.is_empty() && report.is_none() && !c.said_above {
             for line in c.stderr_tail.lines() {
                 out += &format!("      | {line}\n");
             }

@@ -11,6 +11,7 @@ pub mod diagnose;
 pub mod difference;
 pub mod image_cache;
 pub mod json;
+pub mod missing_class;
 pub mod noise;
 pub mod numbers;
 pub mod pass_rule;
@@ -25,6 +26,7 @@ pub mod student_png;
 pub mod suite;
 pub mod summary;
 pub mod terms;
+pub mod tick1_star;
 pub mod which_course;
 pub mod words;
 
@@ -32,6 +34,7 @@ use crate::check::case::Case;
 use crate::check::diagnose::{CaseFinding, Diagnosis, Search};
 use crate::check::difference::{difference, Difference};
 use crate::check::image_cache::ImageCache;
+use crate::check::missing_class::MissingClass;
 use crate::check::noise::Noise;
 use crate::check::numbers::NumberFit;
 use crate::check::pass_rule::PassRule;
@@ -39,6 +42,7 @@ use crate::check::progress::{Evidence, Stages};
 use crate::check::renderer::{Renderer, SharedScene};
 use crate::check::student_png::Rgb8;
 use crate::check::terms::{TermCase, TermFit};
+use crate::check::tick1_star::Tick1Star;
 use crate::mistakes::Mistakes;
 use whitted_core::course::Course;
 use whitted_core::error::Result;
@@ -71,6 +75,10 @@ pub struct Findings {
     pub progress: Stages,
     /// Some case is noisy as random sampling makes it (Tick 1*): nothing is diagnosed.
     pub not_reproducible: Option<Noise>,
+    /// `--program`: the cases died on a class that did not compile (said once, at the top).
+    pub missing_class: Option<MissingClass>,
+    /// `--program`: the program is a Tick 1* one (said once, at the top).
+    pub tick1_star: Option<Tick1Star>,
 }
 
 impl Findings {
@@ -107,6 +115,8 @@ impl Findings {
             parameters: Vec::new(),
             progress: Stages::of(&evidence, course),
             not_reproducible: None,
+            missing_class: None,
+            tick1_star: None,
         }
     }
 }
@@ -160,6 +170,8 @@ pub fn find(cases: &[Case], all_pass: bool, course: Course) -> Result<Findings> 
         parameters: Vec::new(),
         progress: Stages::of(&Evidence::Nothing, course),
         not_reproducible: None,
+        missing_class: None,
+        tick1_star: None,
     };
     if findings.weak() {
         let fit = match fitted {
@@ -244,6 +256,8 @@ impl Fitted {
             parameters: Vec::new(),
             progress: Stages::of(&Evidence::Nothing, course),
             not_reproducible: None,
+            missing_class: None,
+            tick1_star: None,
         };
         self.tell(&mut findings, cases);
         findings.progress = Stages::of(&evidence(&findings, all_pass), course);

@@ -95,7 +95,7 @@ public class Renderer {
                 boolean alongN = shadowAlongN ^ bug(shadowAlongN ? "shadow-bias-along-l" : "shadow-bias-along-n");
                 Vector3 shadowOrigin = P.add((alongN ? N : L).scale(EPSILON));
                 RaycastHit blocker = scene.findClosestIntersection(new Ray(shadowOrigin, L));
-                inShadow = blocker.getObjectHit() != null && blocker.getDistance() < distanceToLight;
+                inShadow = blocker.getObjectHit() != null && (bug("shadow-any-hit") || blocker.getDistance() < distanceToLight);
             }
             if (!inShadow) {
                 colourToReturn = colourToReturn.add(diffuse).add(specular);

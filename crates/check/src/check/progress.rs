@@ -251,7 +251,11 @@ mod tests {
         // Flat spheres, no planes: the reflection shows, no shadow can.
         assert_eq!(
             states(
-                &[Bug::ShadingMissing, Bug::PlanesMissing, Bug::ReflectionIgnored],
+                &[
+                    Bug::ShadingMissing,
+                    Bug::PlanesMissing,
+                    Bug::ReflectionIgnored
+                ],
                 Course::Y2019
             ),
             ["done", "missing", "missing", "not-reached", "missing"]

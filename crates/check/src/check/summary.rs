@@ -28,9 +28,13 @@ pub fn fits(findings: &Findings) -> Vec<String> {
         .collect()
 }
 
-/// The progress line, then, when the catalogue explains little, what explains most.
+/// The progress line, what the program is or why its cases died (a Tick 1* program, a class
+/// that did not compile), then, when the catalogue explains little, what explains most.
 pub fn opening(findings: &Findings) -> Vec<String> {
     let mut lines = vec![findings.progress.sentence()];
+    // What the program is, or why its cases died, before anything about its images.
+    lines.extend(findings.tick1_star.map(|star| star.sentence()));
+    lines.extend(findings.missing_class.as_ref().map(|m| m.sentence()));
     if let Some(noise) = findings.not_reproducible {
         lines.push(noise.sentence());
         return lines;
