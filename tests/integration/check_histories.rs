@@ -177,7 +177,15 @@ fn student_file(name: &str, src: Src, year: &str, commit: &Commit) -> String {
             if matches!(commit.edit, Edit::Star | Edit::StarUnnamed) {
                 flags.extend(["star-soft-shadows", "star-depth-of-field"]);
             }
-            fixture_file(name, year, "crsid", &flags)
+            // A stage written while Renderer is still the zip's: its flags read as literals.
+            let mut text = fixture_file(name, year, "crsid", &flags);
+            while let Some(at) = text.find("Renderer.bug(\"") {
+                let end = at + text[at..].find(')').expect("call ends") + 1;
+                let id = &text[at + "Renderer.bug(\"".len()..end - 2];
+                let literal = flags.contains(&id).to_string();
+                text.replace_range(at..end, &literal);
+            }
+            text
         }
         Shipped => {
             let path = root().join("tests/java/tick1-shipped").join(name);
@@ -271,10 +279,6 @@ fn check(year: &str, commit: &Commit, extra: &[&str]) -> (Value, Option<i32>) {
     let mut args = vec!["check", "--course", year, "--program", &program, "--json"];
     args.extend_from_slice(extra);
     let out = whitted(dir.path(), &args);
-    if std::env::var_os("KEEP_HISTORY").is_some() {
-        eprintln!("KEPT {program}");
-        std::mem::forget(dir);
-    }
     let json: Value = serde_json::from_slice(&out.stdout)
         .unwrap_or_else(|_| panic!("{year} {}: {}", commit.name, stderr(&out)));
     (json, out.status.code())

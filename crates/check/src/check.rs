@@ -14,6 +14,7 @@ pub mod json;
 pub mod missing_class;
 pub mod noise;
 pub mod numbers;
+pub mod outside;
 pub mod pass_rule;
 pub mod pixel_sample;
 pub mod program;
@@ -37,6 +38,7 @@ use crate::check::image_cache::ImageCache;
 use crate::check::missing_class::MissingClass;
 use crate::check::noise::Noise;
 use crate::check::numbers::NumberFit;
+use crate::check::outside::Outside;
 use crate::check::pass_rule::PassRule;
 use crate::check::progress::{Evidence, Stages};
 use crate::check::renderer::{Renderer, SharedScene};
@@ -79,6 +81,8 @@ pub struct Findings {
     pub missing_class: Option<MissingClass>,
     /// `--program`: the program is a Tick 1* one (said once, at the top).
     pub tick1_star: Option<Tick1Star>,
+    /// Where no candidate explains the images well: where what it leaves lies.
+    pub outside: Option<Outside>,
 }
 
 impl Findings {
@@ -117,6 +121,7 @@ impl Findings {
             not_reproducible: None,
             missing_class: None,
             tick1_star: None,
+            outside: None,
         }
     }
 }
@@ -172,6 +177,7 @@ pub fn find(cases: &[Case], all_pass: bool, course: Course) -> Result<Findings> 
         not_reproducible: None,
         missing_class: None,
         tick1_star: None,
+        outside: None,
     };
     if findings.weak() {
         let fit = match fitted {
@@ -179,6 +185,13 @@ pub fn find(cases: &[Case], all_pass: bool, course: Course) -> Result<Findings> 
             _ => Fitted::on(cases, &findings.diagnosis)?,
         };
         fit.tell(&mut findings, cases);
+        if !findings.settled_by_fit() {
+            let top = findings
+                .diagnosis
+                .first()
+                .map_or(Mistakes::NONE, |d| d.mistakes);
+            findings.outside = Outside::of(cases, top)?;
+        }
     }
     findings.progress = Stages::of(&evidence(&findings, all_pass), course);
     Ok(findings)
@@ -258,6 +271,7 @@ impl Fitted {
             not_reproducible: None,
             missing_class: None,
             tick1_star: None,
+            outside: None,
         };
         self.tell(&mut findings, cases);
         findings.progress = Stages::of(&evidence(&findings, all_pass), course);
@@ -295,10 +309,15 @@ fn evidence(findings: &Findings, all_pass: bool) -> Evidence {
             number: Some(n.parameter),
             explained: n.explained,
         },
+        // What lies outside the catalogue on one kind of object is a story of its own: the
+        // stages are read from the catalogued rest.
         (Some(d), None) => Evidence::Explained {
             mistakes: d.mistakes,
             number: None,
-            explained: d.explained,
+            explained: match &findings.outside {
+                Some(o) if o.located() => d.explained + o.share,
+                _ => d.explained,
+            },
         },
         (None, None) if all_pass => Evidence::AllCorrect,
         (None, None) => Evidence::Unexplained,

@@ -59,6 +59,7 @@ pub fn opening(findings: &Findings) -> Vec<String> {
         )),
         None => {}
     }
+    lines.extend(findings.outside.as_ref().map(|o| o.sentence()));
     lines
 }
 
