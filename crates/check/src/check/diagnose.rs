@@ -258,9 +258,9 @@ impl Search {
                 .map_or(Course::Y2016, |s| s.variant.course),
         );
         // Per stage, the most credible story in which it is not written yet.
-        let unwritten: Vec<(Stage, f64)> = Stage::TICK1
+        let unwritten: Vec<(Stage, &Scored)> = Stage::TICK1
             .into_iter()
-            .map(|stage| {
+            .filter_map(|stage| {
                 let best = self
                     .scored
                     .iter()
@@ -269,9 +269,8 @@ impl Search {
                         bugs.iter().any(|b| b.is_unfinished() && b.stage() == stage)
                             && !bugs.iter().any(|b| b.implies(stage))
                     })
-                    .map(credible)
-                    .fold(f64::NEG_INFINITY, f64::max);
-                (stage, best)
+                    .max_by(|a, b| credible(a).total_cmp(&credible(b)))?;
+                Some((stage, best))
             })
             .collect();
         self.scored.iter().filter(move |s| {
@@ -285,18 +284,15 @@ impl Search {
             let ruled_out = unwritten.iter().any(|&(stage, best)| {
                 bugs.iter().any(|b| b.implies(stage))
                     && !bugs.iter().any(|b| b.is_unfinished() && b.stage() == stage)
-                    && best >= credible(s)
+                    && outdoes(best, s)
             }) || stage_unwritten(set, &offered)
                 .iter()
                 .filter_map(|m| by_set.get(m))
-                .any(|t| credible(t) >= credible(s))
+                .any(|t| outdoes(t, s))
                 || certain_instead(set, &offered)
                     .iter()
                     .filter_map(|m| by_set.get(m))
-                    .any(|t| {
-                        credible(t) >= credible(s)
-                            && credible(t) >= ROUNDING_OUTDONE * s.explained()
-                    });
+                    .any(|t| outdoes(t, s) && credible(t) >= ROUNDING_OUTDONE * s.explained());
             s.changes_any() && needed && !ruled_out
         })
     }
@@ -504,6 +500,13 @@ fn certain_instead(set: Mistakes, offered: &[Bug]) -> Vec<Mistakes> {
 /// one reproduces, for certain, at least this share of what the candidate explains: then the
 /// rounding did not find pixels of its own.
 const ROUNDING_OUTDONE: f64 = 0.5;
+
+/// Whether the story `t` is at least as credible as `s` without being its twin: where both
+/// render the images alike, the images cannot choose, and both are listed as twins.
+fn outdoes(t: &Scored, s: &Scored) -> bool {
+    let (a, b) = (credible(t), credible(s));
+    a > b || (a == b && !t.renders_like(s))
+}
 
 /// How much of the images a candidate reproduces that it could not have reproduced by
 /// chance: the differing pixels it renders for certain (not only as one way rounding can go,

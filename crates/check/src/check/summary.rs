@@ -110,13 +110,18 @@ pub fn difference_sentence(d: &Difference) -> String {
     )
 }
 
-/// One diagnosis in words: each entry, where and how to fix it, and what it explains.
+/// One diagnosis in words: each entry, where and how to fix it (only for a good explanation:
+/// a weak candidate is no finding, and a fix under it would read as one), and what it
+/// explains.
 pub fn diagnosis_lines(d: &Diagnosis) -> Vec<String> {
     let mut lines = Vec::new();
+    let finding = d.explained >= GOOD_EXPLANATION;
     for (i, bug) in d.mistakes.bugs().into_iter().enumerate() {
         let and = if i == 0 { "" } else { "and " };
         lines.push(format!("{and}{}: {}", bug.id(), bug.description(d.course)));
-        lines.extend(bug.advice(d.course).map(|line| format!("  {line}")));
+        if finding {
+            lines.extend(bug.advice(d.course).map(|line| format!("  {line}")));
+        }
     }
     lines.push(format!(
         "explains {}% of the differing pixels ({} not explained; changes {} pixels you had right){}",
