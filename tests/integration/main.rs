@@ -4,6 +4,7 @@
 mod allowance;
 mod check;
 mod check_courses;
+mod check_histories;
 mod check_print;
 mod check_project;
 mod cli_errors;

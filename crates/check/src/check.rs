@@ -10,8 +10,10 @@ pub mod case;
 pub mod diagnose;
 pub mod difference;
 pub mod image_cache;
+pub mod missing_class;
 pub mod noise;
 pub mod numbers;
+pub mod outside;
 pub mod pass_rule;
 pub mod pixel_sample;
 pub mod print;
@@ -26,6 +28,7 @@ pub mod student_png;
 pub mod suite;
 pub mod summary;
 pub mod terms;
+pub mod tick1_star;
 pub mod which_course;
 pub mod words;
 
@@ -33,13 +36,16 @@ use crate::check::case::Case;
 use crate::check::diagnose::{CaseFinding, Diagnosis, Search};
 use crate::check::difference::{difference, Difference};
 use crate::check::image_cache::ImageCache;
+use crate::check::missing_class::MissingClass;
 use crate::check::noise::Noise;
 use crate::check::numbers::NumberFit;
+use crate::check::outside::Outside;
 use crate::check::pass_rule::PassRule;
 use crate::check::progress::{Evidence, Stages};
 use crate::check::renderer::{Renderer, SharedScene};
 use crate::check::student_png::Rgb8;
 use crate::check::terms::{TermCase, TermFit};
+use crate::check::tick1_star::Tick1Star;
 use crate::mistakes::Mistakes;
 use whitted_core::course::Course;
 use whitted_core::error::Result;
@@ -72,6 +78,12 @@ pub struct Findings {
     pub progress: Stages,
     /// Some case is noisy as random sampling makes it (Tick 1*): nothing is diagnosed.
     pub not_reproducible: Option<Noise>,
+    /// `--program`: the cases died on a class that did not compile (said once, at the top).
+    pub missing_class: Option<MissingClass>,
+    /// `--program`: the program is a Tick 1* one (said once, at the top).
+    pub tick1_star: Option<Tick1Star>,
+    /// Where no candidate explains the images well: where what it leaves lies.
+    pub outside: Option<Outside>,
 }
 
 impl Findings {
@@ -108,6 +120,9 @@ impl Findings {
             parameters: Vec::new(),
             progress: Stages::of(&evidence, course),
             not_reproducible: None,
+            missing_class: None,
+            tick1_star: None,
+            outside: None,
         }
     }
 }
@@ -161,6 +176,9 @@ pub fn find(cases: &[Case], all_pass: bool, course: Course) -> Result<Findings> 
         parameters: Vec::new(),
         progress: Stages::of(&Evidence::Nothing, course),
         not_reproducible: None,
+        missing_class: None,
+        tick1_star: None,
+        outside: None,
     };
     if findings.weak() {
         let fit = match fitted {
@@ -168,6 +186,13 @@ pub fn find(cases: &[Case], all_pass: bool, course: Course) -> Result<Findings> 
             _ => Fitted::on(cases, &findings.diagnosis)?,
         };
         fit.tell(&mut findings, cases);
+        if !findings.settled_by_fit() {
+            let top = findings
+                .diagnosis
+                .first()
+                .map_or(Mistakes::NONE, |d| d.mistakes);
+            findings.outside = Outside::of(cases, top)?;
+        }
     }
     findings.progress = Stages::of(&evidence(&findings, all_pass), course);
     Ok(findings)
@@ -245,6 +270,9 @@ impl Fitted {
             parameters: Vec::new(),
             progress: Stages::of(&Evidence::Nothing, course),
             not_reproducible: None,
+            missing_class: None,
+            tick1_star: None,
+            outside: None,
         };
         self.tell(&mut findings, cases);
         findings.progress = Stages::of(&evidence(&findings, all_pass), course);
@@ -282,10 +310,15 @@ fn evidence(findings: &Findings, all_pass: bool) -> Evidence {
             number: Some(n.parameter),
             explained: n.explained,
         },
+        // What lies outside the catalogue on one kind of object is a story of its own: the
+        // stages are read from the catalogued rest.
         (Some(d), None) => Evidence::Explained {
             mistakes: d.mistakes,
             number: None,
-            explained: d.explained,
+            explained: match &findings.outside {
+                Some(o) if o.located() => d.explained + o.share,
+                _ => d.explained,
+            },
         },
         (None, None) if all_pass => Evidence::AllCorrect,
         (None, None) => Evidence::Unexplained,

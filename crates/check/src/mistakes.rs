@@ -103,6 +103,18 @@ impl Stage {
         }
     }
 
+    /// The entries that say this stage is not written yet: what a program renders before its
+    /// student gets there (the later years' and 2016-17's, where they differ).
+    pub fn missing_entries(self) -> &'static [Bug] {
+        match self {
+            Stage::Spheres => &[Bug::SpheresMissing],
+            Stage::Planes => &[Bug::PlanesMissing],
+            Stage::Lights => &[Bug::ShadingMissing, Bug::LightsMissing],
+            Stage::Shadows => &[Bug::NoShadows],
+            Stage::Reflection => &[Bug::ReflectionIgnored, Bug::ReflectionMissing],
+        }
+    }
+
     /// The key of the `progress` object (docs/check.md; the later years call the lights'
     /// stage `shading`, as their handout does).
     pub fn key(self, course: Course) -> &'static str {
@@ -279,6 +291,15 @@ impl Bug {
             format!("where: {}, often `{looks_like}`", self.place())
         };
         [place, format!("fix: {}", self.fix(course))]
+    }
+
+    /// Whether the code this mistake is made in exists only once `stage` is written, so that
+    /// the mistake can show only then: its own stage's, and the view vector's mistakes, which
+    /// differ from the course's only for reflected rays. An unfinished stage implies none.
+    pub fn implies(self, stage: Stage) -> bool {
+        let through_reflection = matches!(self, Bug::ViewToCamera | Bug::ViewFromRayOrigin);
+        !self.is_unfinished()
+            && (self.stage() == stage || (through_reflection && stage == Stage::Reflection))
     }
 
     /// Whether this entry is a stage not written yet rather than a mistake in written code.

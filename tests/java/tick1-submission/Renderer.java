@@ -95,7 +95,7 @@ public class Renderer {
                 boolean alongN = shadowAlongN ^ bug(shadowAlongN ? "shadow-bias-along-l" : "shadow-bias-along-n");
                 Vector3 shadowOrigin = P.add((alongN ? N : L).scale(EPSILON));
                 RaycastHit blocker = scene.findClosestIntersection(new Ray(shadowOrigin, L));
-                inShadow = blocker.getObjectHit() != null && blocker.getDistance() < distanceToLight;
+                inShadow = blocker.getObjectHit() != null && (bug("shadow-any-hit") || blocker.getDistance() < distanceToLight);
             }
             if (!inShadow) {
                 colourToReturn = colourToReturn.add(diffuse).add(specular);
@@ -118,13 +118,25 @@ public class Renderer {
     }
     //@end
 
+    /* Tick 1*: 50 rays from random points of a square aperture of side 0.2, through the point
+       where the pinhole ray meets the focal plane z = 3.51805, averaged. */
+    private ColorRGB throughLens(Scene scene, Ray ray) {
+        Vector3 focus = ray.evaluateAt(3.51805 / ray.getDirection().z);
+        ColorRGB sum = new ColorRGB(0);
+        for (int k = 0; k < 50; k++) {
+            Vector3 from = new Vector3((2 * Math.random() - 1) * 0.1, (2 * Math.random() - 1) * 0.1, 0);
+            sum = sum.add(trace(scene, new Ray(from, focus.subtract(from).normalised()), bounces));
+        }
+        return sum.scale(1.0 / 50);
+    }
+
     public BufferedImage render(Scene scene) {
         BufferedImage image = new BufferedImage(width, height, BufferedImage.TYPE_INT_RGB);
         Camera camera = new Camera(width, height);
         for (int y = 0; y < height; ++y) {
             for (int x = 0; x < width; ++x) {
                 Ray ray = camera.castRay(x, y);
-                ColorRGB linearRGB = trace(scene, ray, bounces);
+                ColorRGB linearRGB = bug("star-depth-of-field") ? throughLens(scene, ray) : trace(scene, ray, bounces);
                 image.setRGB(x, y, linearRGB.toRGB()); //@T1
                 image.setRGB(x, y, tonemap(linearRGB).toRGB()); //@T2+
             }

@@ -19,7 +19,7 @@ use crate::check::case::Case;
 use crate::check::difference::pixel_difference;
 use crate::check::score::{cost, explained_share, Scored};
 use crate::check::student_png::Rgb8;
-use crate::mistakes::{Bug, Mistakes, Number, Variant};
+use crate::mistakes::{Bug, Mistakes, Number, Stage, Variant};
 use whitted_core::course::Course;
 use whitted_core::error::Result;
 use whitted_core::numbers::plain;
@@ -142,6 +142,22 @@ impl Search {
             search.scored.extend(score_all(cases, &triples)?);
             search.every_way(cases)?;
         }
+        // Every story a candidate is held against (its stage not written yet) is scored too.
+        let offered = catalogue(cases);
+        let mut unwritten: Vec<Mistakes> = search
+            .scored
+            .iter()
+            .flat_map(|s| {
+                let set = s.variant.mistakes;
+                let mut stories = stage_unwritten(set, &offered);
+                stories.extend(certain_instead(set, &offered));
+                stories
+            })
+            .filter(|m| search.get(*m).is_none())
+            .collect();
+        unwritten.sort();
+        unwritten.dedup();
+        search.scored.extend(score_all(cases, &unwritten)?);
         Ok(search)
     }
 
@@ -221,24 +237,63 @@ impl Search {
         triples
     }
 
-    /// The candidates worth ranking: they change something, and render differently from
-    /// every scored set one entry smaller (a single entry: from the reference), so each entry
-    /// adds something; a third entry counts only where it also lowers the cost (the beam
-    /// extends while the cost falls).
+    /// The candidates worth ranking: they change something, and each of their entries is
+    /// needed: the candidate renders differently from every scored set one entry smaller (a
+    /// single entry: from the reference) and, with two entries or more, costs less than each
+    /// (the beam extends while the cost falls). And none is possible only if a stage is
+    /// written that the images say is not: where the same program with that stage not
+    /// written yet (`stage_unwritten`) is as credible, the mistakes made in the stage's code
+    /// are a story the rest of the program rules out (no reflected ray, no
+    /// `no-reflection-bias`; a self-hit that rounding may or may not make imitates a missing
+    /// reflection).
     fn useful(&self) -> impl Iterator<Item = &Scored> {
         let by_set: HashMap<Mistakes, &Scored> = self
             .scored
             .iter()
             .map(|s| (s.variant.mistakes, s))
             .collect();
+        let offered = Bug::offered(
+            self.scored
+                .first()
+                .map_or(Course::Y2016, |s| s.variant.course),
+        );
+        // Per stage, the most credible story in which it is not written yet.
+        let unwritten: Vec<(Stage, &Scored)> = Stage::TICK1
+            .into_iter()
+            .filter_map(|stage| {
+                let best = self
+                    .scored
+                    .iter()
+                    .filter(|s| {
+                        let bugs = s.variant.mistakes.bugs();
+                        bugs.iter().any(|b| b.is_unfinished() && b.stage() == stage)
+                            && !bugs.iter().any(|b| b.implies(stage))
+                    })
+                    .max_by(|a, b| credible(a).total_cmp(&credible(b)))?;
+                Some((stage, best))
+            })
+            .collect();
         self.scored.iter().filter(move |s| {
             let set = s.variant.mistakes;
-            s.changes_any()
-                && set.one_smaller().iter().all(|smaller| {
-                    by_set.get(smaller).is_none_or(|t| {
-                        !s.renders_like(t) && (set.len() < 3 || s.cost() < t.cost())
-                    })
-                })
+            let needed = set.one_smaller().iter().all(|smaller| {
+                by_set
+                    .get(smaller)
+                    .is_none_or(|t| !s.renders_like(t) && (set.len() < 2 || s.cost() < t.cost()))
+            });
+            let bugs = set.bugs();
+            let ruled_out = unwritten.iter().any(|&(stage, best)| {
+                bugs.iter().any(|b| b.implies(stage))
+                    && !bugs.iter().any(|b| b.is_unfinished() && b.stage() == stage)
+                    && outdoes(best, s)
+            }) || stage_unwritten(set, &offered)
+                .iter()
+                .filter_map(|m| by_set.get(m))
+                .any(|t| outdoes(t, s))
+                || certain_instead(set, &offered)
+                    .iter()
+                    .filter_map(|m| by_set.get(m))
+                    .any(|t| outdoes(t, s) && credible(t) >= ROUNDING_OUTDONE * s.explained());
+            s.changes_any() && needed && !ruled_out
         })
     }
 
@@ -373,6 +428,92 @@ impl Search {
             label: (!shows.is_empty() && wrong > 0 && label.explained >= LABELLED).then_some(label),
         }
     }
+}
+
+/// The same program as `set` told with a stage not written yet instead of `set`'s mistakes
+/// that need that stage (`Bug::implies`): for each stage some entry implies and none of `set`
+/// leaves unwritten, those entries replaced by each of the stage's unfinished entries that
+/// `offered` holds and the rest admits.
+fn stage_unwritten(set: Mistakes, offered: &[Bug]) -> Vec<Mistakes> {
+    let mut stories = Vec::new();
+    for stage in Stage::TICK1 {
+        let needing: Vec<Bug> = set
+            .bugs()
+            .into_iter()
+            .filter(|b| b.implies(stage))
+            .collect();
+        let unwritten_already = set
+            .bugs()
+            .iter()
+            .any(|b| b.is_unfinished() && b.stage() == stage);
+        if needing.is_empty() || unwritten_already {
+            continue;
+        }
+        let rest = Mistakes::of(
+            &set.bugs()
+                .into_iter()
+                .filter(|b| !needing.contains(b))
+                .collect::<Vec<_>>(),
+        );
+        stories.extend(
+            stage
+                .missing_entries()
+                .iter()
+                .filter(|m| offered.contains(m) && rest.admits(**m))
+                .map(|&m| rest.with(m)),
+        );
+    }
+    stories
+}
+
+/// The same program as `set` with each of its entries that hinge on rounding (a ray that
+/// starts on its own surface: `no-shadow-bias`, `no-reflection-bias`) left out, or replaced by
+/// another written entry of its stage that `offered` holds and the rest admits. Such an entry
+/// reproduces a pixel either way its rounding goes, so it can imitate a mistake of its stage
+/// made for certain (every pixel `shadow-any-hit` darkens is one a self-shadow could).
+fn certain_instead(set: Mistakes, offered: &[Bug]) -> Vec<Mistakes> {
+    let mut stories = Vec::new();
+    for e in set.bugs() {
+        if !matches!(e, Bug::NoShadowBias | Bug::NoReflectionBias) {
+            continue;
+        }
+        let rest = Mistakes::of(
+            &set.bugs()
+                .into_iter()
+                .filter(|&b| b != e)
+                .collect::<Vec<_>>(),
+        );
+        if rest.bugs().iter().any(|b| b.implies(e.stage())) {
+            stories.push(rest);
+        }
+        stories.extend(
+            offered
+                .iter()
+                .filter(|f| f.implies(e.stage()) && **f != e && rest.admits(**f))
+                .map(|&f| rest.with(f)),
+        );
+    }
+    stories
+}
+
+/// A candidate whose rounding entry a certain one could replace is ruled out only where that
+/// one reproduces, for certain, at least this share of what the candidate explains: then the
+/// rounding did not find pixels of its own.
+const ROUNDING_OUTDONE: f64 = 0.5;
+
+/// Whether the story `t` is at least as credible as `s` without being its twin: where both
+/// render the images alike, the images cannot choose, and both are listed as twins.
+fn outdoes(t: &Scored, s: &Scored) -> bool {
+    let (a, b) = (credible(t), credible(s));
+    a > b || (a == b && !t.renders_like(s))
+}
+
+/// How much of the images a candidate reproduces that it could not have reproduced by
+/// chance: the differing pixels it renders for certain (not only as one way rounding can go,
+/// where a self-hit may land either way and so imitates much), less the right pixels it
+/// changes.
+fn credible(s: &Scored) -> f64 {
+    s.explained() - s.by_rounding() - s.wrongly_changed()
 }
 
 /// Whether `variant` renders every case byte for byte as `base` does.

@@ -184,6 +184,65 @@ fn with_an_entry(cases: &[Case], best: Option<&Scored>) -> Result<Option<Scored>
 /// The share of a fit's cost an added entry must remove to be named with it.
 const PAIRED_GAIN: f64 = 0.1;
 
+/// A fit (on the sample) must explain more than its entries alone:
+/// - on its own: at least this share of the differing pixels more than they do;
+const OWN_GAIN: f64 = 0.1;
+/// - without changing, for each pixel it gains, more than this share of a pixel the student
+///   had right (a wrong number is wrong everywhere the student wrote it, so a true one
+///   changes next to nothing that is right);
+const RIGHT_CHANGED_PER_GAIN: f64 = 0.1;
+/// - in every case, costing at most this share of the case's differing pixels more than they
+///   do (the sample's noise).
+const CASE_SLACK: f64 = 0.01;
+
+/// Whether the fit `s` tells a story of its own that holds across the cases: it gains
+/// `OWN_GAIN` over its entries alone, changes next to nothing the student had right, costs no
+/// case more than they do, and its number's stage is written: a number of a stage the entries
+/// leave unwritten shows nothing, and one that renders no better than that stage unwritten
+/// (a reflectivity factor of 0 is the reflection not written) is that story, told already.
+fn holds(cases: &[Case], s: &Scored) -> Result<bool> {
+    let Some(number) = s.variant.number else {
+        return Ok(false);
+    };
+    let base = s.variant.mistakes;
+    let stage = number.parameter.stage();
+    if base
+        .bugs()
+        .iter()
+        .any(|b| b.is_unfinished() && b.stage() == stage)
+    {
+        return Ok(false);
+    }
+    let without = Scored::on_samples(cases, Variant::from(base))?;
+    let differing: f64 = cases.iter().map(|c| c.wrong.len() as f64).sum();
+    let gain = s.explained() - without.explained();
+    let changed = s.wrongly_changed() - without.wrongly_changed();
+    let every_case =
+        cases
+            .iter()
+            .zip(s.cases.iter().zip(&without.cases))
+            .all(|(case, (fit, alone))| {
+                fit.cost <= alone.cost + CASE_SLACK * case.wrong.len() as f64 + 1.0
+            });
+    if s.cost() >= without.cost()
+        || gain < OWN_GAIN * differing
+        || changed > RIGHT_CHANGED_PER_GAIN * gain
+        || !every_case
+    {
+        return Ok(false);
+    }
+    let offered = super::diagnose::catalogue(cases);
+    for &missing in stage.missing_entries() {
+        if offered.contains(&missing) && base.admits(missing) {
+            let unwritten = Scored::on_samples(cases, Variant::from(base.with(missing)))?;
+            if unwritten.cost() <= s.cost() {
+                return Ok(false);
+            }
+        }
+    }
+    Ok(true)
+}
+
 /// Every parameter fitted on top of each of `bases`; the best `LISTED` that explain the
 /// images better than `bases` do without a number, counted whole, best first.
 pub fn fit(cases: &[Case], bases: &[Mistakes]) -> Result<Vec<NumberFit>> {
@@ -196,23 +255,21 @@ pub fn fit(cases: &[Case], bases: &[Mistakes]) -> Result<Vec<NumberFit>> {
         .par_iter()
         .map(|&(base, parameter)| fit_one(cases, base, parameter))
         .collect::<Result<_>>()?;
-    let base_costs: Vec<(Mistakes, f64)> = bases
-        .iter()
-        .map(|&b| Ok((b, Scored::on_samples(cases, Variant::from(b))?.cost())))
-        .collect::<Result<_>>()?;
     fits.retain(|s| {
         let number = s.variant.number.map(|n| (n.parameter, n.value));
-        let course = number.is_some_and(|(p, v)| v == p.course());
-        let without = base_costs
-            .iter()
-            .find(|(b, _)| *b == s.variant.mistakes)
-            .map_or(f64::INFINITY, |(_, c)| *c);
-        !course && s.cost() < without
+        !number.is_some_and(|(p, v)| v == p.course())
     });
     fits.sort_by(|a, b| a.cost().total_cmp(&b.cost()));
     if let Some(paired) = with_an_entry(cases, fits.first())? {
         fits.insert(0, paired);
     }
+    let mut kept = Vec::new();
+    for s in fits {
+        if holds(cases, &s)? {
+            kept.push(s);
+        }
+    }
+    let mut fits = kept;
     // A number on top of entries is worth saying only where it beats every number alone.
     let best_alone = fits
         .iter()

@@ -12,11 +12,13 @@ use std::time::Duration;
 
 use crate::check::case::Case;
 use crate::check::image_cache::ImageCache;
+use crate::check::missing_class::MissingClass;
 use crate::check::noise::{self, Noise, Seen};
 use crate::check::pass_rule::PassRule;
 use crate::check::renderer::SharedScene;
 use crate::check::student_png::{self, Rgb8};
 use crate::check::suite::{cases_of, SuiteCase};
+use crate::check::tick1_star::{self, StarSeen, Tick1Star};
 use crate::check::{find, prepare, CaseReport, Findings};
 use whitted_core::course::Course;
 use whitted_core::error::{Error, Result};
@@ -102,6 +104,9 @@ pub struct CaseOutcome {
     pub status: RunStatus,
     /// The last lines of what the program wrote to standard error.
     pub stderr_tail: String,
+    /// Whether the suite's opening lines already say why it failed (a class that did not
+    /// compile, a Tick 1* program): its line is short and its tail is not repeated.
+    pub said_above: bool,
 }
 
 impl CaseOutcome {
@@ -200,7 +205,28 @@ pub fn run_suite_with(
     cache: &Arc<ImageCache>,
 ) -> Result<SuiteRun> {
     let star = is_tick1_star(program);
-    let finished = run_programs(launch, suite, Duration::from_secs(timeout), star)?;
+    let (finished, stopped) = run_programs(launch, suite, Duration::from_secs(timeout), star)?;
+    let course = suite.first().map_or(Course::Y2016, |c| c.course);
+    let missing = {
+        let tails: Vec<Option<&str>> = finished
+            .iter()
+            .map(|(ran, tail)| match ran {
+                Ran::Failed(RunStatus::Crashed(_)) => Some(tail.as_str()),
+                _ => None,
+            })
+            .collect();
+        MissingClass::of_suite(&tails, course)
+    };
+    let mut star = match (star, stopped) {
+        (true, _) => Some(StarSeen::Package),
+        (false, true) => Some(StarSeen::FirstCaseTimedOut),
+        (false, false) => None,
+    }
+    .map(|seen| Tick1Star {
+        seen,
+        timeout,
+        stopped,
+    });
     let mut statuses: Vec<Option<RunStatus>> = Vec::new();
     let mut tails = Vec::new();
     let mut scenes: Vec<(usize, Scene)> = Vec::new();
@@ -215,7 +241,7 @@ pub fn run_suite_with(
                 images.push(image);
                 statuses.push(None);
             }
-            Ran::Failed(status) => statuses.push(Some(status)),
+            Ran::Failed(status) => statuses.push(Some(said_once(status, &missing, star))),
         }
     }
     let count = scenes.len();
@@ -255,7 +281,6 @@ pub fn run_suite_with(
     }
     let all_pass = statuses.iter().all(Option::is_none)
         && reports.iter().all(|r| r.difference.verdict.passes());
-    let course = suite.first().map_or(Course::Y2016, |c| c.course);
     let findings = find(&prepared, all_pass, course)?;
     // Noise is never reproduced exactly: a program the diagnosis renders exactly needs no
     // second run.
@@ -263,13 +288,22 @@ pub fn run_suite_with(
         .diagnosis
         .first()
         .is_some_and(|d| d.exact && d.unexplained_pixels == 0);
-    let findings = match exact {
+    let mut findings = match exact {
         true => findings,
         false => match rerun_differs(launch, suite, &scenes, &prepared, &reports, timeout)? {
-            Some(noise) => Findings::not_reproducible(prepared.len(), course, noise),
+            Some(noise) => {
+                star = star.or(Some(Tick1Star {
+                    seen: StarSeen::TwoRunsDiffer,
+                    timeout,
+                    stopped: false,
+                }));
+                Findings::not_reproducible(prepared.len(), course, noise)
+            }
             None => findings,
         },
     };
+    findings.tick1_star = star;
+    findings.missing_class = missing;
     let mut reports = reports.into_iter().zip(&findings.per_case);
     let outcomes = suite
         .iter()
@@ -284,11 +318,13 @@ pub fn run_suite_with(
                 }
                 None => RunStatus::Crashed("not checked".into()),
             });
+            let said_above = said_above(&status, &findings);
             CaseOutcome {
                 name: case.name(),
                 case: case.clone(),
                 status,
                 stderr_tail,
+                said_above,
             }
         })
         .collect();
@@ -297,6 +333,31 @@ pub fn run_suite_with(
         cases: outcomes,
         findings,
     })
+}
+
+/// A failed case's status, its message short where the suite's opening says why: a class that
+/// did not compile (named here), a Tick 1* program (whose cases not run say only that).
+fn said_once(
+    status: RunStatus,
+    missing: &Option<MissingClass>,
+    star: Option<Tick1Star>,
+) -> RunStatus {
+    match (status, missing, star) {
+        (RunStatus::Crashed(message), Some(m), _) if message != NOT_RUN => {
+            RunStatus::Crashed(m.case_message(&message))
+        }
+        (RunStatus::NotRun(_), _, Some(star)) => RunStatus::NotRun(star.not_run()),
+        (status, _, _) => status,
+    }
+}
+
+/// Whether the suite's opening lines say why this case failed.
+fn said_above(status: &RunStatus, findings: &Findings) -> bool {
+    match status {
+        RunStatus::Crashed(_) => findings.missing_class.is_some(),
+        RunStatus::NotRun(_) | RunStatus::Timeout(_) => findings.tick1_star.is_some(),
+        _ => false,
+    }
 }
 
 /// What running one case gave.
@@ -339,7 +400,8 @@ fn rerun_differs(
         std::slice::from_ref(case),
         Duration::from_secs(timeout),
         false,
-    )?;
+    )?
+    .0;
     let first = &prepared[k];
     Ok(match again.into_iter().next() {
         Some((Ran::Image(image), _)) if image != first.student => Some(noise::compared(
@@ -354,23 +416,22 @@ fn rerun_differs(
 /// Whether `program` (its command line) runs a class of the course's `tick1star` package: the
 /// optional Tick 1* (soft shadows, depth of field: hundreds of rays a pixel, a random image).
 pub fn is_tick1_star(program: &str) -> bool {
-    program.contains(".tick1star.")
+    tick1_star::in_package(program)
 }
 
-/// What the cases a Tick 1* program did not run say.
-pub const STAR_NOT_RUN: &str = "a Tick 1* program (package tick1star: many random rays a pixel) \
-     ran out of time on an earlier case, so the rest were not run: its images are random draws, \
-     not auto-gradable; look at them by hand, give it a longer --timeout, or check the Tick 1 \
-     code without the Tick 1* additions";
+/// A crashed case's message when it was never started.
+const NOT_RUN: &str = "not run";
 
-/// Runs every case, `AT_ONCE` at a time. With `star` (a Tick 1* program), the first case out of
-/// time stops the others: a row of timeouts would tell nothing more.
+/// Runs every case, `AT_ONCE` at a time, and says whether the suite was stopped early. With
+/// `star` (a Tick 1* program) the first case out of time stops the others, and any program's
+/// first case (the suite's quickest) out of time does too: a row of timeouts would tell nothing
+/// more, and the report says once what it is (`tick1_star.rs`).
 fn run_programs(
     launch: &dyn Launch,
     suite: &[SuiteCase],
     timeout: Duration,
     star: bool,
-) -> Result<Vec<(Ran, String)>> {
+) -> Result<(Vec<(Ran, String)>, bool)> {
     let mut results: Vec<Option<(Ran, String)>> = suite.iter().map(|_| None).collect();
     let mut running: Vec<Running> = Vec::new();
     let mut next = 0;
@@ -419,7 +480,7 @@ fn run_programs(
                 Ok(None) if r.process.elapsed() > timeout => {
                     let index = r.index;
                     results[index] = Some(finish(launch, r, None, timeout));
-                    if star {
+                    if star || index == 0 {
                         next = suite.len();
                         stopped_star = true;
                     }
@@ -444,13 +505,14 @@ fn run_programs(
         }
     }
     let not_run = match stopped_star {
-        true => RunStatus::NotRun(STAR_NOT_RUN.into()),
-        false => RunStatus::Crashed("not run".into()),
+        true => RunStatus::NotRun("ran out of time on an earlier case".into()),
+        false => RunStatus::Crashed(NOT_RUN.into()),
     };
-    Ok(results
+    let results = results
         .into_iter()
         .map(|r| r.unwrap_or((Ran::Failed(not_run.clone()), String::new())))
-        .collect())
+        .collect();
+    Ok((results, stopped_star))
 }
 
 /// Starts case `index`'s program in a fresh temporary directory and process group.

@@ -1,6 +1,6 @@
 //! Where the student is in the handout (docs/check.md, "Progress"): each stage done, not
-//! written yet, written with a mistake, or unknown, read from the explanation that accounts
-//! for the images best.
+//! written yet, written with a mistake, not reached (an earlier stage still missing hides it),
+//! or unknown, read from the explanation that accounts for the images best.
 
 use crate::mistakes::{Bug, Mistakes, Parameter, Stage};
 use whitted_core::course::Course;
@@ -18,6 +18,9 @@ pub enum StageState {
     Missing,
     /// Entries (or a number) of that stage hold: their ids or names.
     Mistaken(Vec<String>),
+    /// Nothing of it can show, because the stage named is not written yet (no object to
+    /// shade, no light to shadow): never called done, whatever its code is.
+    NotReached(Stage),
     /// Cannot tell (every case crashed, or nothing explains the images).
     Unknown,
 }
@@ -29,6 +32,7 @@ impl StageState {
             StageState::Done => "done",
             StageState::Missing => "missing",
             StageState::Mistaken(_) => "mistaken",
+            StageState::NotReached(_) => "not-reached",
             StageState::Unknown => "unknown",
         }
     }
@@ -75,13 +79,25 @@ impl Stages {
             }
             Evidence::Explained {
                 mistakes, number, ..
-            } => Stages {
-                course,
-                stages: Stage::of(course)
+            } => {
+                let mut stages: Vec<(Stage, StageState)> = Stage::of(course)
                     .iter()
                     .map(|&stage| (stage, state_of(stage, mistakes, number)))
-                    .collect(),
-            },
+                    .collect();
+                let missing: Vec<Stage> = stages
+                    .iter()
+                    .filter(|(_, state)| *state == StageState::Missing)
+                    .map(|(stage, _)| *stage)
+                    .collect();
+                for (stage, state) in &mut stages {
+                    if *state != StageState::Missing {
+                        if let Some(behind) = hidden_behind(*stage, &missing) {
+                            *state = StageState::NotReached(behind);
+                        }
+                    }
+                }
+                Stages { course, stages }
+            }
         }
     }
 
@@ -98,11 +114,31 @@ impl Stages {
                     StageState::Mistaken(ids) => {
                         format!("{key} done, with a mistake ({})", ids.join(", "))
                     }
+                    StageState::NotReached(behind) => format!(
+                        "{key} not reached ({} not written yet: nothing of it can show)",
+                        behind.key(self.course)
+                    ),
                     StageState::Unknown => format!("{key} unknown"),
                 }
             })
             .collect();
         format!("progress: {}", parts.join("; "))
+    }
+}
+
+/// The stage not written yet (of `missing`) that keeps anything of `stage` from showing, if
+/// one does: a fact of the handout and the course's scenes. With neither spheres nor planes
+/// only the background shows; without spheres nothing casts a shadow (the course's scenes'
+/// planes never shadow one another); without shading (or, in 2016-17, without the lights'
+/// terms) there is no light for a shadow to take away.
+fn hidden_behind(stage: Stage, missing: &[Stage]) -> Option<Stage> {
+    let lacks = |s: Stage| missing.contains(&s);
+    let nothing_hit = lacks(Stage::Spheres) && lacks(Stage::Planes);
+    match stage {
+        Stage::Lights | Stage::Reflection if nothing_hit => Some(Stage::Spheres),
+        Stage::Shadows if lacks(Stage::Spheres) => Some(Stage::Spheres),
+        Stage::Shadows if lacks(Stage::Lights) => Some(Stage::Lights),
+        _ => None,
     }
 }
 
@@ -178,6 +214,66 @@ mod tests {
         assert_eq!(
             number.stages[2].1,
             StageState::Mistaken(vec!["epsilon".into()])
+        );
+    }
+
+    fn states(mistakes: &[Bug], course: Course) -> Vec<&'static str> {
+        let p = Stages::of(
+            &Evidence::Explained {
+                mistakes: Mistakes::of(mistakes),
+                number: None,
+                explained: 1.0,
+            },
+            course,
+        );
+        p.stages.iter().map(|(_, s)| s.name()).collect()
+    }
+
+    #[test]
+    fn a_stage_an_unwritten_one_hides_is_not_reached() {
+        // The zip as shipped: only the background, so nothing after it can show.
+        let p = Stages::of(
+            &Evidence::Explained {
+                mistakes: Mistakes::of(&[Bug::SpheresMissing, Bug::PlanesMissing]),
+                number: None,
+                explained: 1.0,
+            },
+            Course::Y2019,
+        );
+        assert_eq!(
+            p.sentence(),
+            "progress: spheres not written yet; \
+             shading not reached (spheres not written yet: nothing of it can show); \
+             planes not written yet; \
+             shadows not reached (spheres not written yet: nothing of it can show); \
+             reflection not reached (spheres not written yet: nothing of it can show)"
+        );
+        // Flat spheres, no planes: the reflection shows, no shadow can.
+        assert_eq!(
+            states(
+                &[
+                    Bug::ShadingMissing,
+                    Bug::PlanesMissing,
+                    Bug::ReflectionIgnored
+                ],
+                Course::Y2019
+            ),
+            ["done", "missing", "missing", "not-reached", "missing"]
+        );
+        // Planes alone are shaded and reflect, but nothing casts a shadow on them.
+        assert_eq!(
+            states(&[Bug::SpheresMissing], Course::Y2023),
+            ["missing", "done", "done", "not-reached", "done"]
+        );
+        // 2016-17: no light's terms, so no shadow to take away.
+        assert_eq!(
+            states(&[Bug::LightsMissing], Course::Y2016),
+            ["done", "missing", "not-reached", "done"]
+        );
+        // A missing stage hides nothing before it.
+        assert_eq!(
+            states(&[Bug::NoShadows, Bug::ReflectionIgnored], Course::Y2021),
+            ["done", "done", "done", "missing", "missing"]
         );
     }
 }

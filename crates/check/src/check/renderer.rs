@@ -489,6 +489,21 @@ impl<'a> Renderer<'a> {
         self.remembered(Some(variant))
     }
 
+    /// The object (its index in the scene) each of `pixels` shows in the reference, None for
+    /// the background: where a difference lies.
+    pub fn objects_at(&self, pixels: &[(u32, u32)]) -> Result<Vec<Option<usize>>> {
+        let frame = self.frame(Mistakes::NONE)?;
+        let accel = self.accelerator(&frame);
+        let rules = self.course().rules();
+        Ok(pixels
+            .iter()
+            .map(|&(x, y)| {
+                let ray = frame.camera().pixel_centre_ray(x, y);
+                accel.closest_hit(&rules, &ray).map(|hit| hit.object)
+            })
+            .collect())
+    }
+
     /// The reference's every layer at `pixels` (for the term fit).
     pub fn layers_at(&self, pixels: &[(u32, u32)]) -> Result<Vec<Sample>> {
         let frame = self.frame(Mistakes::NONE)?;

@@ -53,6 +53,9 @@ pub struct CaseResult {
     pub status: RunStatus,
     /// The end of the program's standard error (empty for an image).
     pub stderr_tail: String,
+    /// Whether what its standard error says is said once above every case (a class missing
+    /// because compilation failed), so the case does not repeat it.
+    pub said_above: bool,
     /// A suite case's role; None for an image.
     pub role: Option<Role>,
     /// What reproduces it from the directory the check ran in.
@@ -102,6 +105,7 @@ impl CheckResult {
                 name: name.to_string(),
                 status: RunStatus::Ok(Box::new(report)),
                 stderr_tail: String::new(),
+                said_above: false,
                 role: None,
                 reproduce,
             }],
@@ -132,6 +136,7 @@ impl CheckResult {
                     name: c.name,
                     status: c.status,
                     stderr_tail: c.stderr_tail,
+                    said_above: c.said_above,
                     role: Some(c.case.role),
                     reproduce,
                 }

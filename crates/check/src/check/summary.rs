@@ -28,9 +28,13 @@ pub fn fits(findings: &Findings) -> Vec<String> {
         .collect()
 }
 
-/// The progress line, then, when the catalogue explains little, what explains most.
+/// The progress line, what the program is or why its cases died (a Tick 1* program, a class
+/// that did not compile), then, when the catalogue explains little, what explains most.
 pub fn opening(findings: &Findings) -> Vec<String> {
     let mut lines = vec![findings.progress.sentence()];
+    // What the program is, or why its cases died, before anything about its images.
+    lines.extend(findings.tick1_star.map(|star| star.sentence()));
+    lines.extend(findings.missing_class.as_ref().map(|m| m.sentence()));
     if let Some(noise) = findings.not_reproducible {
         lines.push(noise.sentence());
         return lines;
@@ -55,6 +59,7 @@ pub fn opening(findings: &Findings) -> Vec<String> {
         )),
         None => {}
     }
+    lines.extend(findings.outside.as_ref().map(|o| o.sentence()));
     lines
 }
 
@@ -105,8 +110,9 @@ pub fn difference_sentence(d: &Difference) -> String {
     )
 }
 
-/// One diagnosis in words: each entry, where and how to fix it, and what it explains, then
-/// what the images cannot tell (`diagnosis_details`).
+/// One diagnosis in words: each entry, where and how to fix it (only for a good explanation:
+/// a weak candidate is no finding, and a fix under it would read as one), and what it
+/// explains, then what the images cannot tell (`diagnosis_details`).
 pub fn diagnosis_lines(d: &Diagnosis) -> Vec<String> {
     let mut lines = finding_lines(d);
     lines.extend(diagnosis_details(d));
@@ -117,10 +123,13 @@ pub fn diagnosis_lines(d: &Diagnosis) -> Vec<String> {
 /// how to fix it, what it explains, and what the pixels rounding decides look like.
 pub fn finding_lines(d: &Diagnosis) -> Vec<String> {
     let mut lines = Vec::new();
+    let finding = d.explained >= GOOD_EXPLANATION;
     for (i, bug) in d.mistakes.bugs().into_iter().enumerate() {
         let and = if i == 0 { "" } else { "and " };
         lines.push(format!("{and}{}: {}", bug.id(), bug.description(d.course)));
-        lines.extend(bug.advice(d.course).map(|line| format!("  {line}")));
+        if finding {
+            lines.extend(bug.advice(d.course).map(|line| format!("  {line}")));
+        }
     }
     lines.push(format!(
         "explains {}% of the differing pixels ({} not explained; changes {} pixels you had right){}",

@@ -58,8 +58,11 @@ pub(super) fn entry(bug: Bug) -> Entry {
     match bug {
         Bug::ViewToCamera => mistake("view-to-camera", Lights, "V = normalise(-P), towards the camera, not towards the origin O of the ray that found P (wrong for reflected rays)",
             Where(ILLUMINATE_O, "Vector3 V = P.scale(-1).normalised();", "V = normalise(O - P): Vector3 V = O.subtract(P).normalised();")),
-        Bug::NoGate => mistake("no-gate", Lights, "a light adds its terms where N.L < 0 (the light is behind the surface)",
-            Where(ILLUMINATE_O, "no test of N.dot(L) before adding the light's terms", "skip the light where N.L < 0: if (N.dot(L) < 0) continue;")),
+        // The diffuse's own max(0, N.L) already gates it, so the image shows only the
+        // specular lit from behind: the line to point at is the specular's, not a missing test
+        // of the whole light.
+        Bug::NoGate => mistake("no-gate", Lights, "the specular term added where N.L < 0 (the light is behind the surface): only the diffuse is cut off there, by its max(0, N.L)",
+            Where(ILLUMINATE_O, "ColorRGB specular = C_spec.scale(I).scale(kS * Math.pow(Math.max(0, R.dot(V)), alpha));  // added whatever N.L is", "skip the light where N.L < 0, its specular too: if (N.dot(L) < 0) continue;")),
         Bug::SpecularWhite => mistake("specular-white", Lights, "specular term without the light's colour: I kS (R.V)^n instead of C_light I kS (R.V)^n",
             Where(ILLUMINATE_O, "ColorRGB specular = I.scale(kS * Math.pow(...));", "multiply by the light's colour too: ColorRGB specular = light.getColour().scale(I).scale(kS * Math.pow(Math.max(0, R.dot(V)), object.getPhong_alpha()));")),
         Bug::ShadowBiasAlongN => mistake("shadow-bias-along-n", Shadows, "shadow ray moved off the surface along N, not along L",

@@ -194,7 +194,7 @@ pub fn page(result: &CheckResult) -> String {
         match c.report() {
             Some(r) if !c.passed() => body += &case_block(&c.name, r, &Inline),
             Some(_) => {}
-            None if !c.stderr_tail.is_empty() => {
+            None if !c.stderr_tail.is_empty() && !c.said_above => {
                 body += &format!(
                     "<h2>{}: {}</h2>\n<pre>{}</pre>\n",
                     escape(&c.name),

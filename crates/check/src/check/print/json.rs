@@ -98,6 +98,21 @@ pub fn add_findings(object: &mut Value, findings: &Findings) {
         None => Value::Null,
     };
     object["diagnosis_heading"] = json!(summary::candidates_heading(findings));
+    if let Some(m) = &findings.missing_class {
+        object["missing_class"] = json!({
+            "class": m.class,
+            "qualified": m.qualified,
+            "cases": m.cases,
+            "known_cause": m.known_cause,
+        });
+    }
+    if let Some(star) = findings.tick1_star {
+        object["tick1_star"] = json!({
+            "seen": star.seen.name(),
+            "timeout": star.timeout,
+            "stopped": star.stopped,
+        });
+    }
 }
 
 /// One case; with `findings` when it is a check of one image (not a suite's case).

@@ -182,7 +182,7 @@ fn program(result: &CheckResult, detail: Detail, screen: &mut Screen, hidden: &m
     let mut tails_shown: Vec<&str> = Vec::new();
     for c in &result.cases {
         screen.line(Keep::Always, format!("  {:<28} {}", c.name, case_line(c)));
-        if c.report().is_none() && !c.stderr_tail.is_empty() {
+        if c.report().is_none() && !c.stderr_tail.is_empty() && !c.said_above {
             let lines = c.stderr_tail.lines();
             if detail.full() {
                 screen.push(Keep::Always, lines.map(|l| format!("      | {l}")));

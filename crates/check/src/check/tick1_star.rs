@@ -1,0 +1,112 @@
+//! A Tick 1* program (docs/courses.md, "Tick 1*"; docs/check.md): soft shadows and depth of
+//! field trace hundreds of random rays a pixel, so a case takes minutes and its image is a
+//! random draw no byte-for-byte check can pass. Said once, at the top of the report, with what
+//! to do, however it was recognised: rather than a row of timeouts, or noise diagnosed.
+
+/// How the program was recognised as Tick 1*.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StarSeen {
+    /// Its main class is in a `tick1star` package, as the handout has students copy it.
+    Package,
+    /// Run twice on one case, it wrote two different images (`noise.rs`).
+    TwoRunsDiffer,
+    /// Its first case, the suite's quickest, ran out of time.
+    FirstCaseTimedOut,
+}
+
+impl StarSeen {
+    /// The JSON value.
+    pub fn name(self) -> &'static str {
+        match self {
+            StarSeen::Package => "package",
+            StarSeen::TwoRunsDiffer => "two-runs-differ",
+            StarSeen::FirstCaseTimedOut => "first-case-timed-out",
+        }
+    }
+}
+
+/// What the check knows of a Tick 1* program.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Tick1Star {
+    pub seen: StarSeen,
+    /// The time each case was given, in seconds.
+    pub timeout: u64,
+    /// Whether the suite was stopped at its first case out of time.
+    pub stopped: bool,
+}
+
+/// Whether `program` (its command line) runs a class of the course's `tick1star` package.
+pub fn in_package(program: &str) -> bool {
+    program.contains(".tick1star.")
+}
+
+impl Tick1Star {
+    /// The report's one line: what it is, why whitted thinks so, what to do.
+    pub fn sentence(&self) -> String {
+        let why = match self.seen {
+            StarSeen::Package => "its package is tick1star".to_string(),
+            StarSeen::TwoRunsDiffer => {
+                "run twice on one case, it wrote two different images".to_string()
+            }
+            StarSeen::FirstCaseTimedOut => format!(
+                "its first case, the quickest, ran out of time ({} s); if it is not Tick 1*, it \
+                 never finishes",
+                self.timeout
+            ),
+        };
+        let stopped = match self.stopped {
+            true => " The suite stopped at its first case out of time.",
+            false => "",
+        };
+        format!(
+            "a Tick 1* program ({why}): soft shadows and depth of field trace hundreds of random \
+             rays a pixel, so a case takes minutes and its image is a random draw that no \
+             byte-for-byte check passes.{stopped} To see its images, give it a longer --timeout \
+             (this run allowed {} s a case); to check your ray tracer, run your Tick 1 code \
+             (package tick1, without the Tick 1* additions) with --program; of the Tick 1* code \
+             itself whitted checks today only that its images are noise around the reference \
+             (compared blurred), not the method.",
+            self.timeout
+        )
+    }
+
+    /// A case not run after the suite stopped.
+    pub fn not_run(&self) -> String {
+        match self.seen {
+            StarSeen::FirstCaseTimedOut => {
+                "the first case ran out of time, so the rest were not run (see above)".into()
+            }
+            _ => "the Tick 1* program ran out of time on an earlier case (see above)".into(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn it_says_what_it_is_and_what_to_do() {
+        let star = Tick1Star {
+            seen: StarSeen::FirstCaseTimedOut,
+            timeout: 3,
+            stopped: true,
+        };
+        let line = star.sentence();
+        for words in [
+            "Tick 1*",
+            "ran out of time (3 s)",
+            "--timeout",
+            "random",
+            "allowed 3 s",
+        ] {
+            assert!(line.contains(words), "{words}: {line}");
+        }
+        assert!(in_package(
+            "java -cp out uk.ac.cam.cl.gfxintro.ab1.tick1star.Tick1"
+        ));
+        assert!(!in_package(
+            "java -cp out uk.ac.cam.cl.gfxintro.ab1.tick1.Tick1"
+        ));
+    }
+}
