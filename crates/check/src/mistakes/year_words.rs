@@ -2,15 +2,16 @@
 //! that year's names"). The catalogue is written once, in 2016-17's `gfx.tick2` names; from
 //! 2017-18 colours are `ColorRGB`s, the exponent is `getPhong_alpha`, and the shipped
 //! `illuminate` names the light's distance `distanceToLight`. One table of phrases rewrites
-//! every text for the later years, so that no entry is written twice.
+//! every text for the later years, so that no entry is written twice; a second rewrites the
+//! shadow ray's offset for the years that move it along N (2020-21 on).
 
 use std::borrow::Cow;
 
-use whitted_core::course::Course;
+use whitted_core::course::{Course, ShadowBias};
 
 /// 2016-17's phrase, and the later years'. Replaced in one pass from left to right, the first
 /// phrase of the table that starts at a place winning, so a replacement is never read again.
-const LATER: [(&str, &str); 13] = [
+const LATER: [(&str, &str); 14] = [
     ("Vector3 colour", "ColorRGB colour"),
     ("Vector3 I ", "ColorRGB I "),
     ("Vector3 diffuse", "ColorRGB diffuse"),
@@ -23,6 +24,10 @@ const LATER: [(&str, &str); 13] = [
     ("getDistance() < d", "getDistance() < distanceToLight"),
     ("nearer than d", "nearer than distanceToLight"),
     (
+        "the shadow test (inShadow is never set)",
+        "the shadow test (no shadow ray is cast)",
+    ),
+    (
         "inShadow stays false: the shadow stage not written yet",
         "no shadow ray is cast: the shadow stage not written yet",
     ),
@@ -32,15 +37,37 @@ const LATER: [(&str, &str); 13] = [
     ),
 ];
 
+/// The shadow ray's offset as the years whose rule moves it along N (2020-21 on) write it.
+const ALONG_N: [(&str, &str); 2] = [
+    ("cast Ray(P + EPSILON L, L)", "cast Ray(P + EPSILON N, L)"),
+    (
+        "start it EPSILON along L: Ray shadowRay = new Ray(P.add(L.scale(EPSILON)), L);",
+        "start it EPSILON along N: Ray shadowRay = new Ray(P.add(N.scale(EPSILON)), L);",
+    ),
+];
+
 /// `text` (a catalogue text in 2016-17's names) in `course`'s names.
 pub fn in_year(text: &'static str, course: Course) -> Cow<'static, str> {
-    if course.is_default() || !LATER.iter().any(|(from, _)| text.contains(from)) {
+    if course.is_default() {
         return Cow::Borrowed(text);
     }
+    let named = replaced(Cow::Borrowed(text), &LATER);
+    match course.rules().shadow_bias {
+        ShadowBias::AlongN => replaced(named, &ALONG_N),
+        _ => named,
+    }
+}
+
+/// `text` with every phrase of `table` replaced in one pass.
+fn replaced(text: Cow<'static, str>, table: &[(&str, &str)]) -> Cow<'static, str> {
+    if !table.iter().any(|(from, _)| text.contains(from)) {
+        return text;
+    }
+    let text = text.as_ref();
     let mut out = String::with_capacity(text.len() + 32);
     let mut rest = text;
     while let Some(c) = rest.chars().next() {
-        match LATER.iter().find(|(from, _)| rest.starts_with(from)) {
+        match table.iter().find(|(from, _)| rest.starts_with(from)) {
             Some((from, to)) => {
                 out.push_str(to);
                 rest = &rest[from.len()..];
@@ -67,6 +94,16 @@ mod tests {
             .contains("inShadow stays false"));
         let later = no_shadows.description(Course::Y2019);
         assert!(!later.contains("inShadow"), "{later}");
+        assert!(!no_shadows.looks_like(Course::Y2019).contains("inShadow"));
+        // The shadow ray's offset is the year's: along L until 2019-20, along N after.
+        assert!(no_shadows.fix(Course::Y2019).contains("P + EPSILON L, L"));
+        assert!(no_shadows.fix(Course::Y2020).contains("P + EPSILON N, L"));
+        assert!(Bug::NoShadowBias
+            .fix(Course::Y2021)
+            .contains("new Ray(P.add(N.scale(EPSILON)), L)"));
+        assert!(Bug::NoShadowBias
+            .fix(Course::Y2016)
+            .contains("new Ray(P.add(L.scale(EPSILON)), L)"));
         let fix = no_shadows.fix(Course::Y2023);
         assert!(
             fix.contains("nearer than distanceToLight = |light.getPosition() - P|"),
