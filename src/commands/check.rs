@@ -118,7 +118,8 @@ fn run_image(args: &CheckArgs, image: &std::path::Path) -> Result<bool> {
         out.write_png(&heat_map(&case.student, &case.reference, args.tolerance))?;
     }
     let name = image.display().to_string();
-    let result = CheckResult::of_image(&name, args.input.as_deref(), case, findings, &chosen);
+    let mut result = CheckResult::of_image(&name, args.input.as_deref(), case, findings, &chosen);
+    result.report = args.report.as_ref().map(|p| p.display().to_string());
     if let Some(out) = report.as_mut() {
         write_report(out, &result)?;
     }
@@ -192,6 +193,7 @@ fn report_suite(
     );
     result.notes = preamble.lines;
     result.project = preamble.json;
+    result.report = args.report.as_ref().map(|p| p.display().to_string());
     if let Some(mut out) = report {
         write_report(&mut out, &result)?;
         out.commit()?;

@@ -13,7 +13,7 @@ use crate::grade_skeletons::fixture;
 
 /// How a project's folder is laid out.
 #[derive(Clone, Copy)]
-enum Layout {
+pub enum Layout {
     /// IntelliJ: `src/<package>/`, `.idea/`, a module file and stale classes in `out/`.
     IntelliJ,
     /// Maven: `pom.xml`, `src/main/java/<package>/`, `target/classes/`.
@@ -29,7 +29,13 @@ fn stdout(out: &Output) -> String {
 /// `year`'s clean-room skeleton with `crsid` renamed to `ab123`, and the fixture's three files
 /// with `bugs`, laid out as `layout` in `d/name`; returns the project's folder and the folder
 /// of its sources.
-fn project(d: &Path, name: &str, year: &str, layout: Layout, bugs: &[&str]) -> (PathBuf, PathBuf) {
+pub fn project(
+    d: &Path,
+    name: &str,
+    year: &str,
+    layout: Layout,
+    bugs: &[&str],
+) -> (PathBuf, PathBuf) {
     let skeleton = d.join(format!("{name}-skeleton"));
     let wrote = whitted(
         d,

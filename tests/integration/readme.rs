@@ -2,6 +2,10 @@
 //! temporary directory that has the repository's `scenes/` and `reference/`, with the built
 //! `whitted` and OpenImageIO's `oiiotool` on PATH.
 //!
+//! The students' blocks that `cd my-tick1` run in a Tick 1 project folder of 2021-22 made as
+//! a student has it (IntelliJ's layout, whitted's clean-room classes, the three files with one
+//! mistake, no shadows), beside the others.
+//!
 //! Two lines of the first block are the repository's own commands and are not run again
 //! here: `tools/test` is the command running this very test, and `cargo run --release [--]`
 //! runs the binary under test with the same arguments, which is what is run in its place.
@@ -9,7 +13,15 @@
 use std::path::Path;
 use std::process::Command;
 
+use crate::check_project::{project, Layout};
 use crate::common::*;
+
+/// The student's project the README's Tick 1 examples run in: `d/my-tick1`.
+fn student_project(d: &Path) {
+    project(d, "my-tick1", "2021-22", Layout::IntelliJ, &["no-shadows"]);
+    // What `project` leaves beside it to build it from is not the student's.
+    let _ = std::fs::remove_dir_all(d.join("my-tick1-skeleton"));
+}
 
 /// The ```sh blocks of the README, in order.
 fn shell_blocks(readme: &str) -> Vec<String> {
@@ -63,6 +75,7 @@ fn every_readme_example_runs_as_written() {
     for name in ["scenes", "reference"] {
         link(&root().join(name), &d.join(name));
     }
+    student_project(d);
     let bin = d.join(".bin");
     std::fs::create_dir(&bin).expect("mkdir");
     link(
@@ -91,6 +104,8 @@ fn every_readme_example_runs_as_written() {
     }
     for made in [
         "output.png",
+        "tick1.png",
+        "my-tick1/report.html",
         "floor.png",
         "shadow.png",
         "frame.exr",
@@ -125,6 +140,7 @@ fn the_students_check_examples_run_from_any_directory() {
     assert!(!blocks.is_empty(), "no check example");
     let dir = tempfile::tempdir().expect("tempdir");
     let d = dir.path();
+    student_project(d);
     let bin = d.join(".bin");
     std::fs::create_dir(&bin).expect("mkdir");
     link(
@@ -150,4 +166,5 @@ fn the_students_check_examples_run_from_any_directory() {
         );
     }
     assert!(d.join("check.json").exists());
+    assert!(d.join("my-tick1/report.html").exists());
 }

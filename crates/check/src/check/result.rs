@@ -29,6 +29,8 @@ pub struct CheckResult {
     pub notes: Vec<String>,
     /// The JSON's `"project"` object, for a check of a project folder.
     pub project: Option<serde_json::Value>,
+    /// The report file written beside the text (`--report`), as it was named.
+    pub report: Option<String>,
 }
 
 /// What was checked.
@@ -112,6 +114,7 @@ impl CheckResult {
             findings,
             notes: Vec::new(),
             project: None,
+            report: None,
         }
     }
 
@@ -153,6 +156,7 @@ impl CheckResult {
             findings: run.findings,
             notes: Vec::new(),
             project: None,
+            report: None,
         }
     }
 

@@ -31,6 +31,7 @@ pub fn text(result: &CheckResult, detail: Detail) -> String {
     let mut screen = Screen::default();
     let mut hidden = Hidden {
         images: result.any_image() && !result.passed(),
+        report: result.report.clone(),
         ..Hidden::default()
     };
     match (&result.subject, result.image()) {
@@ -58,6 +59,8 @@ struct Hidden {
     suite_dir: bool,
     /// Some case wrote an image, which a report page would show.
     images: bool,
+    /// The report that shows them, when one was written.
+    report: Option<String>,
 }
 
 impl Hidden {
@@ -82,8 +85,10 @@ impl Hidden {
         if self.suite_dir {
             line += "--suite-dir DIR writes the scenes to rerun each case; ";
         }
-        if self.images {
-            line += "--report FILE.html shows the images; ";
+        match (self.images, &self.report) {
+            (true, Some(report)) => line += &format!("{report} shows the images; "),
+            (true, None) => line += "--report FILE.html shows the images; ",
+            (false, _) => {}
         }
         let line = line.trim_end_matches("; ");
         (!line.is_empty()).then(|| line.to_string())
