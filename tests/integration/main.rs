@@ -12,6 +12,7 @@ mod common;
 mod courses;
 mod determinism;
 mod differential;
+mod docs_check;
 mod explain;
 mod exr_aovs;
 mod figures;
