@@ -54,19 +54,22 @@ impl Tick1Star {
                 self.timeout
             ),
         };
-        let stopped = match self.stopped {
-            true => " The suite stopped at its first case out of time.",
-            false => "",
+        // The longer time is worth saying only where a case ran out of it.
+        let time = match self.stopped {
+            true => format!(
+                " The suite stopped at its first case out of time. To see its images, give it a \
+                 longer --timeout (this run allowed {} s a case).",
+                self.timeout
+            ),
+            false => String::new(),
         };
         format!(
             "a Tick 1* program ({why}): soft shadows and depth of field trace hundreds of random \
              rays a pixel, so a case takes minutes and its image is a random draw that no \
-             byte-for-byte check passes.{stopped} To see its images, give it a longer --timeout \
-             (this run allowed {} s a case); to check your ray tracer, run your Tick 1 code \
-             (package tick1, without the Tick 1* additions) with --program; of the Tick 1* code \
-             itself whitted checks today only that its images are noise around the reference \
-             (compared blurred), not the method.",
-            self.timeout
+             byte-for-byte check passes.{time} To check your ray tracer, run your Tick 1 code \
+             (package tick1, without the Tick 1* additions); of the Tick 1* code itself \
+             whitted checks today only whether its images are noise around the reference \
+             (compared blurred), not the method."
         )
     }
 
