@@ -17,7 +17,7 @@ fn stdout(run: &Output) -> String {
 
 /// The commands a text prints (after "rerun it: ", "check it: ", "its worst pixel: ", or on
 /// a line of their own under "the worst pixel ..."), in order.
-fn commands(text: &str) -> Vec<String> {
+pub fn commands(text: &str) -> Vec<String> {
     let mut found = Vec::new();
     for line in text.lines().map(str::trim) {
         for label in ["rerun it: ", "check it: ", "its worst pixel: "] {
@@ -33,7 +33,7 @@ fn commands(text: &str) -> Vec<String> {
 }
 
 /// Runs `command` through sh in `dir`, its `whitted` the binary under test.
-fn run_as_printed(dir: &Path, command: &str) -> Output {
+pub fn run_as_printed(dir: &Path, command: &str) -> Output {
     let command = match command.strip_prefix("whitted ") {
         Some(rest) => format!("{} {rest}", env!("CARGO_BIN_EXE_whitted")),
         None => command.to_string(),

@@ -380,3 +380,39 @@ fn a_2016_17_tick2_project_is_checked_as_2016_17() {
     );
     assert_eq!(json["project"]["main_class"], "gfx.tick2.Tick2");
 }
+
+/// With `--suite-dir`, the rerun commands of a project's failing cases run as printed and run
+/// what was checked: the build kept in `suite/classes`, never the IDE's `out/` (here a stale,
+/// broken `Tick1.class`, as an IDE leaves one).
+#[test]
+fn a_project_s_rerun_commands_run_the_build_that_was_checked() {
+    use crate::check_print::{commands, run_as_printed};
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    let (root, _) = project(d, "p", "2021-22", Layout::IntelliJ, &["no-ambient"]);
+    let run = check_in(
+        d,
+        &d.join("tmp"),
+        &[s(&root), "--suite-dir", "suite", "--verbose"],
+    );
+    let out = stdout(&run);
+    assert_eq!(run.status.code(), Some(1), "{out}\n{}", stderr(&run));
+    assert!(out.contains("java -cp suite/classes "), "{out}");
+    assert!(!out.contains("out/production"), "{out}");
+    let printed = commands(&out);
+    assert!(printed.len() >= 6 * 2, "{out}");
+    for command in &printed {
+        let run = run_as_printed(d, command);
+        let expected = if command.starts_with("whitted check ") {
+            1
+        } else {
+            0
+        };
+        assert_eq!(
+            run.status.code(),
+            Some(expected),
+            "{command}: {}",
+            stderr(&run)
+        );
+    }
+}

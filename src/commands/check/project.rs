@@ -56,15 +56,21 @@ pub fn run(args: &CheckArgs, dir: &Path) -> Result<bool> {
     };
     report_suite(args, &chosen, |course| {
         let launch = Plain(project.command());
+        // With the scenes written, the classes go beside them, so that every rerun command
+        // printed runs what was checked.
+        let kept = match &args.suite_dir {
+            Some(dir) => Some(project.keep_classes(dir)?),
+            None => None,
+        };
         let run = run_suite_with(
             &launch,
-            &project.shown_program(),
+            &project.shown_program(kept.as_deref()),
             &cases_of(course),
             args.rule(),
             args.timeout,
             &ImageCache::new(),
         )?;
-        let mut lines = project.lines();
+        let mut lines = project.lines(kept.as_deref());
         // The second build runs only when a case fails: a project that passes costs its
         // compile and nothing more.
         if !run.passed() {

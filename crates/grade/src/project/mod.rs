@@ -8,6 +8,7 @@
 mod compare;
 mod find;
 mod javac;
+mod keep;
 mod members;
 mod year;
 
@@ -84,13 +85,22 @@ impl Project {
     }
 
     /// The program as the report shows it, which the student can run: `java -cp CLASSES MAIN`,
-    /// CLASSES their IDE's output folder when it holds the main class (the temporary one is
-    /// gone when the check ends).
-    pub fn shown_program(&self) -> String {
-        let classes = self
-            .ide_output()
+    /// CLASSES the copy of this build kept beside the suite's scenes (`kept`, from
+    /// [`Project::keep_classes`]), else their IDE's output folder when it holds the main class
+    /// (the temporary one is gone when the check ends).
+    pub fn shown_program(&self, kept: Option<&Path>) -> String {
+        let classes = kept
+            .map(Path::to_path_buf)
+            .or_else(|| self.ide_output())
             .map_or("CLASSES".to_string(), |p| p.display().to_string());
         format!("java -cp {classes} {}", self.build.main)
+    }
+
+    /// This build's classes copied to `suite_dir/classes` (replacing what a previous check put
+    /// there), so that the rerun commands printed beside the suite's scenes run what was
+    /// checked, not an IDE's older build; returns the folder.
+    pub fn keep_classes(&self, suite_dir: &Path) -> Result<PathBuf> {
+        keep::classes(&self.build.classes(), &suite_dir.join("classes"))
     }
 
     /// The IDE's or build's output folder that holds the main class's `.class`, if any:
@@ -112,16 +122,19 @@ impl Project {
     }
 
     /// The lines the report opens with: where the main class was found and compiled from, and
-    /// every way the project's course classes differ from the year's by their members.
-    pub fn lines(&self) -> Vec<String> {
+    /// every way the project's course classes differ from the year's by their members;
+    /// `kept` is where the build's classes were kept, if they were.
+    pub fn lines(&self, kept: Option<&Path>) -> Vec<String> {
         let f = &self.found;
         let mut lines = vec![format!(
             "project: {} in {}, compiled by javac{}",
             f.main_class(),
             f.shown(&f.folder),
-            match self.ide_output() {
-                Some(_) => String::new(),
-                None => " (CLASSES below: where your IDE or `javac -d` puts the classes)".into(),
+            match (kept, self.ide_output()) {
+                (Some(kept), _) => format!(" into {}", kept.display()),
+                (None, Some(_)) => String::new(),
+                (None, None) =>
+                    " (CLASSES below: where your IDE or `javac -d` puts the classes)".into(),
             }
         )];
         lines.extend(self.year.notes.iter().map(|n| format!("note: {n}")));
