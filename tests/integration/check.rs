@@ -414,7 +414,13 @@ fn a_whitted_render_is_identical_and_explains_its_worst_pixel() {
     assert_eq!(run.status.code(), Some(1), "{}", stderr(&run));
     let text = String::from_utf8_lossy(&run.stdout);
     assert!(text.contains("1. bounces-minus-one"), "{text}");
-    let last = text.lines().last().unwrap_or_default().trim();
+    // The last command printed (a hint on the report may follow it).
+    let last = text
+        .lines()
+        .map(str::trim)
+        .filter(|l| l.starts_with("whitted "))
+        .last()
+        .unwrap_or_default();
     assert!(
         last.starts_with("whitted explain") && last.contains("--bug bounces-minus-one"),
         "{text}"
