@@ -223,7 +223,7 @@ fn submissions_that_lean_on_the_course_s_classes_behave_as_the_course_s_classes_
     // A miss's location is null: a shadow test that reads it and catches the exception is
     // right; had the empty hit held a zero vector, |0 - P| < d would shadow every lit point.
     let null_location = fixture_with(
-        "inShadow = blocker.getObjectHit() != null && blocker.getDistance() < distanceToLight;",
+        "inShadow = blocker.getObjectHit() != null && (bug(\"shadow-any-hit\") || blocker.getDistance() < distanceToLight);",
         "try { inShadow = blocker.getLocation().subtract(shadowOrigin).magnitude() < distanceToLight; } \
          catch (NullPointerException miss) { inShadow = false; }",
     );
@@ -235,7 +235,7 @@ fn submissions_that_lean_on_the_course_s_classes_behave_as_the_course_s_classes_
     // Without the catch, the first shadow ray that meets nothing throws, and the program dies
     // without an image (status 1), as on the course's classes.
     let unguarded = fixture_with(
-        "inShadow = blocker.getObjectHit() != null && blocker.getDistance() < distanceToLight;",
+        "inShadow = blocker.getObjectHit() != null && (bug(\"shadow-any-hit\") || blocker.getDistance() < distanceToLight);",
         "inShadow = blocker.getLocation().subtract(shadowOrigin).magnitude() < distanceToLight;",
     );
     let classes = compile(d, "unguarded", year, &unguarded).expect("compiles");
