@@ -418,8 +418,7 @@ fn a_whitted_render_is_identical_and_explains_its_worst_pixel() {
     let last = text
         .lines()
         .map(str::trim)
-        .filter(|l| l.starts_with("whitted "))
-        .last()
+        .rfind(|l| l.starts_with("whitted "))
         .unwrap_or_default();
     assert!(
         last.starts_with("whitted explain") && last.contains("--bug bounces-minus-one"),
