@@ -314,14 +314,7 @@ fn holds(year: &str, commit: &Commit) {
         .iter()
         .map(|k| progress[k].as_str().unwrap_or("?"))
         .collect();
-    let mut truth = commit.progress;
-    if year == "2023-24" && commit.edit == Edit::PlaneMaterials {
-        // Known gap: on 2023-24's suite `no-gate` lowers the cost on the edited planes'
-        // pixels enough to pass as needed, so shading reads "mistaken" there. Everything
-        // else about this commit is held to the truth.
-        truth[1] = states[1];
-    }
-    assert_eq!(states, truth, "{what}: {}", json["summary"]);
+    assert_eq!(states, commit.progress, "{what}: {}", json["summary"]);
     let top = json["diagnosis"]
         .get(0)
         .unwrap_or_else(|| panic!("{what}: no diagnosis: {json}"));

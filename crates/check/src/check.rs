@@ -157,6 +157,20 @@ pub fn find(cases: &[Case], all_pass: bool, course: Course) -> Result<Findings> 
     }
     search.finalise(cases)?;
     let mut diagnosis = search.diagnosis(cases);
+    // Where the catalogue is weak and what the best candidate leaves lies on one kind of
+    // object, an entry of it that reproduces nothing but pixels of that kind is not needed:
+    // the off-catalogue story claims them. The candidates holding one are set aside.
+    if let Some(top) = diagnosis.first().filter(|_| weak(&diagnosis)) {
+        let top = top.mistakes;
+        if let Some(kind) = Outside::of(cases, top)?.as_ref().and_then(Outside::kind) {
+            let absorbed = outside::absorbed(cases, top, kind)?;
+            if !absorbed.is_empty() {
+                search.absorb(absorbed);
+                search.finalise(cases)?;
+                diagnosis = search.diagnosis(cases);
+            }
+        }
+    }
     if let Some(top) = diagnosis
         .first_mut()
         .filter(|d| d.explained >= GOOD_EXPLANATION)

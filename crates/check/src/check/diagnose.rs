@@ -102,6 +102,9 @@ pub struct Search {
     scored: Vec<Scored>,
     /// The candidates scored every way their rounding can go.
     rounded: Vec<Mistakes>,
+    /// Entries the story outside the catalogue absorbs (`outside::absorbed`): no candidate
+    /// holding one is worth ranking.
+    absorbed: Mistakes,
 }
 
 /// Scores `list` on the samples, on every core.
@@ -135,6 +138,7 @@ impl Search {
         let mut search = Search {
             scored: score_all(cases, &singles_and_pairs(&catalogue(cases)))?,
             rounded: Vec::new(),
+            absorbed: Mistakes::NONE,
         };
         search.every_way(cases)?;
         if !search.exactly_explained(cases)? {
@@ -201,6 +205,19 @@ impl Search {
         Ok(s.cost() == 0.0)
     }
 
+    /// Sets aside every candidate holding one of `entries`: what they gain, the story
+    /// outside the catalogue already claims.
+    pub fn absorb(&mut self, entries: Mistakes) {
+        self.absorbed = Mistakes::of(
+            &self
+                .absorbed
+                .bugs()
+                .into_iter()
+                .chain(entries.bugs())
+                .collect::<Vec<_>>(),
+        );
+    }
+
     /// The candidate for exactly `mistakes` (no number), if it was scored.
     pub fn get(&self, mistakes: Mistakes) -> Option<&Scored> {
         self.scored.iter().find(|s| s.variant.mistakes == mistakes)
@@ -245,7 +262,7 @@ impl Search {
     /// written yet (`stage_unwritten`) is as credible, the mistakes made in the stage's code
     /// are a story the rest of the program rules out (no reflected ray, no
     /// `no-reflection-bias`; a self-hit that rounding may or may not make imitates a missing
-    /// reflection).
+    /// reflection). Nor one holding an entry the story outside the catalogue absorbs.
     fn useful(&self) -> impl Iterator<Item = &Scored> {
         let by_set: HashMap<Mistakes, &Scored> = self
             .scored
@@ -293,7 +310,8 @@ impl Search {
                     .iter()
                     .filter_map(|m| by_set.get(m))
                     .any(|t| outdoes(t, s) && credible(t) >= ROUNDING_OUTDONE * s.explained());
-            s.changes_any() && needed && !ruled_out
+            let absorbed = bugs.iter().any(|&b| self.absorbed.has(b));
+            s.changes_any() && needed && !ruled_out && !absorbed
         })
     }
 
