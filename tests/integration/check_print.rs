@@ -45,6 +45,25 @@ pub fn run_as_printed(dir: &Path, command: &str) -> Output {
         .expect("sh runs")
 }
 
+/// Runs each printed command in `dir`, in order, as printed: a `whitted check` of a failing
+/// case exits 1 (the case still fails), everything else 0.
+pub fn assert_every_command_runs(dir: &Path, printed: &[String]) {
+    for command in printed {
+        let run = run_as_printed(dir, command);
+        let expected = if command.starts_with("whitted check ") {
+            1
+        } else {
+            0
+        };
+        assert_eq!(
+            run.status.code(),
+            Some(expected),
+            "{command}: {}",
+            stderr(&run)
+        );
+    }
+}
+
 /// The checks every report page passes: a page of its own, images inline (the full images and
 /// the enlarged worst region of each failing case), nothing of `raw` unescaped.
 fn assert_page(html: &str, failing: usize, raw: &str, escaped: &str) {
@@ -204,20 +223,7 @@ fn a_failing_program_fits_one_screen_and_prints_no_command_that_cannot_run() {
     let printed = commands(&verbose);
     // Each case's run, check and one or two explains.
     assert!(printed.len() >= 6 * 3, "{verbose}");
-    for command in &printed {
-        let run = run_as_printed(d, command);
-        let expected = if command.starts_with("whitted check ") {
-            1
-        } else {
-            0
-        };
-        assert_eq!(
-            run.status.code(),
-            Some(expected),
-            "{command}: {}",
-            stderr(&run)
-        );
-    }
+    assert_every_command_runs(d, &printed);
     assert!(d.join("test1_b0.png").exists() && d.join("mirrors_b3.png").exists());
 }
 

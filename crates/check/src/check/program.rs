@@ -419,6 +419,26 @@ pub fn is_tick1_star(program: &str) -> bool {
     tick1_star::in_package(program)
 }
 
+/// One case's program run alone, as the suite runs it (its own folder, scene and limits): its
+/// image when it wrote one of the course's size, else `None`. For a caller that runs one case
+/// again on another build of the same program (project mode's second build).
+pub fn image_of_one_case(
+    launch: &dyn Launch,
+    case: &SuiteCase,
+    timeout: u64,
+) -> Result<Option<Rgb8>> {
+    let (mut results, _) = run_programs(
+        launch,
+        std::slice::from_ref(case),
+        Duration::from_secs(timeout),
+        false,
+    )?;
+    Ok(match results.pop() {
+        Some((Ran::Image(image), _)) => Some(image),
+        _ => None,
+    })
+}
+
 /// A crashed case's message when it was never started.
 const NOT_RUN: &str = "not run";
 

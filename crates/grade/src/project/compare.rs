@@ -12,8 +12,6 @@
 //! nothing more than its compile.
 
 use std::path::Path;
-use std::process::{Command, Stdio};
-use std::time::Duration;
 
 use super::find::Found;
 use super::javac::{self, Build};
@@ -21,11 +19,11 @@ use super::members::{blank, members, Member};
 use crate::archive;
 use crate::package;
 use crate::skeleton::Skeleton;
-use whitted_check::check::student_png::{self, Rgb8};
+use whitted_check::check::program::{self, Plain};
+use whitted_check::check::student_png::Rgb8;
 use whitted_check::check::suite::SuiteCase;
 use whitted_core::course::Course;
 use whitted_core::error::{Error, Result};
-use whitted_process::{Capture, Ended, Process};
 
 /// Classes whose differences do not reach an image: the unit tests.
 const NOT_RENDERED: [&str; 1] = ["Tick1Tests.java"];
@@ -315,47 +313,12 @@ fn same_code(a: &[u8], b: &[u8]) -> bool {
     squeeze(a) == squeeze(b)
 }
 
-/// One case run on `build`: its image when it wrote one of the year's size.
+/// One case run on `build`: its image when it wrote one of the year's size. Run as check runs
+/// every case (`program::image_of_one_case`), so the two builds are compared on equal terms.
 pub fn render(build: &Build, java: &Path, case: &SuiteCase, timeout: u64) -> Result<Rendered> {
-    let dir = tempfile::Builder::new()
-        .prefix("whitted-project-case-")
-        .tempdir()
-        .map_err(|e| Error::io(std::env::temp_dir(), "cannot create a temporary folder", e))?;
-    let scene = dir.path().join(&*case.file);
-    std::fs::write(&scene, case.xml.as_bytes())
-        .map_err(|e| Error::io(&scene, "cannot write", e))?;
-    let output = dir.path().join("output.png");
-    let words = build.command(java);
-    let mut command = Command::new(&words[0]);
-    command
-        .args(&words[1..])
-        .arg("--input")
-        .arg(&scene)
-        .arg("--output")
-        .arg(&output)
-        .arg("--bounces")
-        .arg(case.bounces.to_string())
-        .args(case.size_option().into_iter().flatten())
-        .current_dir(dir.path())
-        .stdin(Stdio::null())
-        .stdout(Stdio::null());
-    let mut process = Process::spawn(command, Capture::Tail(4096))
-        .map_err(|e| Error::Environment(format!("cannot run java: {e}")))?;
-    let ended = process
-        .wait(
-            Duration::from_secs(timeout),
-            Duration::from_millis(20),
-            whitted_core::interrupt::requested,
-        )
-        .map_err(|e| Error::Environment(format!("cannot wait for java: {e}")))?;
-    process.finish();
-    whitted_core::interrupt::check()?;
-    let (w, h) = case.course.size();
-    Ok(match ended {
-        Ended::Exited(s) if s.success() => match student_png::read_expecting(&output, w, h) {
-            Ok(Ok(image)) => Rendered::Image(image),
-            _ => Rendered::Nothing,
-        },
-        _ => Rendered::Nothing,
+    let launch = Plain(build.command(java));
+    Ok(match program::image_of_one_case(&launch, case, timeout)? {
+        Some(image) => Rendered::Image(image),
+        None => Rendered::Nothing,
     })
 }
