@@ -32,6 +32,8 @@ mod regression;
 mod relight;
 mod scale;
 mod scenes;
+mod serve;
+mod serve_hostile;
 mod tonemap;
 mod view;
 mod view_hostile;

@@ -15,6 +15,9 @@ pub const MAX_FILES: usize = 20;
 /// A zip's entries, and the bytes its Java files may expand to, together.
 pub const MAX_ENTRIES: usize = 500;
 pub const MAX_EXPANDED: u64 = 8 << 20;
+/// The most pixels an uploaded PNG may declare: far more than any render of the course (a
+/// PNG bomb declares billions in a few bytes, and is refused from its header).
+pub const MAX_PIXELS: u64 = 16 << 20;
 
 /// An upload, sorted out.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -108,7 +111,8 @@ pub fn png_size(bytes: &[u8]) -> Result<(u32, u32), String> {
     }
     let word = |i: usize| u32::from_be_bytes([bytes[i], bytes[i + 1], bytes[i + 2], bytes[i + 3]]);
     let (width, height) = (word(16), word(20));
-    if width == 0 || height == 0 || width > MAX_SIDE || height > MAX_SIDE {
+    let pixels = u64::from(width) * u64::from(height);
+    if width == 0 || height == 0 || width > MAX_SIDE || height > MAX_SIDE || pixels > MAX_PIXELS {
         return Err(format!(
             "a PNG of {width} x {height} pixels, which no render of the course has"
         ));
