@@ -33,6 +33,7 @@ mod relight;
 mod scale;
 mod scenes;
 mod serve;
+mod serve_crash;
 mod serve_hostile;
 mod tonemap;
 mod view;

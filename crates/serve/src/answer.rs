@@ -198,7 +198,9 @@ fn status_json(store: &Store, attempt: &Attempt) -> Result<serde_json::Value> {
         "status": attempt.status.name(),
         "position": position,
         "what": what,
-        "seconds": attempt.started.map_or(0, |s| (now() - s).max(0)),
+        "seconds": attempt
+            .started
+            .map_or(0, |s| (attempt.finished.unwrap_or_else(now) - s).max(0)),
         "passed": attempt.outcome.as_ref().map(|o| o.passed),
     }))
 }
