@@ -441,3 +441,131 @@ fn a_project_runs_in_the_sandbox_and_the_staff_export_it_as_grade_writes() {
     let archive = zip::ZipArchive::new(std::io::Cursor::new(zip.body)).expect("a zip");
     assert!(archive.file_names().any(|n| n.ends_with("report.html")));
 }
+
+/// Evaluates `expression` in the browser's page, None while the page is being replaced.
+fn page_value(browser: &crate::view::Browser, expression: &str) -> Option<serde_json::Value> {
+    let found = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        browser.script(&format!("return {expression}"), serde_json::json!([]))
+    }));
+    found.ok()
+}
+
+/// Waits (up to `seconds`) until `expression` is true in the page, whatever reloads meanwhile.
+fn wait_page(browser: &crate::view::Browser, expression: &str, seconds: u64) {
+    let started = Instant::now();
+    while page_value(browser, expression) != Some(serde_json::json!(true)) {
+        assert!(
+            started.elapsed() < Duration::from_secs(seconds),
+            "never true: {expression}"
+        );
+        std::thread::sleep(Duration::from_millis(200));
+    }
+}
+
+/// Chooses `paths` in the page's file input and presses Check.
+fn choose_and_submit(browser: &crate::view::Browser, paths: &[PathBuf]) {
+    let input = browser.session(
+        "POST",
+        "/element",
+        Some(serde_json::json!({"using": "css selector", "value": "input[type=file]"})),
+    );
+    let id = input["element-6066-11e4-a52e-4f735466cecf"]
+        .as_str()
+        .expect("the file input")
+        .to_string();
+    let text: Vec<&str> = paths.iter().map(|p| s(p)).collect();
+    browser.session(
+        "POST",
+        &format!("/element/{id}/value"),
+        Some(serde_json::json!({"text": text.join("\n")})),
+    );
+    browser.script(
+        "document.querySelector('form button').click()",
+        serde_json::json!([]),
+    );
+}
+
+#[test]
+fn in_chromium_a_student_uploads_and_reads_the_result_and_the_staff_see_the_class() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let service = Service::start(dir.path(), &["1201", "1202"]);
+    let (students, staff) = service.links();
+    let origin = format!("http://127.0.0.1:{}", service.port);
+    let (a, b) = (&students[0].1, &students[1].1);
+    let browser = crate::view::Browser::start();
+
+    // An image: checked at once; the page follows it and shows the finding and the report.
+    render(dir.path(), "1");
+    browser.navigate(&format!("{origin}{a}"));
+    wait_page(&browser, "!!document.querySelector('input[type=file]')", 30);
+    choose_and_submit(&browser, &[dir.path().join("render-b1.png")]);
+    wait_page(&browser, "!!document.querySelector('iframe')", 120);
+    let text = page_value(&browser, "document.body.innerText").expect("text");
+    let text = text.as_str().expect("a string");
+    assert!(
+        text.contains("bounces-minus-one") && text.contains("fix:"),
+        "{text}"
+    );
+    let image_attempt = page_value(&browser, "location.pathname").expect("path");
+    let image_attempt = image_attempt.as_str().expect("path").to_string();
+    // The report in its frame shows the student's picture beside the expected one.
+    wait_page(
+        &browser,
+        "(() => { const d = document.querySelector('iframe').contentDocument; \
+         return !!d && d.querySelectorAll('img').length >= 2 })()",
+        30,
+    );
+    browser.screenshot("serve-student.png");
+
+    // A project: queued or running shown live, without a reload, then the result.
+    let sources = dir.path().join("src");
+    std::fs::create_dir_all(&sources).expect("src");
+    let mut paths = Vec::new();
+    for (name, bytes) in project_files() {
+        std::fs::write(sources.join(&name), bytes).expect("source");
+        paths.push(sources.join(&name));
+    }
+    browser.navigate(&format!("{origin}{a}"));
+    wait_page(&browser, "!!document.querySelector('input[type=file]')", 30);
+    choose_and_submit(&browser, &paths);
+    wait_page(
+        &browser,
+        "(() => { const s = document.getElementById('state'); \
+         return !!s && /Queued|Running/.test(s.textContent) })()",
+        60,
+    );
+    wait_page(
+        &browser,
+        "document.body.innerText.includes('5 of 5 cases pass')",
+        300,
+    );
+    browser.navigate(&format!("{origin}{a}"));
+    wait_page(
+        &browser,
+        "document.querySelectorAll('table tr').length === 3",
+        30,
+    );
+
+    // The second student cannot open the first's attempt by its URL.
+    let number = image_attempt.rsplit('/').next().expect("number");
+    browser.navigate(&format!("{origin}{b}/attempt/{number}"));
+    wait_page(&browser, "document.readyState === 'complete'", 30);
+    let text = page_value(&browser, "document.body.innerText").expect("text");
+    assert!(
+        text.as_str()
+            .is_some_and(|t| t.contains("not found") && !t.contains("bounces")),
+        "{text}"
+    );
+
+    // The staff see both students: the first's mistake, the second not started.
+    browser.navigate(&format!("{origin}{staff}"));
+    wait_page(&browser, "document.readyState === 'complete'", 30);
+    let text = page_value(&browser, "document.body.innerText").expect("text");
+    let text = text.as_str().expect("text");
+    assert!(text.contains("1201") && text.contains("1202"), "{text}");
+    assert!(
+        text.contains("bounces-minus-one") && text.contains("Not started"),
+        "{text}"
+    );
+    browser.screenshot("serve-staff.png");
+}

@@ -1,6 +1,6 @@
 //! A reply and the headers every reply carries: a Content-Security-Policy with no inline
 //! script (the service's pages), or none at all (a check report, which is shown sandboxed:
-//! inline style and data: images only), no caching, no sniffing, no referrer (the links carry
+//! inline style and data: images only, no script at all), no caching, no sniffing, no referrer (the links carry
 //! secrets), framed by the service's own pages only.
 
 use hyper::header::{HeaderName, HeaderValue};
@@ -10,7 +10,7 @@ use hyper::header::{HeaderName, HeaderValue};
 pub enum Policy {
     /// The service's pages, its script and style, JSON, downloads.
     Page,
-    /// A check's report page (inline style, embedded images, no script, sandboxed).
+    /// A check's report page (inline style, embedded images, no script).
     Report,
 }
 
@@ -24,7 +24,7 @@ impl Policy {
             }
             Policy::Report => {
                 "default-src 'none'; style-src 'unsafe-inline'; img-src data:; \
-                 frame-ancestors 'self'; base-uri 'none'; form-action 'none'; sandbox"
+                 frame-ancestors 'self'; base-uri 'none'; form-action 'none'"
             }
         }
     }
