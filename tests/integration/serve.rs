@@ -515,7 +515,14 @@ fn in_chromium_a_student_uploads_and_reads_the_result_and_the_staff_see_the_clas
          return !!d && d.querySelectorAll('img').length >= 2 })()",
         30,
     );
-    browser.screenshot("serve-student.png");
+    browser.script(
+        "const f = document.querySelector('iframe'); f.scrollIntoView(); \
+         const img = f.contentDocument.querySelector('img'); \
+         f.contentWindow.scrollTo(0, img.getBoundingClientRect().top + \
+         f.contentWindow.scrollY - 60)",
+        serde_json::json!([]),
+    );
+    browser.screenshot("serve_student.png");
 
     // A project: queued or running shown live, without a reload, then the result.
     let sources = dir.path().join("src");
@@ -567,5 +574,5 @@ fn in_chromium_a_student_uploads_and_reads_the_result_and_the_staff_see_the_clas
         text.contains("bounces-minus-one") && text.contains("Not started"),
         "{text}"
     );
-    browser.screenshot("serve-staff.png");
+    browser.screenshot("serve_staff.png");
 }
