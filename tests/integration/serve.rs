@@ -20,9 +20,16 @@ pub struct Service {
 impl Service {
     /// Serves `course` from `dir/data` with the roster `ids` (one a line), `-j 1`.
     pub fn start(dir: &Path, ids: &[&str]) -> Service {
+        Service::start_with(dir, ids, &[])
+    }
+
+    /// As `start`, with more options.
+    pub fn start_with(dir: &Path, ids: &[&str], options: &[&str]) -> Service {
         let roster = dir.join("roster.txt");
         std::fs::write(&roster, ids.join("\n")).expect("roster");
-        Service::run(dir, &["--roster", s(&roster)])
+        let mut args = vec!["--roster", s(&roster)];
+        args.extend_from_slice(options);
+        Service::run(dir, &args)
     }
 
     /// Starts it again on the same data (after a kill).
@@ -575,4 +582,35 @@ fn in_chromium_a_student_uploads_and_reads_the_result_and_the_staff_see_the_clas
         "{text}"
     );
     browser.screenshot("serve_staff.png");
+}
+
+#[test]
+fn the_user_header_opens_the_staff_page_only_from_the_trusted_proxy_for_the_staff() {
+    let trusting = |proxy: &str| {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let options = [
+            "--trust-user-header",
+            "X-Remote-User",
+            "--trusted-proxy",
+            proxy,
+            "--staff",
+            "boss,deputy",
+        ];
+        let service = Service::start_with(dir.path(), &["1201"], &options);
+        let as_user = |user: Option<&str>| {
+            let headers: Vec<(&str, &str)> = user.map(|u| ("X-Remote-User", u)).into_iter().collect();
+            service.request("GET", "/staff/proxy", &headers, b"").status
+        };
+        let statuses = [as_user(Some("boss")), as_user(Some("deputy")), as_user(Some("1201")), as_user(None)];
+        (statuses, dir)
+    };
+    assert_eq!(trusting("127.0.0.1").0, [200, 200, 403, 403]);
+    // The same header from an address that is not the proxy's is not believed.
+    assert_eq!(trusting("192.0.2.1").0, [403, 403, 403, 403]);
+    let dir = tempfile::tempdir().expect("tempdir");
+    let alone = whitted(
+        dir.path(),
+        &["serve", "--trust-user-header", "X-Remote-User", "--data", "d"],
+    );
+    assert_eq!(alone.status.code(), Some(2), "the header needs the proxy's address");
 }
