@@ -598,10 +598,16 @@ fn the_user_header_opens_the_staff_page_only_from_the_trusted_proxy_for_the_staf
         ];
         let service = Service::start_with(dir.path(), &["1201"], &options);
         let as_user = |user: Option<&str>| {
-            let headers: Vec<(&str, &str)> = user.map(|u| ("X-Remote-User", u)).into_iter().collect();
+            let headers: Vec<(&str, &str)> =
+                user.map(|u| ("X-Remote-User", u)).into_iter().collect();
             service.request("GET", "/staff/proxy", &headers, b"").status
         };
-        let statuses = [as_user(Some("boss")), as_user(Some("deputy")), as_user(Some("1201")), as_user(None)];
+        let statuses = [
+            as_user(Some("boss")),
+            as_user(Some("deputy")),
+            as_user(Some("1201")),
+            as_user(None),
+        ];
         (statuses, dir)
     };
     assert_eq!(trusting("127.0.0.1").0, [200, 200, 403, 403]);
@@ -610,7 +616,17 @@ fn the_user_header_opens_the_staff_page_only_from_the_trusted_proxy_for_the_staf
     let dir = tempfile::tempdir().expect("tempdir");
     let alone = whitted(
         dir.path(),
-        &["serve", "--trust-user-header", "X-Remote-User", "--data", "d"],
+        &[
+            "serve",
+            "--trust-user-header",
+            "X-Remote-User",
+            "--data",
+            "d",
+        ],
     );
-    assert_eq!(alone.status.code(), Some(2), "the header needs the proxy's address");
+    assert_eq!(
+        alone.status.code(),
+        Some(2),
+        "the header needs the proxy's address"
+    );
 }

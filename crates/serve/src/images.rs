@@ -107,7 +107,6 @@ fn outcome(checked: &[(String, Checked)]) -> Outcome {
         finding,
         progress,
         report: serde_json::to_string(&reports).unwrap_or_default(),
-        cpu_ms: 0,
     }
 }
 

@@ -73,11 +73,8 @@ pub fn run(attempt: &Path, student: &Student, how: Run) -> Result<Outcome> {
         part: None,
         quiet: true,
     };
-    let before = children_cpu_ms();
     whitted_grade::run(&options)?;
-    let cpu_ms = children_cpu_ms().saturating_sub(before);
-    let dir = graded_student(&outdir)?;
-    outcome(&dir, cpu_ms)
+    outcome(&graded_student(&outdir)?)
 }
 
 /// The folder Moodle's "Download all submissions" gives the student, which grade reads the
@@ -124,7 +121,7 @@ pub fn graded_student(outdir: &Path) -> Result<PathBuf> {
 }
 
 /// The outcome `result.json` and `report.html` in `dir` say.
-fn outcome(dir: &Path, cpu_ms: i64) -> Result<Outcome> {
+fn outcome(dir: &Path) -> Result<Outcome> {
     let read = |name: &str| {
         let path = dir.join(name);
         std::fs::read(&path).map_err(|e| Error::io(&path, "cannot read", e))
@@ -156,28 +153,7 @@ fn outcome(dir: &Path, cpu_ms: i64) -> Result<Outcome> {
         finding: extra["feedback"].as_str().unwrap_or("").to_string(),
         progress,
         report: serde_json::to_string(&[report]).unwrap_or_default(),
-        cpu_ms,
     })
-}
-
-/// The CPU time of this process's waited-for children (the sandboxed programs), from
-/// /proc/self/stat (`cutime` + `cstime`, in clock ticks of 10 ms).
-fn children_cpu_ms() -> i64 {
-    let Ok(stat) = std::fs::read_to_string("/proc/self/stat") else {
-        return 0;
-    };
-    // Fields after the command's closing parenthesis: state is field 3, cutime 16, cstime 17.
-    let Some((_, rest)) = stat.rsplit_once(')') else {
-        return 0;
-    };
-    let fields: Vec<&str> = rest.split_whitespace().collect();
-    let ticks = |i: usize| {
-        fields
-            .get(i)
-            .and_then(|f| f.parse::<i64>().ok())
-            .unwrap_or(0)
-    };
-    (ticks(13) + ticks(14)) * 10
 }
 
 #[cfg(test)]

@@ -154,7 +154,6 @@ mod tests {
                 finding: String::new(),
                 progress: String::new(),
                 report: String::new(),
-                cpu_ms: 0,
             }),
         }
     }

@@ -57,8 +57,7 @@ CREATE TABLE IF NOT EXISTS results (
     mistake TEXT,
     finding TEXT NOT NULL,
     progress TEXT NOT NULL,
-    report TEXT NOT NULL,
-    cpu_ms INTEGER NOT NULL DEFAULT 0
+    report TEXT NOT NULL
 );
 ";
 
@@ -136,10 +135,8 @@ pub struct Outcome {
     pub finding: String,
     /// Where the student is in the handout's stages.
     pub progress: String,
-    /// The report page, as `check --report x.html` writes it.
+    /// The report pages (a JSON list: one per image), as `check --report x.html` writes them.
     pub report: String,
-    /// The CPU time the run took (the program's, for a project), in milliseconds.
-    pub cpu_ms: i64,
 }
 
 /// An attempt with its result when it has one.
@@ -177,7 +174,7 @@ pub struct Store {
 
 const ATTEMPT_COLUMNS: &str = "a.id, a.student, a.kind, a.folder, a.files, a.status, \
      a.received, a.started, a.finished, a.runs, r.passed, r.verdict, r.mistake, r.finding, \
-     r.progress, r.report, r.cpu_ms";
+     r.progress, r.report";
 
 fn attempt_row(row: &rusqlite::Row) -> rusqlite::Result<Attempt> {
     let passed: Option<bool> = row.get(10)?;
@@ -190,7 +187,6 @@ fn attempt_row(row: &rusqlite::Row) -> rusqlite::Result<Attempt> {
             finding: row.get(13)?,
             progress: row.get(14)?,
             report: row.get(15)?,
-            cpu_ms: row.get(16)?,
         }),
     };
     Ok(Attempt {
@@ -407,8 +403,8 @@ impl Store {
     pub fn finish(&mut self, attempt: i64, outcome: &Outcome) -> Result<()> {
         let tx = self.conn.transaction().map_err(db_error)?;
         tx.execute(
-            "INSERT INTO results(attempt, passed, verdict, mistake, finding, progress, report, \
-             cpu_ms) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8)",
+            "INSERT INTO results(attempt, passed, verdict, mistake, finding, progress, report) \
+             VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7)",
             params![
                 attempt,
                 outcome.passed,
@@ -416,8 +412,7 @@ impl Store {
                 outcome.mistake,
                 outcome.finding,
                 outcome.progress,
-                outcome.report,
-                outcome.cpu_ms
+                outcome.report
             ],
         )
         .map_err(db_error)?;
@@ -522,7 +517,6 @@ mod tests {
             finding: "f".into(),
             progress: "p".into(),
             report: "<html>".into(),
-            cpu_ms: 5,
         }
     }
 
