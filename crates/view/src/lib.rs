@@ -20,7 +20,7 @@
 //! limits); every request is parsed into a closed set first (`view/request.rs`) and answered
 //! by a pure function (`view/api.rs`).
 
-pub mod admission;
+mod admission;
 mod api;
 mod content;
 pub mod held_body;
