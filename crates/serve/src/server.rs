@@ -17,7 +17,6 @@ use hyper::{Request, Response};
 use hyper_util::rt::{TokioIo, TokioTimer};
 
 use super::answer::{self, Caller};
-use super::data::Receiving;
 use super::images::stored_name;
 use super::project::SOURCES;
 use super::reply::Reply;
@@ -338,17 +337,13 @@ fn keep(
         }
     };
     let names: Vec<String> = names.iter().map(|n| n.replace('\n', " ")).collect();
-    let folder = keep_folder(receiving)?;
+    let folder = receiving.keep()?;
     Ok(Ok(store.add_attempt(
         student,
         kind,
         &folder,
         &names.join("\n"),
     )?))
-}
-
-fn keep_folder(receiving: Receiving) -> Result<String> {
-    receiving.keep()
 }
 
 /// A reply as hyper wants it (without its body for a HEAD request).
