@@ -9,12 +9,14 @@ mod check;
 mod grade;
 mod look;
 mod parse;
+mod serve;
 mod values;
 
 pub use check::CheckArgs;
 pub use grade::GradeArgs;
 pub use look::{ExplainArgs, RelightArgs, ServeArgs, ViewArgs};
 use parse::*;
+pub use serve::{ServeAction, ServiceArgs};
 pub use values::{CompressionArg, CourseArg, ToneMapArg};
 use whitted_core::course::Course;
 use whitted_core::error::Result;
@@ -92,6 +94,9 @@ pub enum Command {
     Grade(GradeArgs),
     /// A local web viewer for an EXR (or PNG, JPEG, TIFF, HDR): layers, zoom, tone maps, error metrics, ray trees, relighting.
     View(ViewArgs),
+    /// The course's tester as a service: students upload images or projects by a personal
+    /// link and read the check's report; the staff watch the class live (docs/serve.md).
+    Serve(ServiceArgs),
     /// Recombine an EXR's light layers with new gains (light groups), without re-rendering.
     Relight(RelightArgs),
     /// Print a balanced split of the frame into --region values, one per line (for a farm).

@@ -38,6 +38,7 @@ fn main() -> ExitCode {
         Some(Command::Check(args)) => commands::check::run(args),
         Some(Command::Grade(args)) => commands::grade::run(args).map(|()| true),
         Some(Command::View(args)) => commands::view::run(args).map(|()| true),
+        Some(Command::Serve(args)) => commands::serve::run(args).map(|()| true),
         Some(Command::Relight(args)) => commands::relight::run(args).map(|()| true),
         Some(Command::Regions(args)) => commands::regions::run(args).map(|()| true),
         Some(Command::Completions(args)) => commands::completions::run(args).map(|()| true),

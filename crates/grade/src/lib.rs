@@ -270,6 +270,20 @@ pub fn calibrate(outdir: &Path, extra: Option<Allowance>) -> Result<String> {
     calibrate::run(outdir, extra)
 }
 
+/// The class files (`class.csv`, `mistakes.csv`, `moodle.csv`, `feedback.zip`, `index.html`)
+/// of the students graded into `outdir/students`, from their `result.json`s alone, nothing
+/// run: what `whitted serve` exports from the students' latest attempts, each graded by a run
+/// of its own. Returns the class page.
+pub fn write_class_files(outdir: &Path, course: Course) -> Result<PathBuf> {
+    let rows = read_rows(&outdir.join("students"), &[]);
+    let settings = [
+        format!("Course: {course}."),
+        "Each student's latest attempt at the course's tester (`whitted serve`).".to_string(),
+    ];
+    let title = format!("{}: the class", tick(course));
+    write_class(outdir, &rows, &title, &settings, course)
+}
+
 /// The exercise's name in reports and on the class page: 2016-17's Tick 2, the later years'
 /// Tick 1 with its year.
 pub fn tick(course: Course) -> String {

@@ -23,13 +23,13 @@
 mod admission;
 mod api;
 mod content;
-mod held_body;
+pub mod held_body;
 mod metric;
 mod planes;
 mod request;
 mod server;
 mod stats;
-mod token;
+pub mod token;
 mod watch;
 
 use std::io::Write;
@@ -41,6 +41,9 @@ use whitted_core::error::{Error, Result};
 
 pub use api::{Snapshot, State};
 pub use content::{Content, Source};
+/// The connection limits and the Host check, which `whitted serve` shares.
+pub use request::check_host;
+pub use server::{CONNECTION_TIME, HEAD_TIMEOUT, MAX_CONNECTIONS, MAX_HEAD};
 
 /// A reply: status, content type, body.
 pub type Reply = (u16, &'static str, Vec<u8>);

@@ -80,6 +80,28 @@ fn refuse(status: u16, message: &str) -> Reply {
     super::text(status, message)
 }
 
+/// Refuses a request whose Host (or absolute-form authority, RFC 9112 3.2.2) is not one of
+/// `allowed` (DNS rebinding): 400 for no or several Host headers, 403 for another name.
+pub fn check_host(
+    authority: Option<&str>,
+    hosts: &[&[u8]],
+    allowed: &[String],
+) -> Result<(), Reply> {
+    let host = match (authority, hosts) {
+        (Some(authority), _) => authority.as_bytes(),
+        (None, [host]) => *host,
+        (None, []) => return Err(refuse(400, "bad request: no Host header")),
+        (None, _) => return Err(refuse(400, "bad request: more than one Host header")),
+    };
+    if !allowed.iter().any(|a| a.as_bytes() == host) {
+        return Err(refuse(
+            403,
+            "forbidden: not an address this server answers as",
+        ));
+    }
+    Ok(())
+}
+
 /// Checks and parses `request` for the viewer listening on 127.0.0.1:`port` with `token`:
 /// 405 for a method other than GET or HEAD; 400 for no or several Host headers; 403 for a
 /// Host that is not this loopback address (DNS rebinding) or a missing or wrong token; 413 for
@@ -91,16 +113,8 @@ pub fn parse(request: &Incoming, token: &str, port: u16) -> Result<ApiRequest, R
             "method not allowed: the viewer answers GET and HEAD",
         ));
     }
-    let host = match (request.authority, &request.hosts[..]) {
-        (Some(authority), _) => authority.as_bytes(),
-        (None, [host]) => *host,
-        (None, []) => return Err(refuse(400, "bad request: no Host header")),
-        (None, _) => return Err(refuse(400, "bad request: more than one Host header")),
-    };
     let allowed = [format!("127.0.0.1:{port}"), format!("localhost:{port}")];
-    if !allowed.iter().any(|a| a.as_bytes() == host) {
-        return Err(refuse(403, "forbidden: not the viewer's loopback address"));
-    }
+    check_host(request.authority, &request.hosts, &allowed)?;
     if request.has_body {
         return Err(refuse(413, "a request to the viewer has no body"));
     }

@@ -36,10 +36,14 @@ use super::{api, text, Reply, Served, State};
 use whitted_core::error::{Error, Result};
 use whitted_core::interrupt;
 
-const MAX_HEAD: usize = 16 * 1024;
-const HEAD_TIMEOUT: Duration = Duration::from_secs(10);
-const CONNECTION_TIME: Duration = Duration::from_secs(120);
-const MAX_CONNECTIONS: usize = 64;
+/// The request line and headers' bytes at most.
+pub const MAX_HEAD: usize = 16 * 1024;
+/// How long the request line and headers may take to arrive.
+pub const HEAD_TIMEOUT: Duration = Duration::from_secs(10);
+/// How long a connection may live, whatever it does.
+pub const CONNECTION_TIME: Duration = Duration::from_secs(120);
+/// Connections served at once.
+pub const MAX_CONNECTIONS: usize = 64;
 const OPEN_TIMEOUT: Duration = Duration::from_secs(60);
 /// How often the accept loop looks for Ctrl-C.
 const POLL: Duration = Duration::from_millis(100);

@@ -1,0 +1,149 @@
+//! An attempt of images, checked in this process exactly as `whitted check IMAGE.png --course
+//! YEAR --report x.html` checks each: against the year's scene, the verdict, the progress, the
+//! diagnosis with where and how to fix it, and the report page that command writes.
+
+use std::path::Path;
+
+use serde_json::Value;
+
+use super::store::Outcome;
+use whitted_check::check::pass_rule::{Allowance, PassRule};
+use whitted_check::check::print::html;
+use whitted_check::check::print::json::json;
+use whitted_check::check::print::text::{text, Detail};
+use whitted_check::check::result::CheckResult;
+use whitted_check::check::which_course;
+use whitted_check::check::{check_image, student_png};
+use whitted_core::course::Course;
+use whitted_core::error::Result;
+use whitted_core::scene;
+
+/// The bounces and pass rule `check` uses by default, which the course's tester used.
+const BOUNCES: u32 = 2;
+const RULE: PassRule = PassRule {
+    tolerance: 2,
+    allowance: Allowance::NONE,
+};
+
+/// One image's check: its result, or why it could not be checked (a PNG bomb, not a PNG).
+enum Checked {
+    Result(Box<CheckResult>),
+    Refused(String),
+}
+
+/// Checks every image of `names` (as uploaded, in order) stored as `image-<n>.png` in `dir`.
+pub fn check(dir: &Path, names: &[String], course: Course) -> Outcome {
+    let checked: Vec<(String, Checked)> = names
+        .iter()
+        .enumerate()
+        .map(|(i, name)| {
+            let path = dir.join(stored_name(i));
+            let checked = match one(&path, name, course) {
+                Ok(result) => Checked::Result(Box::new(result)),
+                Err(e) => {
+                    Checked::Refused(e.to_string().replace(&path.display().to_string(), name))
+                }
+            };
+            (name.clone(), checked)
+        })
+        .collect();
+    outcome(&checked)
+}
+
+/// Where the `i`-th image of an attempt is kept: a name whitted chose.
+pub fn stored_name(i: usize) -> String {
+    format!("image-{}.png", i + 1)
+}
+
+fn one(path: &Path, name: &str, course: Course) -> Result<CheckResult> {
+    let student = student_png::read(path)?;
+    let chosen = which_course::for_image(Some(course), (student.width, student.height), None)?;
+    let input = scene::input::input_of(None, None, course)?;
+    let (case, findings) = check_image(&input.scene, &input.name, BOUNCES, RULE, student, course)?;
+    Ok(CheckResult::of_image(name, None, case, findings, &chosen))
+}
+
+fn outcome(checked: &[(String, Checked)]) -> Outcome {
+    let passed = checked
+        .iter()
+        .all(|(_, c)| matches!(c, Checked::Result(r) if r.passed()));
+    let passes = checked
+        .iter()
+        .filter(|(_, c)| matches!(c, Checked::Result(r) if r.passed()))
+        .count();
+    // What the student reads first: the first image that fails, else the first.
+    let shown = checked
+        .iter()
+        .find(|(_, c)| !matches!(c, Checked::Result(r) if r.passed()))
+        .or(checked.first());
+    let (mistake, finding, progress) = match shown {
+        Some((_, Checked::Result(result))) => {
+            let value = json(result);
+            (
+                top_mistake(&value),
+                text(result, Detail::Screen),
+                progress_of(&value),
+            )
+        }
+        Some((name, Checked::Refused(why))) => (None, format!("{name}: {why}"), String::new()),
+        None => (None, "no image".into(), String::new()),
+    };
+    let verdict = match checked {
+        [(name, Checked::Result(r))] => format!("{name}: {}", verdict_of(&json(r))),
+        [(name, Checked::Refused(_))] => format!("{name}: cannot be checked"),
+        _ => format!("{passes} of {} images pass", checked.len()),
+    };
+    let reports: Vec<String> = checked
+        .iter()
+        .map(|(name, c)| match c {
+            Checked::Result(r) => html::page(r),
+            Checked::Refused(why) => refused_page(name, why),
+        })
+        .collect();
+    Outcome {
+        passed,
+        verdict,
+        mistake,
+        finding,
+        progress,
+        report: serde_json::to_string(&reports).unwrap_or_default(),
+    }
+}
+
+/// The report of an image that could not be checked: the one sentence why, escaped.
+fn refused_page(name: &str, why: &str) -> String {
+    maud::html! {
+        (maud::DOCTYPE)
+        html lang="en" { head { meta charset="utf-8"; title { (name) } }
+            body { h1 { (name) } p { "This image cannot be checked: " (why) } } }
+    }
+    .into_string()
+}
+
+/// The top candidate's first catalogue entry, when the check names one.
+pub fn top_mistake(value: &Value) -> Option<String> {
+    value["diagnosis"].as_array()?.first()?["bugs"]
+        .as_array()?
+        .first()?
+        .as_str()
+        .map(str::to_string)
+}
+
+fn verdict_of(value: &Value) -> String {
+    value["verdict_text"]
+        .as_str()
+        .unwrap_or("checked")
+        .to_string()
+}
+
+/// The progress line of the check's summary (`progress: planes done; ...`).
+fn progress_of(value: &Value) -> String {
+    value["summary"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .filter_map(Value::as_str)
+        .find(|l| l.starts_with("progress"))
+        .unwrap_or("")
+        .to_string()
+}

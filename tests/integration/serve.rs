@@ -1,0 +1,630 @@
+//! `whitted serve` end to end over HTTP: a class of students, each reaching only their own
+//! work by their link; images checked at once, projects run in the sandbox; the staff page
+//! and its exports; and, in Chromium, a student who uploads and reads the result.
+
+use std::io::{BufRead, BufReader, Read, Write};
+use std::net::TcpStream;
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+use crate::common::{s, whitted};
+
+/// A running `whitted serve`, killed when dropped.
+pub struct Service {
+    child: Child,
+    pub port: u16,
+    pub data: PathBuf,
+}
+
+impl Service {
+    /// Serves `course` from `dir/data` with the roster `ids` (one a line), `-j 1`.
+    pub fn start(dir: &Path, ids: &[&str]) -> Service {
+        Service::start_with(dir, ids, &[])
+    }
+
+    /// As `start`, with more options.
+    pub fn start_with(dir: &Path, ids: &[&str], options: &[&str]) -> Service {
+        let roster = dir.join("roster.txt");
+        std::fs::write(&roster, ids.join("\n")).expect("roster");
+        let mut args = vec!["--roster", s(&roster)];
+        args.extend_from_slice(options);
+        Service::run(dir, &args)
+    }
+
+    /// Starts it again on the same data (after a kill).
+    pub fn restart(dir: &Path) -> Service {
+        Service::run(dir, &[])
+    }
+
+    fn run(dir: &Path, extra: &[&str]) -> Service {
+        let data = dir.join("data");
+        let mut child = Command::new(env!("CARGO_BIN_EXE_whitted"))
+            .args([
+                "serve",
+                "--course",
+                "2016-17",
+                "--listen",
+                "127.0.0.1:0",
+                "--data",
+            ])
+            .arg(&data)
+            .args(extra)
+            .current_dir(dir)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("whitted serve starts");
+        let mut first = String::new();
+        BufReader::new(child.stdout.take().expect("stdout"))
+            .read_line(&mut first)
+            .expect("its first line");
+        let port = first
+            .split("http://127.0.0.1:")
+            .nth(1)
+            .and_then(|rest| rest.split(' ').next())
+            .and_then(|p| p.parse().ok())
+            .unwrap_or_else(|| panic!("no port in {first:?}"));
+        Service { child, port, data }
+    }
+
+    /// Every student's link path (`/s/...`) by id, and the staff's (`/staff/...`).
+    pub fn links(&self) -> (Vec<(String, String)>, String) {
+        let out = whitted(Path::new("."), &["serve", "links", "--data", s(&self.data)]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let text = String::from_utf8_lossy(&out.stdout).into_owned();
+        let prefix = format!("http://127.0.0.1:{}", self.port);
+        let mut students = Vec::new();
+        let mut staff = String::new();
+        for line in text.lines().skip(1) {
+            let fields: Vec<&str> = line.split(',').collect();
+            let path = fields[3].strip_prefix(&prefix).unwrap_or("").to_string();
+            match fields[0] {
+                "staff" => staff = path,
+                id => students.push((id.to_string(), path)),
+            }
+        }
+        (students, staff)
+    }
+
+    pub fn get(&self, path: &str) -> Reply {
+        self.request("GET", path, &[], b"")
+    }
+
+    pub fn request(
+        &self,
+        method: &str,
+        path: &str,
+        headers: &[(&str, &str)],
+        body: &[u8],
+    ) -> Reply {
+        let mut head = format!(
+            "{method} {path} HTTP/1.1\r\nHost: 127.0.0.1:{}\r\nConnection: close\r\n\
+             Content-Length: {}\r\n",
+            self.port,
+            body.len()
+        );
+        for (name, value) in headers {
+            head += &format!("{name}: {value}\r\n");
+        }
+        head += "\r\n";
+        let mut bytes = head.into_bytes();
+        bytes.extend_from_slice(body);
+        raw(self.port, &bytes)
+    }
+
+    /// Uploads `files` (name, bytes) with `csrf` through `link`'s form.
+    pub fn upload(&self, link: &str, csrf: &str, files: &[(&str, &[u8])]) -> Reply {
+        let (content_type, body) = multipart(csrf, files);
+        self.request(
+            "POST",
+            &format!("{link}/upload"),
+            &[("Content-Type", &content_type)],
+            &body,
+        )
+    }
+
+    /// The CSRF token of `link`'s form.
+    pub fn csrf(&self, link: &str) -> String {
+        let page = self.get(link).text();
+        page.split("name=\"csrf\" value=\"")
+            .nth(1)
+            .and_then(|rest| rest.split('"').next())
+            .expect("a CSRF token in the form")
+            .to_string()
+    }
+
+    /// Waits until `attempt` (its page's path) is done; its status JSON.
+    pub fn wait_done(&self, attempt: &str, within: Duration) -> serde_json::Value {
+        let started = Instant::now();
+        loop {
+            let status = self.get(&format!("{attempt}/status"));
+            assert_eq!(status.status, 200, "{}", status.text());
+            let value: serde_json::Value = serde_json::from_slice(&status.body).expect("json");
+            if value["status"] == "done" {
+                return value;
+            }
+            assert!(started.elapsed() < within, "{attempt} not done: {value}");
+            std::thread::sleep(Duration::from_millis(300));
+        }
+    }
+
+    pub fn kill(mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+impl Drop for Service {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// A reply: status, headers (lowercase names), body.
+pub struct Reply {
+    pub status: u16,
+    pub head: String,
+    pub body: Vec<u8>,
+}
+
+impl Reply {
+    pub fn text(&self) -> String {
+        String::from_utf8_lossy(&self.body).into_owned()
+    }
+
+    pub fn header(&self, name: &str) -> Option<String> {
+        let name = format!("{}:", name.to_ascii_lowercase());
+        self.head.lines().find_map(|l| {
+            l.to_ascii_lowercase()
+                .starts_with(&name)
+                .then(|| l[name.len()..].trim().to_string())
+        })
+    }
+}
+
+/// Sends `request` as it is; the reply (status 0 when the server closed without one).
+pub fn raw(port: u16, request: &[u8]) -> Reply {
+    let mut stream = TcpStream::connect(("127.0.0.1", port)).expect("connect");
+    stream
+        .set_read_timeout(Some(Duration::from_secs(120)))
+        .expect("timeout");
+    let _ = stream.write_all(request);
+    let mut all = Vec::new();
+    let _ = stream.read_to_end(&mut all);
+    let text = String::from_utf8_lossy(&all);
+    let Some((head, _)) = text.split_once("\r\n\r\n") else {
+        return Reply {
+            status: 0,
+            head: String::new(),
+            body: Vec::new(),
+        };
+    };
+    let body = all[head.len() + 4..].to_vec();
+    let status = head
+        .split(' ')
+        .nth(1)
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(0);
+    Reply {
+        status,
+        head: head.to_string(),
+        body,
+    }
+}
+
+/// A multipart form of the page's fields: `csrf`, then each file as `files`.
+pub fn multipart(csrf: &str, files: &[(&str, &[u8])]) -> (String, Vec<u8>) {
+    let boundary = "----whittedTestBoundary7MA4YWxkTrZu0gW";
+    let mut body =
+        format!("--{boundary}\r\nContent-Disposition: form-data; name=\"csrf\"\r\n\r\n{csrf}\r\n")
+            .into_bytes();
+    for (name, bytes) in files {
+        body.extend_from_slice(
+            format!(
+                "--{boundary}\r\nContent-Disposition: form-data; name=\"files\"; \
+                 filename=\"{name}\"\r\nContent-Type: application/octet-stream\r\n\r\n"
+            )
+            .as_bytes(),
+        );
+        body.extend_from_slice(bytes);
+        body.extend_from_slice(b"\r\n");
+    }
+    body.extend_from_slice(format!("--{boundary}--\r\n").as_bytes());
+    (format!("multipart/form-data; boundary={boundary}"), body)
+}
+
+/// The course's 2016-17 render at `bounces` (2 is right; 1 is the mistake bounces-minus-one).
+pub fn render(dir: &Path, bounces: &str) -> Vec<u8> {
+    let path = dir.join(format!("render-b{bounces}.png"));
+    let out = whitted(
+        dir,
+        &[
+            "render",
+            "--course",
+            "2016-17",
+            "-b",
+            bounces,
+            "-o",
+            s(&path),
+        ],
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    std::fs::read(&path).expect("png")
+}
+
+/// The 2016-17 test submission's two files (the course's API, written for the tests).
+pub fn project_files() -> Vec<(String, Vec<u8>)> {
+    let dir = crate::common::root().join("tests/java/submission/gfx/tick2");
+    ["Plane.java", "Renderer.java"]
+        .iter()
+        .map(|n| (n.to_string(), std::fs::read(dir.join(n)).expect("source")))
+        .collect()
+}
+
+/// The attempt path a 303 after an upload points to.
+pub fn attempt_of(reply: &Reply) -> String {
+    assert_eq!(reply.status, 303, "{}", reply.text());
+    reply.header("location").expect("a location")
+}
+
+#[test]
+fn each_student_reaches_only_their_own_work_and_the_staff_see_everyone() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let service = Service::start(dir.path(), &["1201", "1202"]);
+    let (students, staff) = service.links();
+    let (a, b) = (&students[0].1, &students[1].1);
+    let mode = std::os::unix::fs::PermissionsExt::mode(
+        &std::fs::metadata(&service.data)
+            .expect("data")
+            .permissions(),
+    );
+    assert_eq!(mode & 0o777, 0o700, "the data folder is private");
+
+    let wrong = render(dir.path(), "1");
+    let attempt = attempt_of(&service.upload(a, &service.csrf(a), &[("tick2.png", &wrong)]));
+    assert!(attempt.starts_with(&format!("{a}/attempt/")), "{attempt}");
+    let done = service.wait_done(&attempt, Duration::from_secs(120));
+    assert_eq!(done["passed"], false);
+    let page = service.get(&attempt);
+    assert_eq!(page.status, 200);
+    let text = page.text();
+    assert!(
+        text.contains("bounces-minus-one"),
+        "the finding names the mistake: {text}"
+    );
+    assert!(text.contains("fix:"), "and says how to fix it");
+    let csp = page.header("content-security-policy").expect("a CSP");
+    assert!(
+        csp.contains("script-src 'self'") && !csp.contains("unsafe-inline"),
+        "{csp}"
+    );
+    assert!(!text.contains("<script>"), "no inline script");
+    let report = service.get(&format!("{attempt}/report?n=0"));
+    assert_eq!(report.status, 200);
+    assert!(
+        report.text().contains("data:image/png"),
+        "the report shows the images"
+    );
+    let report_csp = report.header("content-security-policy").expect("csp");
+    assert!(report_csp.starts_with("default-src 'none'") && !report_csp.contains("script"));
+    assert!(
+        service.get(a).text().contains("bounces-minus-one"),
+        "listed on the student's page"
+    );
+
+    // Every route of A's attempt, through B's link: as if it did not exist.
+    let number = attempt.rsplit('/').next().expect("number");
+    for suffix in ["", "/status", "/report?n=0"] {
+        let reply = service.get(&format!("{b}/attempt/{number}{suffix}"));
+        assert_eq!(reply.status, 404, "{b}/attempt/{number}{suffix}");
+        assert!(!reply.text().contains("bounces-minus-one"));
+    }
+    assert!(
+        !service.get(b).text().contains("bounces-minus-one"),
+        "B's page lists nothing of A"
+    );
+    // A's secret with B's number, and B's number with a made-up secret.
+    let a_secret = a.rsplit('-').next().expect("secret");
+    let b_number = b
+        .trim_start_matches("/s/")
+        .split('-')
+        .next()
+        .expect("number");
+    for link in [
+        format!("/s/{b_number}-{a_secret}"),
+        format!("/s/{b_number}-{}", "0".repeat(32)),
+    ] {
+        assert_eq!(service.get(&link).status, 403, "{link}");
+        assert_eq!(service.get(&format!("{link}/attempt/{number}")).status, 403);
+    }
+    // B cannot upload with A's form token.
+    let forged = service.upload(b, &service.csrf(a), &[("tick2.png", &wrong)]);
+    assert_eq!(forged.status, 403, "{}", forged.text());
+
+    // The staff see both students, A's mistake ranked, B not started, and A's history.
+    let class = service.get(&staff).text();
+    assert!(class.contains("1201") && class.contains("1202"));
+    assert!(class.contains("bounces-minus-one"));
+    let not_started = class.split("Not started").nth(1).expect("the list");
+    assert!(not_started.contains("1202") && !not_started.contains("1201"));
+    assert_eq!(
+        service.get(&format!("{staff}/attempt/{number}")).status,
+        200
+    );
+    assert_eq!(
+        service
+            .get("/staff/0123456789abcdef0123456789abcdef")
+            .status,
+        403
+    );
+    assert_eq!(
+        service.get("/staff/proxy").status,
+        403,
+        "no proxy is trusted"
+    );
+
+    // A revoked link answers no more, with what to do; reissued, the new one does.
+    let revoke = whitted(
+        dir.path(),
+        &["serve", "revoke", "1201", "--data", s(&service.data)],
+    );
+    assert!(revoke.status.success());
+    let refused = service.get(a);
+    assert_eq!(refused.status, 403);
+    assert!(refused.text().contains("revoked"), "{}", refused.text());
+    let reissue = whitted(
+        dir.path(),
+        &["serve", "reissue", "1201", "--data", s(&service.data)],
+    );
+    assert!(reissue.status.success());
+    let (again, _) = service.links();
+    assert_ne!(&again[0].1, a);
+    assert_eq!(service.get(&again[0].1).status, 200);
+    assert_eq!(
+        service
+            .get(&format!("{}/attempt/{number}", again[0].1))
+            .status,
+        200
+    );
+}
+
+#[test]
+fn a_project_runs_in_the_sandbox_and_the_staff_export_it_as_grade_writes() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let service = Service::start(dir.path(), &["1201"]);
+    let (students, staff) = service.links();
+    let a = &students[0].1;
+    let files = project_files();
+    let as_refs: Vec<(&str, &[u8])> = files
+        .iter()
+        .map(|(n, b)| (n.as_str(), b.as_slice()))
+        .collect();
+    let attempt = attempt_of(&service.upload(a, &service.csrf(a), &as_refs));
+    let first = service.get(&format!("{attempt}/status")).text();
+    assert!(
+        first.contains("\"queued\"") || first.contains("\"running\""),
+        "{first}"
+    );
+    // A second project while the first waits is refused with the reason.
+    let second = service.upload(a, &service.csrf(a), &as_refs);
+    assert_eq!(second.status, 429, "{}", second.text());
+    assert!(second.text().contains("still queued or running"));
+    let done = service.wait_done(&attempt, Duration::from_secs(300));
+    assert_eq!(done["passed"], true, "{done}");
+    assert!(service.get(&attempt).text().contains("5 of 5 cases pass"));
+    let worksheet = service.get(&format!("{staff}/export/moodle.csv"));
+    assert_eq!(worksheet.status, 200);
+    let text = worksheet.text();
+    assert!(
+        text.starts_with("Identifier,Full name,Status,Grade"),
+        "{text}"
+    );
+    assert!(
+        text.contains("Participant 1201,") && text.contains(",graded,100,"),
+        "{text}"
+    );
+    let class = service.get(&format!("{staff}/export/class.csv")).text();
+    assert!(
+        class.lines().nth(1).is_some_and(|l| l.starts_with("1201,")),
+        "{class}"
+    );
+    let zip = service.get(&format!("{staff}/export/feedback.zip"));
+    assert_eq!(
+        zip.header("content-disposition").as_deref(),
+        Some("attachment; filename=\"feedback.zip\"")
+    );
+    let archive = zip::ZipArchive::new(std::io::Cursor::new(zip.body)).expect("a zip");
+    assert!(archive.file_names().any(|n| n.ends_with("report.html")));
+}
+
+/// Evaluates `expression` in the browser's page, None while the page is being replaced.
+fn page_value(browser: &crate::view::Browser, expression: &str) -> Option<serde_json::Value> {
+    let found = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        browser.script(&format!("return {expression}"), serde_json::json!([]))
+    }));
+    found.ok()
+}
+
+/// Waits (up to `seconds`) until `expression` is true in the page, whatever reloads meanwhile.
+fn wait_page(browser: &crate::view::Browser, expression: &str, seconds: u64) {
+    let started = Instant::now();
+    while page_value(browser, expression) != Some(serde_json::json!(true)) {
+        assert!(
+            started.elapsed() < Duration::from_secs(seconds),
+            "never true: {expression}"
+        );
+        std::thread::sleep(Duration::from_millis(200));
+    }
+}
+
+/// Chooses `paths` in the page's file input and presses Check.
+fn choose_and_submit(browser: &crate::view::Browser, paths: &[PathBuf]) {
+    let input = browser.session(
+        "POST",
+        "/element",
+        Some(serde_json::json!({"using": "css selector", "value": "input[type=file]"})),
+    );
+    let id = input["element-6066-11e4-a52e-4f735466cecf"]
+        .as_str()
+        .expect("the file input")
+        .to_string();
+    let text: Vec<&str> = paths.iter().map(|p| s(p)).collect();
+    browser.session(
+        "POST",
+        &format!("/element/{id}/value"),
+        Some(serde_json::json!({"text": text.join("\n")})),
+    );
+    browser.script(
+        "document.querySelector('form button').click()",
+        serde_json::json!([]),
+    );
+}
+
+#[test]
+fn in_chromium_a_student_uploads_and_reads_the_result_and_the_staff_see_the_class() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let service = Service::start(dir.path(), &["1201", "1202"]);
+    let (students, staff) = service.links();
+    let origin = format!("http://127.0.0.1:{}", service.port);
+    let (a, b) = (&students[0].1, &students[1].1);
+    let browser = crate::view::Browser::start();
+
+    // An image: checked at once; the page follows it and shows the finding and the report.
+    render(dir.path(), "1");
+    browser.navigate(&format!("{origin}{a}"));
+    wait_page(&browser, "!!document.querySelector('input[type=file]')", 30);
+    choose_and_submit(&browser, &[dir.path().join("render-b1.png")]);
+    wait_page(&browser, "!!document.querySelector('iframe')", 120);
+    let text = page_value(&browser, "document.body.innerText").expect("text");
+    let text = text.as_str().expect("a string");
+    assert!(
+        text.contains("bounces-minus-one") && text.contains("fix:"),
+        "{text}"
+    );
+    let image_attempt = page_value(&browser, "location.pathname").expect("path");
+    let image_attempt = image_attempt.as_str().expect("path").to_string();
+    // The report in its frame shows the student's picture beside the expected one.
+    wait_page(
+        &browser,
+        "(() => { const d = document.querySelector('iframe').contentDocument; \
+         return !!d && d.querySelectorAll('img').length >= 2 })()",
+        30,
+    );
+    browser.script(
+        "const f = document.querySelector('iframe'); f.scrollIntoView(); \
+         const img = f.contentDocument.querySelector('img'); \
+         f.contentWindow.scrollTo(0, img.getBoundingClientRect().top + \
+         f.contentWindow.scrollY - 60)",
+        serde_json::json!([]),
+    );
+    browser.screenshot("serve_student.png");
+
+    // A project: queued or running shown live, without a reload, then the result.
+    let sources = dir.path().join("src");
+    std::fs::create_dir_all(&sources).expect("src");
+    let mut paths = Vec::new();
+    for (name, bytes) in project_files() {
+        std::fs::write(sources.join(&name), bytes).expect("source");
+        paths.push(sources.join(&name));
+    }
+    browser.navigate(&format!("{origin}{a}"));
+    wait_page(&browser, "!!document.querySelector('input[type=file]')", 30);
+    choose_and_submit(&browser, &paths);
+    wait_page(
+        &browser,
+        "(() => { const s = document.getElementById('state'); \
+         return !!s && /Queued|Running/.test(s.textContent) })()",
+        60,
+    );
+    wait_page(
+        &browser,
+        "document.body.innerText.includes('5 of 5 cases pass')",
+        300,
+    );
+    browser.navigate(&format!("{origin}{a}"));
+    wait_page(
+        &browser,
+        "document.querySelectorAll('table tr').length === 3",
+        30,
+    );
+
+    // The second student cannot open the first's attempt by its URL.
+    let number = image_attempt.rsplit('/').next().expect("number");
+    browser.navigate(&format!("{origin}{b}/attempt/{number}"));
+    wait_page(&browser, "document.readyState === 'complete'", 30);
+    let text = page_value(&browser, "document.body.innerText").expect("text");
+    assert!(
+        text.as_str()
+            .is_some_and(|t| t.contains("not found") && !t.contains("bounces")),
+        "{text}"
+    );
+
+    // The staff see both students: the first's mistake, the second not started.
+    browser.navigate(&format!("{origin}{staff}"));
+    wait_page(&browser, "document.readyState === 'complete'", 30);
+    let text = page_value(&browser, "document.body.innerText").expect("text");
+    let text = text.as_str().expect("text");
+    assert!(text.contains("1201") && text.contains("1202"), "{text}");
+    assert!(
+        text.contains("bounces-minus-one") && text.contains("Not started"),
+        "{text}"
+    );
+    browser.screenshot("serve_staff.png");
+}
+
+#[test]
+fn the_user_header_opens_the_staff_page_only_from_the_trusted_proxy_for_the_staff() {
+    let trusting = |proxy: &str| {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let options = [
+            "--trust-user-header",
+            "X-Remote-User",
+            "--trusted-proxy",
+            proxy,
+            "--staff",
+            "boss,deputy",
+        ];
+        let service = Service::start_with(dir.path(), &["1201"], &options);
+        let as_user = |user: Option<&str>| {
+            let headers: Vec<(&str, &str)> =
+                user.map(|u| ("X-Remote-User", u)).into_iter().collect();
+            service.request("GET", "/staff/proxy", &headers, b"").status
+        };
+        let statuses = [
+            as_user(Some("boss")),
+            as_user(Some("deputy")),
+            as_user(Some("1201")),
+            as_user(None),
+        ];
+        (statuses, dir)
+    };
+    assert_eq!(trusting("127.0.0.1").0, [200, 200, 403, 403]);
+    // The same header from an address that is not the proxy's is not believed.
+    assert_eq!(trusting("192.0.2.1").0, [403, 403, 403, 403]);
+    let dir = tempfile::tempdir().expect("tempdir");
+    let alone = whitted(
+        dir.path(),
+        &[
+            "serve",
+            "--trust-user-header",
+            "X-Remote-User",
+            "--data",
+            "d",
+        ],
+    );
+    assert_eq!(
+        alone.status.code(),
+        Some(2),
+        "the header needs the proxy's address"
+    );
+}
