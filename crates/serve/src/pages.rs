@@ -50,25 +50,12 @@ pub fn refusal(message: &str) -> String {
 fn when(seconds: i64) -> String {
     let days = seconds.div_euclid(86_400);
     let s = seconds.rem_euclid(86_400);
-    let (y, m, d) = civil(days);
+    let (y, m, d) = whitted_core::calendar::civil_from_days(days);
     format!(
         "{y:04}-{m:02}-{d:02} {:02}:{:02} UTC",
         s / 3600,
         s % 3600 / 60
     )
-}
-
-/// Days since 1970 as a date (Howard Hinnant's algorithm).
-fn civil(days: i64) -> (i64, i64, i64) {
-    let z = days + 719_468;
-    let era = z.div_euclid(146_097);
-    let doe = z - era * 146_097;
-    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
-    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-    let mp = (5 * doy + 2) / 153;
-    let d = doy - (153 * mp + 2) / 5 + 1;
-    let m = if mp < 10 { mp + 3 } else { mp - 9 };
-    (yoe + era * 400 + i64::from(m <= 2), m, d)
 }
 
 fn result_cell(attempt: &Attempt) -> Markup {
