@@ -24,6 +24,8 @@ pub mod report;
 pub mod reproduce;
 pub mod result;
 pub mod score;
+pub mod star_option;
+pub mod star_run;
 pub mod student_png;
 pub mod suite;
 pub mod summary;
@@ -109,6 +111,12 @@ impl Findings {
         let mut findings = Findings::nothing(cases, Evidence::Unexplained, course);
         findings.not_reproducible = Some(noise);
         findings
+    }
+
+    /// A Tick 1* program's run (`star_run.rs`): its images are judged by their options,
+    /// nothing is diagnosed.
+    pub fn of_star(course: Course) -> Findings {
+        Findings::nothing(0, Evidence::Nothing, course)
     }
 
     /// Nothing found: no images, or every one identical.

@@ -106,11 +106,12 @@ pub fn add_findings(object: &mut Value, findings: &Findings) {
             "known_cause": m.known_cause,
         });
     }
-    if let Some(star) = findings.tick1_star {
+    if let Some(star) = &findings.tick1_star {
         object["tick1_star"] = json!({
             "seen": star.seen.name(),
             "timeout": star.timeout,
             "stopped": star.stopped,
+            "plan": star.plan,
         });
     }
 }
@@ -152,6 +153,9 @@ fn outcome_json(case: &CaseResult) -> Value {
     object["case"] = json!(case.name);
     object["status"] = json!(case.status.name());
     object["stderr_tail"] = json!(case.stderr_tail);
+    if let RunStatus::Star(star) = &case.status {
+        object["tick1_star"] = star.json();
+    }
     if let RunStatus::WrongSize {
         width,
         height,

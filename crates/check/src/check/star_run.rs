@@ -1,0 +1,120 @@
+//! `check --program` on a Tick 1* program: instead of the Tick 1 suite (whose cases would run
+//! out of time one after another, and whose byte-for-byte check no random image passes), the
+//! handout's scene of each option once (`star_option.rs`), at a size and a time that fit. Each
+//! image written goes to its option's judge.
+
+use std::time::Duration;
+
+use crate::check::program::{run_programs, CaseOutcome, Launch, Ran, RunStatus, SuiteRun};
+use crate::check::star_option::{self, StarOption};
+use crate::check::student_png::Rgb8;
+use crate::check::tick1_star::{StarSeen, Tick1Star};
+use crate::check::Findings;
+use whitted_core::course::Course;
+use whitted_core::error::Result;
+
+/// A Tick 1* option's image and what its judge said of it.
+#[derive(Debug, Clone)]
+pub struct StarImage {
+    pub option: StarOption,
+    pub image: Rgb8,
+    pub verdict: StarVerdict,
+}
+
+impl StarImage {
+    /// The case's `"tick1_star"` object in the JSON.
+    pub fn json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "option": self.option.name(),
+            "width": self.image.width,
+            "height": self.image.height,
+            "verdict": self.verdict.name(),
+            "line": self.verdict.line(),
+        })
+    }
+}
+
+/// What a Tick 1* option's judge says of an image.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum StarVerdict {
+    /// No judge of this option's images is built into this whitted: why, in words.
+    NotJudged(&'static str),
+}
+
+impl StarVerdict {
+    /// The JSON value.
+    pub fn name(&self) -> &'static str {
+        match self {
+            StarVerdict::NotJudged(_) => "not-judged",
+        }
+    }
+
+    /// Whether nothing wrong was found (the exit status).
+    pub fn passes(&self) -> bool {
+        match self {
+            StarVerdict::NotJudged(_) => true,
+        }
+    }
+
+    /// The verdict in a line.
+    pub fn line(&self) -> String {
+        match self {
+            StarVerdict::NotJudged(why) => format!("not judged: {why}"),
+        }
+    }
+}
+
+/// The judge of `option`'s image.
+fn judge(option: StarOption, _image: &Rgb8) -> StarVerdict {
+    match option {
+        StarOption::Bump => StarVerdict::NotJudged(
+            "whitted renders bumpy spheres smooth; the bump map's check is not built in yet",
+        ),
+        StarOption::Distributed => {
+            StarVerdict::NotJudged("the distribution's per-pixel expectation is not built in yet")
+        }
+    }
+}
+
+/// Runs the Tick 1* program `launch` starts (shown as `program`) on each option's handout
+/// scene of `course`, once, giving each `asked` seconds (at least `LONG_TIMEOUT` at a year's
+/// own size); one option out of time does not stop the other.
+pub fn run(launch: &dyn Launch, program: &str, course: Course, asked: u64) -> Result<SuiteRun> {
+    let cases = star_option::cases(course);
+    let timeout = star_option::timeout(course, asked);
+    let (finished, _) = run_programs(launch, &cases, Duration::from_secs(timeout), false)?;
+    let outcomes = cases
+        .iter()
+        .zip(finished)
+        .map(|(case, (ran, stderr_tail))| {
+            let status = match (ran, StarOption::of_file(&case.file)) {
+                (Ran::Image(image), Some(option)) => RunStatus::Star(Box::new(StarImage {
+                    option,
+                    verdict: judge(option, &image),
+                    image,
+                })),
+                (Ran::Image(_), None) => RunStatus::Crashed("not a Tick 1* scene".into()),
+                (Ran::Failed(status), _) => status,
+            };
+            CaseOutcome {
+                name: case.name(),
+                case: case.clone(),
+                status,
+                stderr_tail,
+                said_above: false,
+            }
+        })
+        .collect();
+    let mut findings = Findings::of_star(course);
+    findings.tick1_star = Some(Tick1Star {
+        seen: StarSeen::Package,
+        timeout,
+        stopped: false,
+        plan: Some(star_option::plan(course, asked)),
+    });
+    Ok(SuiteRun {
+        program: program.to_string(),
+        cases: outcomes,
+        findings,
+    })
+}
