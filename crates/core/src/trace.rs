@@ -285,7 +285,7 @@ pub fn java_max_zero(x: f64) -> f64 {
 /// `pow(+0, n)` is +0 for every `n > 0` (IEEE 754 and C's `pow`), so the library call is
 /// skipped for an exponent of 0 (the plane's default) and for a clamped `R.V` of +0 (a lit
 /// point whose mirror direction turns away from the viewer) with the very same result.
-fn phong_power(x: f64, n: f64) -> f64 {
+pub(crate) fn phong_power(x: f64, n: f64) -> f64 {
     if n == 0.0 {
         1.0
     } else if x.to_bits() == 0 && n > 0.0 {
