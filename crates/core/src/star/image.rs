@@ -8,6 +8,9 @@ use super::path::{trace_path, Path, ShadowQuery, Visibility};
 use super::streams::{CourseStream, PixelPoints, MAX_SOBOL_POINTS};
 use super::Star;
 use crate::accel::Accelerator;
+use crate::aov::Layer;
+use crate::film::{Film, PixelAccumulator};
+use crate::sample::StarValues;
 use crate::camera::Camera;
 use crate::course::Course;
 use crate::error::Result;
@@ -96,7 +99,7 @@ struct PixelResult {
 /// shadow rays, each radius, polar angle, azimuth) from the pixel's own stream.
 pub fn course_draw(frame: &StarFrame, seed: u64) -> Result<StarImage> {
     render(frame, |model, accel, x, y| {
-        draw_pixel(model, accel, frame, seed, x, y)
+        draw_pixel(model, accel, frame, seed, (x, y), None)
     })
 }
 
@@ -104,8 +107,90 @@ pub fn course_draw(frame: &StarFrame, seed: u64) -> Result<StarImage> {
 /// estimated with Sobol points seeded by `seed` to `floor`.
 pub fn expectation(frame: &StarFrame, floor: NoiseFloor, seed: u64) -> Result<StarImage> {
     render(frame, |model, accel, x, y| {
-        expect_pixel(model, accel, frame, floor, seed, x, y)
+        expect_pixel(model, accel, frame, (floor, seed), (x, y), None)
     })
+}
+
+/// How a Tick 1* film is sampled (`--sampling`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Sampling {
+    /// One draw of the course's process (`course_draw`).
+    Course { seed: u64 },
+    /// The expectation to a noise floor (`expectation`).
+    Converged { floor: NoiseFloor, seed: u64 },
+}
+
+/// A Tick 1* render as a film of `layers` (the tick's layers split each camera ray, plus
+/// `aov::star_layers`), for the image writers: every camera ray of a pixel is one sample.
+/// Also returns how many non-finite layer values were stored as 0.
+pub fn star_film(
+    frame: &StarFrame,
+    sampling: Sampling,
+    layers: Vec<Layer>,
+) -> Result<(Film, u64)> {
+    let (width, height) = (frame.camera.width, frame.camera.height);
+    let mut film = Film::new(width, height, layers)?;
+    film.display = (width, height);
+    let model = frame.course.rules();
+    let accel = accelerator(&model, frame.scene);
+    let channels = film.channel_count();
+    let row_channels = width as usize * channels;
+    let lights = frame.scene.lights.len();
+    let layers = &film.layers;
+    let data: Vec<&mut [f32]> = if channels == 0 {
+        (0..height).map(|_| <&mut [f32]>::default()).collect()
+    } else {
+        film.data.chunks_mut(row_channels).collect()
+    };
+    let non_finite: u64 = film
+        .beauty
+        .par_chunks_mut(width as usize)
+        .zip(data)
+        .enumerate()
+        .map(|(y, (beauty, data))| {
+            let mut accumulator = PixelAccumulator::new(layers, channels);
+            let mut paths = Vec::new();
+            let mut non_finite = 0;
+            for (x, pixel) in beauty.iter_mut().enumerate() {
+                if interrupt::requested() {
+                    break;
+                }
+                paths.clear();
+                let at = (x as u32, y as u32);
+                let result = match sampling {
+                    Sampling::Course { seed } => {
+                        draw_pixel(&model, &accel, frame, seed, at, Some(&mut paths))
+                    }
+                    Sampling::Converged { floor, seed } => {
+                        expect_pixel(&model, &accel, frame, (floor, seed), at, Some(&mut paths))
+                    }
+                };
+                let star = StarValues {
+                    variance: result.variance,
+                    circle_of_confusion: f64::from(result.coc),
+                    height: f64::from(result.height),
+                };
+                for (i, path) in paths.iter().enumerate() {
+                    let sample = path.sample(lights, frame.trace.bounces, star);
+                    accumulator.add(&sample, i == 0);
+                }
+                let values = &mut data[x * channels..(x + 1) * channels];
+                non_finite += accumulator.finish(pixel, values);
+            }
+            non_finite
+        })
+        .sum();
+    interrupt::check()?;
+    Ok((film, non_finite))
+}
+
+/// The hierarchy where the model's hits allow it, else brute force.
+fn accelerator(model: &impl Model, scene: &Scene) -> Accelerator {
+    if model.hierarchy_exact() {
+        Accelerator::build(&scene.objects)
+    } else {
+        Accelerator::brute_force(&scene.objects)
+    }
 }
 
 fn render(
@@ -113,11 +198,7 @@ fn render(
     pixel: impl Fn(&crate::course::Rules, &Accelerator, u32, u32) -> PixelResult + Sync,
 ) -> Result<StarImage> {
     let model = frame.course.rules();
-    let accel = if model.hierarchy_exact() {
-        Accelerator::build(&frame.scene.objects)
-    } else {
-        Accelerator::brute_force(&frame.scene.objects)
-    };
+    let accel = accelerator(&model, frame.scene);
     let (width, height) = (frame.camera.width, frame.camera.height);
     let rows: Vec<Vec<PixelResult>> = (0..height)
         .into_par_iter()
@@ -220,6 +301,7 @@ fn share(lit: u32, n: u32) -> Visibility {
     Visibility {
         fraction: p,
         spread,
+        rays: n,
     }
 }
 
@@ -228,8 +310,8 @@ fn draw_pixel(
     accel: &Accelerator,
     frame: &StarFrame,
     seed: u64,
-    x: u32,
-    y: u32,
+    (x, y): (u32, u32),
+    mut keep: Option<&mut Vec<Path>>,
 ) -> PixelResult {
     let star = frame.star;
     let mut stream = CourseStream::new(seed, pixel_index(frame, x, y));
@@ -262,7 +344,11 @@ fn draw_pixel(
         None => {
             let path = trace(pinhole, &mut stream);
             add_visible(&path, &mut visible);
-            (path.radiance(), 1)
+            let radiance = path.radiance();
+            if let Some(kept) = keep.as_mut() {
+                kept.push(path);
+            }
+            (radiance, 1)
         }
         Some(dof) => {
             let mut sum = DVec3::ZERO;
@@ -271,6 +357,9 @@ fn draw_pixel(
                 let path = trace(dof.ray(&pinhole, u), &mut stream);
                 add_visible(&path, &mut visible);
                 sum += path.radiance();
+                if let Some(kept) = keep.as_mut() {
+                    kept.push(path);
+                }
             }
             (sum / f64::from(dof.rays), dof.rays)
         }
@@ -304,10 +393,9 @@ fn expect_pixel(
     model: &impl Model,
     accel: &Accelerator,
     frame: &StarFrame,
-    floor: NoiseFloor,
-    seed: u64,
-    x: u32,
-    y: u32,
+    (floor, seed): (NoiseFloor, u64),
+    (x, y): (u32, u32),
+    mut keep: Option<&mut Vec<Path>>,
 ) -> PixelResult {
     let star = frame.star;
     let points = PixelPoints::new(seed, pixel_index(frame, x, y));
@@ -365,6 +453,9 @@ fn expect_pixel(
             sums.radiance += c;
             sums.squares += c * c;
             sums.spread += path.spread();
+            if let Some(kept) = keep.as_mut() {
+                kept.push(path);
+            }
         }
         let n = f64::from(sums.n);
         let mean = sums.radiance / n;

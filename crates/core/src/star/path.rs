@@ -11,6 +11,7 @@ use super::Star;
 use crate::geometry::{normalise, Ray};
 use crate::hits::Hits;
 use crate::model::Model;
+use crate::sample::{PrimaryHit, Sample, StarValues};
 use crate::scene::Scene;
 use crate::trace::{java_max_zero, phong_power, TraceOptions};
 
@@ -22,12 +23,15 @@ pub struct Visibility {
     /// An unbiased estimate of `p (1 - p)`, the variance of one shadow ray's indicator
     /// (0 when the answer is certain, as for a hard shadow).
     pub spread: f64,
+    /// Shadow rays cast.
+    pub rays: u32,
 }
 
 impl Visibility {
     pub const LIT: Visibility = Visibility {
         fraction: 1.0,
         spread: 0.0,
+        rays: 0,
     };
 }
 
@@ -43,9 +47,17 @@ pub struct ShadowQuery<'q> {
 /// One light's terms at a vertex.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LightTerm {
-    /// Diffuse + specular with the light unoccluded.
-    pub unshadowed: DVec3,
+    /// The diffuse and specular terms with the light unoccluded.
+    pub diffuse: DVec3,
+    pub specular: DVec3,
     pub visibility: Visibility,
+}
+
+impl LightTerm {
+    /// Diffuse + specular with the light unoccluded.
+    pub fn unshadowed(&self) -> DVec3 {
+        self.diffuse + self.specular
+    }
 }
 
 /// A shaded vertex of the chain.
@@ -88,12 +100,52 @@ impl Path {
                 let lit: DVec3 = v
                     .lights
                     .iter()
-                    .map(|l| l.unshadowed * l.visibility.fraction)
+                    .map(|l| l.unshadowed() * l.visibility.fraction)
                     .sum();
                 (v.ambient + lit) * v.weight
             })
             .sum::<DVec3>()
             + self.background
+    }
+
+    /// The path as the tick's layers split it (docs/aovs.md), with `star` for its pixel's
+    /// Tick 1* layers: each visibility scales its light's terms, and a shadow mask is the
+    /// occluded share at the camera's hit.
+    pub fn sample(&self, lights: usize, bounces: u32, star: StarValues) -> Sample {
+        let mut s = Sample::empty(lights, bounces);
+        s.rays = 1;
+        for (k, v) in self.vertices.iter().enumerate() {
+            let mut shaded = v.ambient;
+            s.ambient += v.ambient * v.weight;
+            for (out, l) in s.lights.iter_mut().zip(&v.lights) {
+                let f = l.visibility.fraction;
+                let (diffuse, specular) = (l.diffuse * f, l.specular * f);
+                shaded += diffuse + specular;
+                out.shadowed += (diffuse + specular) * v.weight;
+                out.unshadowed += l.unshadowed() * v.weight;
+                s.diffuse += diffuse * v.weight;
+                s.specular += specular * v.weight;
+                if k == 0 {
+                    out.shadowed_at_primary = 1.0 - f;
+                }
+                s.rays += u64::from(l.visibility.rays);
+            }
+            *bucket(&mut s, k) += shaded * v.weight;
+            s.rays += u64::from(k > 0);
+        }
+        s.background = self.background;
+        if self.vertices.len() <= bounces as usize {
+            *bucket(&mut s, self.vertices.len()) += self.background;
+        }
+        s.beauty = self.radiance();
+        s.primary = self.primary.map(|p| PrimaryHit {
+            position: p.position,
+            normal: p.normal,
+            albedo: p.albedo,
+            object: p.object,
+        });
+        s.star = star;
+        s
     }
 
     /// `sum_k sum_i (w_k terms_ki)^2 spread_ki`: divided by a shadow-ray count n, the
@@ -103,7 +155,7 @@ impl Path {
             .iter()
             .flat_map(|v| {
                 v.lights.iter().map(move |l| {
-                    let t = l.unshadowed * v.weight;
+                    let t = l.unshadowed() * v.weight;
                     t * t * l.visibility.spread
                 })
             })
@@ -159,7 +211,8 @@ pub fn trace_path<M: Model>(
             let raw_n_dot_l = normal.dot(l);
             if !model.reaches(raw_n_dot_l) {
                 lights.push(LightTerm {
-                    unshadowed: DVec3::ZERO,
+                    diffuse: DVec3::ZERO,
+                    specular: DVec3::ZERO,
                     visibility: Visibility::LIT,
                 });
                 continue;
@@ -188,7 +241,8 @@ pub fn trace_path<M: Model>(
                 Visibility::LIT
             };
             lights.push(LightTerm {
-                unshadowed: diffuse + specular,
+                diffuse,
+                specular,
                 visibility: seen,
             });
         }
@@ -213,4 +267,13 @@ pub fn trace_path<M: Model>(
         ray = model.mirror_ray(point, ray.direction, normal);
     }
     path
+}
+
+/// Where vertex k's radiance is filed: `direct` for the camera's hit, else the bounce's
+/// reflected layer (a chain that leaves the scene files its background at the next vertex).
+fn bucket(sample: &mut Sample, k: usize) -> &mut DVec3 {
+    match k {
+        0 => &mut sample.direct,
+        k => &mut sample.reflected_by_bounce[k - 1],
+    }
 }
