@@ -9,12 +9,14 @@ mod check;
 mod grade;
 mod look;
 mod parse;
+mod star;
 mod values;
 
 pub use check::CheckArgs;
 pub use grade::GradeArgs;
 pub use look::{ExplainArgs, RelightArgs, ServeArgs, ViewArgs};
 use parse::*;
+pub use star::StarArgs;
 pub use values::{CompressionArg, CourseArg, ToneMapArg};
 use whitted_core::course::Course;
 use whitted_core::error::Result;
@@ -428,6 +430,9 @@ pub struct RenderArgs {
 
     #[command(flatten)]
     pub tone: ToneArgs,
+
+    #[command(flatten)]
+    pub star: StarArgs,
 
     /// Worker threads [default: all cores]; the output is identical for any number
     #[arg(long, value_name = "N", value_parser = parse_threads)]
