@@ -10,18 +10,20 @@ import javax.imageio.ImageIO;
  * docs/courses.md ("Tick 1*"), never from the course's code. The constructor is the skeleton's
  * (skeleton/tick1/BumpySphere.java: height = 5 * blue / 255); getNormalAt is the student's.
  *
- * -Dbump=PARAMETRISATION[,MISTAKE...] chooses how it is written. The parametrisations, each
- * correct (the map lies on the sphere one-to-one, moved or mirrored): poles-y (the poles on the
- * y axis, u from atan2(z, x), v from the polar angle off +y), poles-y-xz (u from atan2(x, z)),
- * poles-z (the poles on z, u from atan2(y, x)), poles-y-mirrored (poles-y with u running the
- * other way). The mistakes: inverted (the relief's sign flipped), swapped-gradients (B_u with
- * P_u and B_v with P_v), unnormalised-tangents, unnormalised-result, left-above (the gradient
- * of the texel to the left and above, the sign kept), colour-height (the packed colour, not the
- * blue byte, taken as height), no-centre (the normal of a sphere at the origin: P not made
- * relative to the centre).
+ * -Dbump=PARAMETRISATION[,MISTAKE...] chooses how it is written, in the names of whitted's
+ * docs/tick1star.md (v = acos(n.pole) / pi throughout). The parametrisations, each correct
+ * (the map lies on the sphere one-to-one, moved or mirrored): y-zx (the poles on y,
+ * u = 0.5 + atan2(n.z, n.x) / 2pi; the default), y-zx-mirrored (u = 0.5 - that), y-xz
+ * (u = 0.5 + atan2(n.x, n.z) / 2pi), y-zx-from-x (u = atan2(n.z, n.x) / 2pi wrapped into
+ * [0, 1)), z-yx (the poles on z, u = 0.5 + atan2(n.y, n.x) / 2pi), z-yx-from-x. The mistakes:
+ * inverted (the relief's sign flipped), swapped-gradients (B_u with P_u and B_v with P_v),
+ * unnormalised-tangents, unnormalised-normal (n' not normalised), wrong-texel (the gradient
+ * towards the texel left and above, neighbour minus current as before), colour-as-height (the
+ * mean of r, g, b as height, not the blue byte: the same on a grey map), no-centre (the normal
+ * of a sphere at the origin: P not made relative to the centre).
  */
 public class BumpySphere extends Sphere {
-    private static final String[] BUMP = System.getProperty("bump", "poles-y").split(",");
+    private static final String[] BUMP = System.getProperty("bump", "y-zx").split(",");
     private final float BUMP_FACTOR = 5;
     private float[][] bumpMap;
     private int bumpMapHeight;
@@ -42,7 +44,9 @@ public class BumpySphere extends Sphere {
             for (int row = 0; row < bumpMapHeight; row++) {
                 for (int col = 0; col < bumpMapWidth; col++) {
                     int rgb = inputImg.getRGB(col, row);
-                    float height = mistake("colour-height") ? (rgb & 0xFFFFFF) / 255f : (float) (rgb & 0xFF) / 0xFF;
+                    float height = mistake("colour-as-height")
+                            ? ((rgb >> 16 & 0xFF) + (rgb >> 8 & 0xFF) + (rgb & 0xFF)) / 3f / 0xFF
+                            : (float) (rgb & 0xFF) / 0xFF;
                     bumpMap[row][col] = BUMP_FACTOR * height;
                 }
             }
@@ -56,49 +60,40 @@ public class BumpySphere extends Sphere {
     public Vector3 getNormalAt(Vector3 position) {
         // The smooth sphere's normal: also the point of the unit sphere the map is laid on.
         Vector3 n = mistake("no-centre") ? position.normalised() : super.getNormalAt(position);
-        double u, v;
-        Vector3 Pu, Pv;
-        switch (BUMP[0]) {
-            case "poles-y-xz": {
-                double theta = Math.acos(n.y), phi = Math.atan2(n.x, n.z);
-                u = (phi + Math.PI) / (2 * Math.PI);
-                v = theta / Math.PI;
-                Pu = new Vector3(Math.sin(theta) * Math.cos(phi), 0, -Math.sin(theta) * Math.sin(phi)).scale(2 * Math.PI);
-                Pv = new Vector3(Math.cos(theta) * Math.sin(phi), -Math.sin(theta), Math.cos(theta) * Math.cos(phi)).scale(Math.PI);
-                break;
-            }
-            case "poles-z": {
-                double theta = Math.acos(n.z), phi = Math.atan2(n.y, n.x);
-                u = (phi + Math.PI) / (2 * Math.PI);
-                v = theta / Math.PI;
-                Pu = new Vector3(-Math.sin(theta) * Math.sin(phi), Math.sin(theta) * Math.cos(phi), 0).scale(2 * Math.PI);
-                Pv = new Vector3(Math.cos(theta) * Math.cos(phi), Math.cos(theta) * Math.sin(phi), -Math.sin(theta)).scale(Math.PI);
-                break;
-            }
-            case "poles-y":
-            case "poles-y-mirrored": {
-                double theta = Math.acos(n.y), phi = Math.atan2(n.z, n.x);
-                boolean mirrored = BUMP[0].equals("poles-y-mirrored");
-                u = (phi + Math.PI) / (2 * Math.PI);
-                if (mirrored) u = 1 - u;
-                v = theta / Math.PI;
-                Pu = new Vector3(-Math.sin(theta) * Math.sin(phi), 0, Math.sin(theta) * Math.cos(phi)).scale(mirrored ? -2 * Math.PI : 2 * Math.PI);
-                Pv = new Vector3(Math.cos(theta) * Math.cos(phi), -Math.sin(theta), Math.cos(theta) * Math.sin(phi)).scale(Math.PI);
-                break;
-            }
-            default:
-                throw new IllegalArgumentException("no parametrisation " + BUMP[0]);
+        String name = BUMP[0];
+        boolean poleZ = name.startsWith("z-");
+        // (a, b, c): the pole's axis c, u's angle phi = atan2(b, a), as the name says.
+        double a, b, c;
+        if (poleZ) {
+            a = n.x; b = n.y; c = n.z;
+        } else if (name.startsWith("y-xz")) {
+            a = n.z; b = n.x; c = n.y;
+        } else if (name.startsWith("y-zx")) {
+            a = n.x; b = n.z; c = n.y;
+        } else {
+            throw new IllegalArgumentException("no parametrisation " + name);
         }
+        double theta = Math.acos(c), phi = Math.atan2(b, a);
+        double u = 0.5 + phi / (2 * Math.PI);
+        if (name.endsWith("-mirrored")) u = 1 - u;
+        if (name.endsWith("-from-x")) u = phi >= 0 ? phi / (2 * Math.PI) : 1 + phi / (2 * Math.PI);
+        double v = theta / Math.PI;
+        double du = name.endsWith("-mirrored") ? -2 * Math.PI : 2 * Math.PI;
+        // The partial derivatives of (a, b, c) = (sin theta cos phi, sin theta sin phi, cos theta).
+        double[] dU = {-Math.sin(theta) * Math.sin(phi) * du, Math.sin(theta) * Math.cos(phi) * du, 0};
+        double[] dV = {Math.cos(theta) * Math.cos(phi) * Math.PI, Math.cos(theta) * Math.sin(phi) * Math.PI, -Math.sin(theta) * Math.PI};
+        Vector3 Pu = back(dU, poleZ, name.startsWith("y-xz"));
+        Vector3 Pv = back(dV, poleZ, name.startsWith("y-xz"));
         if (!mistake("unnormalised-tangents")) {
             Pu = Pu.normalised();
             Pv = Pv.normalised();
         }
         // The texel under (u, v) and its neighbours (clamped at the map's edges).
-        int col = Math.min((int) (u * (bumpMapWidth - 1)), bumpMapWidth - 1);
-        int row = Math.min((int) (v * (bumpMapHeight - 1)), bumpMapHeight - 1);
+        int col = Math.min((int) Math.floor(u * bumpMapWidth), bumpMapWidth - 1);
+        int row = Math.min((int) Math.floor(v * bumpMapHeight), bumpMapHeight - 1);
         float here = bumpMap[row][col];
         double Bu, Bv;
-        if (mistake("left-above")) {
+        if (mistake("wrong-texel")) {
             Bu = bumpMap[row][Math.max(col - 1, 0)] - here;
             Bv = bumpMap[Math.max(row - 1, 0)][col] - here;
         } else {
@@ -115,6 +110,13 @@ public class BumpySphere extends Sphere {
             Bv = -Bv;
         }
         Vector3 bumped = n.add(n.cross(Pv).scale(Bu)).add(n.cross(Pu).scale(Bv));
-        return mistake("unnormalised-result") ? bumped : bumped.normalised();
+        return mistake("unnormalised-normal") ? bumped : bumped.normalised();
+    }
+
+    /** A vector of the (a, b, c) frame back in (x, y, z). */
+    private static Vector3 back(double[] d, boolean poleZ, boolean xz) {
+        if (poleZ) return new Vector3(d[0], d[1], d[2]);
+        if (xz) return new Vector3(d[1], d[2], d[0]);
+        return new Vector3(d[0], d[2], d[1]);
     }
 }
