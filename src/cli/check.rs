@@ -9,6 +9,13 @@ use super::values::CourseArg;
 use super::ServeArgs;
 use whitted_check::check::pass_rule::{Allowance, PassRule};
 
+/// A Tick 1* option, as `--star` names it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum StarArg {
+    Bump,
+    Distributed,
+}
+
 #[derive(Debug, Clone, Args)]
 pub struct CheckArgs {
     /// The student's PNG (8-bit RGB; the size it has is the size rendered), or their project
@@ -71,6 +78,13 @@ pub struct CheckArgs {
     /// Seconds each case of `--program` may take
     #[arg(long, value_name = "SECONDS", default_value_t = 60, value_parser = parse_timeout)]
     pub timeout: u64,
+
+    /// Judge the image as Tick 1*'s option: `distributed` (a draw of the course's soft shadows
+    /// and depth of field on distributed.xml, or of which variant; needs --course) or `bump`
+    /// (docs/check.md, "Tick 1*")
+    #[arg(long, value_name = "OPTION", value_enum,
+          conflicts_with_all = ["program", "input", "heatmap", "report", "view", "suite_dir"])]
+    pub star: Option<StarArg>,
 
     /// Print the catalogue of mistakes and exit (with --course, that year's entries in its words)
     #[arg(long, conflicts_with_all = ["image", "program", "input", "json", "heatmap", "report", "view", "suite_dir", "verbose"])]

@@ -3,6 +3,7 @@
 //! every image passes, 1 when one differs, 2 when they cannot be compared.
 
 mod project;
+mod star;
 
 use serde_json::Value;
 
@@ -37,6 +38,7 @@ pub fn run(args: &CheckArgs) -> Result<bool> {
     }
     match (&args.program, &args.image) {
         (Some(program), _) => run_program(args, program),
+        (None, Some(image)) if args.star.is_some() => star::run(args, image),
         (None, Some(dir)) if project::is_project_arg(dir) => project::run(args, dir),
         (None, Some(image)) if args.view => view(args, image),
         (None, Some(image)) => run_image(args, image),

@@ -106,12 +106,13 @@ pub fn run(args: &RenderArgs, input: &Input) -> Result<()> {
         star: &star,
     };
     let started = Instant::now();
-    let (film, non_finite) = super::render::with_threads(plan.threads, || {
-        star_film(&frame, sampling, layers.clone())
-    })??;
+    let (film, non_finite) =
+        super::render::with_threads(plan.threads, || star_film(&frame, sampling, layers.clone()))??;
     let seconds = started.elapsed().as_secs_f64();
     if non_finite > 0 {
-        eprintln!("warning: {non_finite} non-finite layer values (NaN or infinity) were written as 0");
+        eprintln!(
+            "warning: {non_finite} non-finite layer values (NaN or infinity) were written as 0"
+        );
     }
     let camera = plan.frame.camera();
     let metadata = exr_file.is_some().then(|| {

@@ -7,6 +7,7 @@ mod check_courses;
 mod check_histories;
 mod check_print;
 mod check_project;
+mod check_star;
 mod cli_errors;
 mod common;
 mod courses;

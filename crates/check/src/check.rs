@@ -24,6 +24,7 @@ pub mod report;
 pub mod reproduce;
 pub mod result;
 pub mod score;
+pub mod star_draw;
 pub mod star_option;
 pub mod star_run;
 pub mod student_png;

@@ -6,6 +6,7 @@
 use std::time::Duration;
 
 use crate::check::program::{run_programs, CaseOutcome, Launch, Ran, RunStatus, SuiteRun};
+use crate::check::star_draw::{self, DrawCheck, Process};
 use crate::check::star_option::{self, StarOption};
 use crate::check::student_png::Rgb8;
 use crate::check::tick1_star::{StarSeen, Tick1Star};
@@ -30,13 +31,23 @@ impl StarImage {
             "height": self.image.height,
             "verdict": self.verdict.name(),
             "line": self.verdict.line(),
+            "fits": match &self.verdict {
+                StarVerdict::Draw(d) => d
+                    .fits
+                    .iter()
+                    .map(|f| serde_json::json!({"process": f.process.name(), "statistic": f.statistic}))
+                    .collect::<Vec<_>>(),
+                StarVerdict::NotJudged(_) => Vec::new(),
+            },
         })
     }
 }
 
 /// What a Tick 1* option's judge says of an image.
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum StarVerdict {
+    /// Option 2's image scored as a draw of the course's process and its variants.
+    Draw(DrawCheck),
     /// No judge of this option's images is built into this whitted: why, in words.
     NotJudged(&'static str),
 }
@@ -45,6 +56,11 @@ impl StarVerdict {
     /// The JSON value.
     pub fn name(&self) -> &'static str {
         match self {
+            StarVerdict::Draw(d) => match d.drawn_from() {
+                Some(Process::Course) => "course-draw",
+                Some(_) => "variant-draw",
+                None => "not-a-draw",
+            },
             StarVerdict::NotJudged(_) => "not-judged",
         }
     }
@@ -52,6 +68,7 @@ impl StarVerdict {
     /// Whether nothing wrong was found (the exit status).
     pub fn passes(&self) -> bool {
         match self {
+            StarVerdict::Draw(d) => d.drawn_from() == Some(Process::Course),
             StarVerdict::NotJudged(_) => true,
         }
     }
@@ -59,21 +76,26 @@ impl StarVerdict {
     /// The verdict in a line.
     pub fn line(&self) -> String {
         match self {
+            StarVerdict::Draw(d) => d.line(),
             StarVerdict::NotJudged(why) => format!("not judged: {why}"),
         }
     }
 }
 
-/// The judge of `option`'s image.
-fn judge(option: StarOption, _image: &Rgb8) -> StarVerdict {
-    match option {
-        StarOption::Bump => StarVerdict::NotJudged(
-            "whitted renders bumpy spheres smooth; the bump map's check is not built in yet",
-        ),
+/// The judge of `option`'s image, rendered under `course` at `bounces`.
+pub fn judge(
+    option: StarOption,
+    image: &Rgb8,
+    bounces: u32,
+    course: Course,
+) -> Result<StarVerdict> {
+    Ok(match option {
+        StarOption::Bump => StarVerdict::NotJudged("the bump map's check is not built in yet"),
         StarOption::Distributed => {
-            StarVerdict::NotJudged("the distribution's per-pixel expectation is not built in yet")
+            let scene = star_draw::distributed_scene(course)?;
+            StarVerdict::Draw(star_draw::check(&scene, image, bounces, course)?)
         }
-    }
+    })
 }
 
 /// Runs the Tick 1* program `launch` starts (shown as `program`) on each option's handout
@@ -83,28 +105,25 @@ pub fn run(launch: &dyn Launch, program: &str, course: Course, asked: u64) -> Re
     let cases = star_option::cases(course);
     let timeout = star_option::timeout(course, asked);
     let (finished, _) = run_programs(launch, &cases, Duration::from_secs(timeout), false)?;
-    let outcomes = cases
-        .iter()
-        .zip(finished)
-        .map(|(case, (ran, stderr_tail))| {
-            let status = match (ran, StarOption::of_file(&case.file)) {
-                (Ran::Image(image), Some(option)) => RunStatus::Star(Box::new(StarImage {
-                    option,
-                    verdict: judge(option, &image),
-                    image,
-                })),
-                (Ran::Image(_), None) => RunStatus::Crashed("not a Tick 1* scene".into()),
-                (Ran::Failed(status), _) => status,
-            };
-            CaseOutcome {
-                name: case.name(),
-                case: case.clone(),
-                status,
-                stderr_tail,
-                said_above: false,
-            }
-        })
-        .collect();
+    let mut outcomes = Vec::new();
+    for (case, (ran, stderr_tail)) in cases.iter().zip(finished) {
+        let status = match (ran, StarOption::of_file(&case.file)) {
+            (Ran::Image(image), Some(option)) => RunStatus::Star(Box::new(StarImage {
+                option,
+                verdict: judge(option, &image, case.bounces, course)?,
+                image,
+            })),
+            (Ran::Image(_), None) => RunStatus::Crashed("not a Tick 1* scene".into()),
+            (Ran::Failed(status), _) => status,
+        };
+        outcomes.push(CaseOutcome {
+            name: case.name(),
+            case: case.clone(),
+            status,
+            stderr_tail,
+            said_above: false,
+        });
+    }
     let mut findings = Findings::of_star(course);
     findings.tick1_star = Some(Tick1Star {
         seen: StarSeen::Package,

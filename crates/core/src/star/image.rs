@@ -9,14 +9,14 @@ use super::streams::{CourseStream, PixelPoints, MAX_SOBOL_POINTS};
 use super::Star;
 use crate::accel::Accelerator;
 use crate::aov::Layer;
-use crate::film::{Film, PixelAccumulator};
-use crate::sample::StarValues;
 use crate::camera::Camera;
 use crate::course::Course;
 use crate::error::Result;
+use crate::film::{Film, PixelAccumulator};
 use crate::geometry::Ray;
 use crate::interrupt;
 use crate::model::Model;
+use crate::sample::StarValues;
 use crate::scene::Scene;
 use crate::trace::TraceOptions;
 
@@ -123,11 +123,7 @@ pub enum Sampling {
 /// A Tick 1* render as a film of `layers` (the tick's layers split each camera ray, plus
 /// `aov::star_layers`), for the image writers: every camera ray of a pixel is one sample.
 /// Also returns how many non-finite layer values were stored as 0.
-pub fn star_film(
-    frame: &StarFrame,
-    sampling: Sampling,
-    layers: Vec<Layer>,
-) -> Result<(Film, u64)> {
+pub fn star_film(frame: &StarFrame, sampling: Sampling, layers: Vec<Layer>) -> Result<(Film, u64)> {
     let (width, height) = (frame.camera.width, frame.camera.height);
     let mut film = Film::new(width, height, layers)?;
     film.display = (width, height);
@@ -409,9 +405,7 @@ fn expect_pixel(
     } else {
         1
     };
-    let max_paths = floor
-        .max_paths
-        .clamp(1, MAX_SOBOL_POINTS / shadow_points);
+    let max_paths = floor.max_paths.clamp(1, MAX_SOBOL_POINTS / shadow_points);
     let mut sums = Sums::default();
     let mut target = if star.is_random() {
         FIRST_ROUND.min(max_paths)
