@@ -409,9 +409,7 @@ fn expect_pixel(
     } else {
         1
     };
-    let max_paths = floor
-        .max_paths
-        .clamp(1, MAX_SOBOL_POINTS / shadow_points);
+    let max_paths = floor.max_paths.clamp(1, MAX_SOBOL_POINTS);
     let mut sums = Sums::default();
     let mut target = if star.is_random() {
         FIRST_ROUND.min(max_paths)
@@ -428,10 +426,13 @@ fn expect_pixel(
             let mut sample = |q: ShadowQuery| match star.soft {
                 None => share(u32::from(!(q.blocked)(DVec3::ZERO)), 1),
                 Some(soft) => {
-                    let stream = q.depth * lights + q.light as u32;
+                    // Each of a ray's shadow points is point j of its own sequence: the
+                    // points of one ray are independent (so the spread is unbiased), each
+                    // sequence stratified over the pixel's rays.
+                    let stream = (q.depth * lights + q.light as u32) * shadow_points;
                     let lit = (0..shadow_points)
                         .filter(|s| {
-                            let u = points.shadow(stream, j * shadow_points + s);
+                            let u = points.shadow(stream + s, j);
                             !(q.blocked)(soft.sampling.point(u) * soft.light_size)
                         })
                         .count() as u32;
