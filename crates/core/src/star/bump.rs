@@ -20,16 +20,17 @@ use crate::geometry::normalise;
 pub const BUMP_FACTOR: f32 = 5.0;
 
 /// A bump map as the course's `BumpySphere` holds it: `float[row][col]`, row 0 the top of
-/// the image. Also keeps the colour-as-height field (the mean of red, green and blue, scaled
-/// alike), which a student who ignores the channel reads instead.
+/// the image. Also keeps the colour-as-height field (the whole packed `getRGB` colour, scaled
+/// alike), which a student who does not take the blue byte out of it reads instead.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BumpMap {
     width: usize,
     height: usize,
     /// `BUMP_FACTOR * (blue / 255f)`, in f32 as the course computes it, row by row.
     heights: Vec<f32>,
-    /// `BUMP_FACTOR * (mean of r, g, b) / 255`: the `ColourAsHeight` mistake's field.
-    grey: Vec<f32>,
+    /// `BUMP_FACTOR * (rgb / 255f)` with `rgb` the packed `0xRRGGBB` (the alpha byte of
+    /// `getRGB` is a constant that no gradient sees): the `ColourAsHeight` mistake's field.
+    packed: Vec<f32>,
 }
 
 impl BumpMap {
@@ -44,17 +45,19 @@ impl BumpMap {
             .iter()
             .map(|&[_, _, b]| BUMP_FACTOR * (f32::from(b) / 255.0))
             .collect();
-        let grey = rgb
+        let packed = rgb
             .iter()
             .map(|&[r, g, b]| {
-                BUMP_FACTOR * ((f32::from(r) + f32::from(g) + f32::from(b)) / 3.0 / 255.0)
+                let colour = (u32::from(r) << 16) | (u32::from(g) << 8) | u32::from(b);
+                // Exact: a 24-bit integer fits f32's significand.
+                BUMP_FACTOR * (colour as f32 / 255.0)
             })
             .collect();
         Some(BumpMap {
             width,
             height,
             heights,
-            grey,
+            packed,
         })
     }
 
@@ -70,7 +73,7 @@ impl BumpMap {
     fn at(&self, source: HeightSource, row: usize, col: usize) -> f64 {
         let field = match source {
             HeightSource::Blue => &self.heights,
-            HeightSource::Grey => &self.grey,
+            HeightSource::Packed => &self.packed,
         };
         f64::from(field[row * self.width + col])
     }
@@ -95,7 +98,7 @@ fn clamp_index(t: f64, n: usize) -> usize {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum HeightSource {
     Blue,
-    Grey,
+    Packed,
 }
 
 /// The axis a parametrisation's poles lie on.
@@ -259,7 +262,7 @@ pub enum BumpMistake {
     UnnormalisedResult,
     /// The gradient taken towards the texel to the left and above: h[left] - h[current].
     WrongTexel,
-    /// The height read from the colour (the mean of red, green and blue), not the blue byte.
+    /// The height read from the whole colour (`getRGB` not masked to its blue byte).
     ColourAsHeight,
 }
 
@@ -302,7 +305,7 @@ impl BumpMistake {
                 "the gradient is taken towards the texel left of / above the current one: use the texel to the right / below"
             }
             BumpMistake::ColourAsHeight => {
-                "the height is not the blue channel x 5 / 255: the colour is read as height"
+                "the height is the whole getRGB colour, not its blue byte (getRGB & 0xFF) x 5 / 255"
             }
         }
     }
@@ -326,7 +329,7 @@ pub fn perturb(method: &BumpMethod, map: &BumpMap, n: DVec3, radius: f64) -> (DV
         (safe_normalise(chart.p_u), safe_normalise(chart.p_v))
     };
     let source = if mistake == Some(BumpMistake::ColourAsHeight) {
-        HeightSource::Grey
+        HeightSource::Packed
     } else {
         HeightSource::Blue
     };
