@@ -375,7 +375,7 @@ mod tests {
     fn map(width: usize, height: usize, blue: impl Fn(usize, usize) -> u8) -> BumpMap {
         let rgb: Vec<[u8; 3]> = (0..height)
             .flat_map(|r| (0..width).map(move |c| (r, c)))
-            .map(|(r, c)| [7, 9, blue(r, c)])
+            .map(|(r, c)| [((r * 11 + c * 5) % 256) as u8, 9, blue(r, c)])
             .collect();
         BumpMap::from_rgb8(width, height, &rgb).expect("map")
     }
