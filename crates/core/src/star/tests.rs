@@ -62,7 +62,7 @@ fn uniform_tail(t: f64) -> f64 {
 fn frame<'a>(scene: &'a Scene, star: &'a Star) -> StarFrame<'a> {
     StarFrame {
         scene,
-        camera: Camera::new(64, 48),
+        camera: Camera::new(16, 12),
         course: Course::Y2016,
         trace: TraceOptions {
             bounces: 0,
@@ -72,10 +72,10 @@ fn frame<'a>(scene: &'a Scene, star: &'a Star) -> StarFrame<'a> {
     }
 }
 
-/// The floor pixels nearer than the wall: the bottom rows.
+/// The floor pixels nearer than the wall: the bottom sixth of the rows.
 fn floor_pixels(image: &StarImage) -> Vec<usize> {
-    let w = image.width as usize;
-    (40 * w..48 * w).collect()
+    let (w, h) = (image.width as usize, image.height as usize);
+    (h * 5 / 6 * w..h * w).collect()
 }
 
 #[test]
@@ -94,8 +94,8 @@ fn the_expected_visible_share_matches_the_closed_form_for_both_distributions() {
             ..Star::default()
         };
         let floor = NoiseFloor {
-            standard_error: 1e-4,
-            max_paths: 4096,
+            standard_error: 1e-5,
+            max_paths: 65536,
         };
         let image = expectation(&frame(&scene, &star), floor, 3).expect("renders");
         for i in floor_pixels(&image) {
@@ -116,7 +116,12 @@ fn the_course_draw_is_binomial_around_the_closed_form() {
         ..Star::default()
     };
     let p = 1.0 - course_tail(H / RADIUS);
-    let image = course_draw(&frame(&scene, &star), 11).expect("renders");
+    // Many floor pixels, so that the spread of their shares is a sure estimate.
+    let wide = StarFrame {
+        camera: Camera::new(64, 48),
+        ..frame(&scene, &star)
+    };
+    let image = course_draw(&wide, 11).expect("renders");
     let pixels = floor_pixels(&image);
     let shares: Vec<f64> = pixels.iter().map(|&i| f64::from(image.visible[0][i])).collect();
     // Each share is k/10: whole tenths.
@@ -132,7 +137,7 @@ fn the_course_draw_is_binomial_around_the_closed_form() {
         "{variance} vs {expected}"
     );
     // Another seed is another draw.
-    let other = course_draw(&frame(&scene, &star), 12).expect("renders");
+    let other = course_draw(&wide, 12).expect("renders");
     assert_ne!(image.visible, other.visible);
 }
 
@@ -187,8 +192,59 @@ fn without_effects_the_star_render_is_the_tick_render() {
     let image = course_draw(&f, 0).expect("renders");
     let accel = crate::accel::Accelerator::build(&scene.objects);
     for (i, b) in image.beauty.iter().enumerate() {
-        let (x, y) = (i as u32 % 64, i as u32 / 64);
+        let (x, y) = (i as u32 % 16, i as u32 / 16);
         let tick = crate::trace::trace(&scene, &accel, f.camera.pixel_centre_ray(x, y), f.trace);
         assert!((tick.beauty - *b).abs().max_element() < 1e-12, "pixel {i}");
     }
+}
+
+#[test]
+fn course_draws_scatter_around_the_expectation_by_the_reported_variance() {
+    // Soft shadows and depth of field together, at 32 x 24: the mean of K course draws of a
+    // pixel is normal around the expectation with variance `variance / K`.
+    let scene = penumbra_scene();
+    let star = Star {
+        soft: Some(SoftShadows::default()),
+        dof: Some(DepthOfField {
+            focal_z: 3.0,
+            side: 0.4,
+            rays: 6,
+        }),
+        ..Star::default()
+    };
+    let frame = StarFrame {
+        camera: Camera::new(32, 24),
+        ..frame(&scene, &star)
+    };
+    let expected = expectation(&frame, NoiseFloor::default(), 1).expect("renders");
+    let k = 40;
+    let mut sums = vec![DVec3::ZERO; expected.beauty.len()];
+    for seed in 0..k {
+        let draw = course_draw(&frame, 100 + seed).expect("renders");
+        for (s, b) in sums.iter_mut().zip(&draw.beauty) {
+            *s += *b;
+        }
+    }
+    let (mut tested, mut outliers) = (0, 0);
+    for (i, s) in sums.iter().enumerate() {
+        let mean = *s / k as f64;
+        // The expectation is promised to the noise floor (its standard error estimate, from
+        // eight replicates, is itself noisy).
+        let floor = NoiseFloor::default().standard_error;
+        let error = expected.standard_error[i].max(DVec3::splat(floor));
+        let sd = (expected.variance[i] / k as f64 + error * error).powf(0.5);
+        for c in 0..3 {
+            if sd[c] < 1e-9 {
+                assert!((mean[c] - expected.beauty[i][c]).abs() < 1e-9, "pixel {i}");
+                continue;
+            }
+            tested += 1;
+            if ((mean[c] - expected.beauty[i][c]) / sd[c]).abs() > 4.0 {
+                outliers += 1;
+            }
+        }
+    }
+    assert!(tested > 300, "{tested} random channels");
+    // |z| > 4 has probability 6e-5 for a normal; allow a few for the heavier tails of small K.
+    assert!(outliers <= tested / 200, "{outliers} of {tested} channels beyond 4 sigma");
 }
