@@ -12,7 +12,7 @@ mod parse;
 mod star;
 mod values;
 
-pub use check::{CheckArgs, StarArg};
+pub use check::{CheckArgs, StarCheck};
 pub use grade::GradeArgs;
 pub use look::{ExplainArgs, RelightArgs, ServeArgs, ViewArgs};
 use parse::*;

@@ -9,13 +9,6 @@ use super::values::CourseArg;
 use super::ServeArgs;
 use whitted_check::check::pass_rule::{Allowance, PassRule};
 
-/// A Tick 1* option, as `--star` names it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum StarArg {
-    Bump,
-    Distributed,
-}
-
 #[derive(Debug, Clone, Args)]
 pub struct CheckArgs {
     /// The student's PNG (8-bit RGB; the size it has is the size rendered), or their project
@@ -32,6 +25,13 @@ pub struct CheckArgs {
     #[arg(short, long, value_name = "N", default_value_t = 2,
           value_parser = parse_bounces, allow_negative_numbers = true, conflicts_with = "program")]
     pub bounces: u32,
+
+    /// Check a Tick 1* image: `bump` finds the parametrisation a bump-mapped image follows
+    /// and names what is wrong against it [default: `bump` when the scene has a
+    /// <bumpy-sphere>]; `distributed` says whether the image is one draw of the course's
+    /// soft shadows and depth of field on distributed.xml, or of which variant (needs
+    /// --course)
+    pub star: Option<StarCheck>,
 
     /// Largest difference of a channel, in LSB, that still passes
     #[arg(long, value_name = "LSB", default_value_t = 2)]
@@ -79,13 +79,6 @@ pub struct CheckArgs {
     #[arg(long, value_name = "SECONDS", default_value_t = 60, value_parser = parse_timeout)]
     pub timeout: u64,
 
-    /// Judge the image as Tick 1*'s option: `distributed` (a draw of the course's soft shadows
-    /// and depth of field on distributed.xml, or of which variant; needs --course) or `bump`
-    /// (docs/check.md, "Tick 1*")
-    #[arg(long, value_name = "OPTION", value_enum,
-          conflicts_with_all = ["program", "input", "heatmap", "report", "view", "suite_dir"])]
-    pub star: Option<StarArg>,
-
     /// Print the catalogue of mistakes and exit (with --course, that year's entries in its words)
     #[arg(long, conflicts_with_all = ["image", "program", "input", "json", "heatmap", "report", "view", "suite_dir", "verbose"])]
     pub list_bugs: bool,
@@ -113,4 +106,13 @@ impl CheckArgs {
             allowance: self.max_beyond.unwrap_or(Allowance::NONE),
         }
     }
+}
+
+/// The Tick 1* option an image is checked as.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum StarCheck {
+    /// Option 1, bump mapping
+    Bump,
+    /// Option 2, soft shadows and depth of field
+    Distributed,
 }

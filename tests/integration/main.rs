@@ -33,6 +33,7 @@ mod regression;
 mod relight;
 mod scale;
 mod scenes;
+mod tick1star;
 mod tonemap;
 mod view;
 mod view_hostile;

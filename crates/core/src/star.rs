@@ -69,3 +69,6 @@ impl Star {
         self.soft.is_some() || self.dof.is_some()
     }
 }
+
+#[cfg(test)]
+mod tests;

@@ -1,10 +1,10 @@
-//! `whitted check --course YEAR --star OPTION IMAGE.png`: a Tick 1* image judged as its
-//! option's (docs/check.md, "Tick 1*"): option 2's as a draw of the course's random process or
-//! of a variant; the same judge `--program` gives a Tick 1* program's images.
+//! `whitted check --course YEAR --star distributed IMAGE.png`: a Tick 1* option 2 image judged
+//! as a draw of the course's random process or of a variant (docs/check.md, "Tick 1*"): the
+//! same judge `--program` gives a Tick 1* program's distributed.xml image.
 
 use std::path::Path;
 
-use crate::cli::{CheckArgs, StarArg};
+use crate::cli::CheckArgs;
 use whitted_check::check::star_option::StarOption;
 use whitted_check::check::star_run::{judge, StarImage};
 use whitted_check::check::student_png;
@@ -14,10 +14,7 @@ use whitted_io::output::stdout;
 
 /// Returns whether the image passes (is a draw of the course's process).
 pub fn run(args: &CheckArgs, image: &Path) -> Result<bool> {
-    let option = match args.star {
-        Some(StarArg::Bump) => StarOption::Bump,
-        Some(StarArg::Distributed) | None => StarOption::Distributed,
-    };
+    let option = StarOption::Distributed;
     // A Tick 1* image's size says nothing of its year: 2023-24's programs render any size.
     let Some(course) = args.course.map(Course::from) else {
         return Err(Error::Usage(

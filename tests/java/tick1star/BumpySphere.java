@@ -19,7 +19,7 @@ import javax.imageio.ImageIO;
  * inverted (the relief's sign flipped), swapped-gradients (B_u with P_u and B_v with P_v),
  * unnormalised-tangents, unnormalised-normal (n' not normalised), wrong-texel (the gradient
  * towards the texel left and above, neighbour minus current as before), colour-as-height (the
- * mean of r, g, b as height, not the blue byte: the same on a grey map), no-centre (the normal
+ * packed colour 0xRRGGBB as height, not the blue byte), no-centre (the normal
  * of a sphere at the origin: P not made relative to the centre).
  */
 public class BumpySphere extends Sphere {
@@ -44,9 +44,7 @@ public class BumpySphere extends Sphere {
             for (int row = 0; row < bumpMapHeight; row++) {
                 for (int col = 0; col < bumpMapWidth; col++) {
                     int rgb = inputImg.getRGB(col, row);
-                    float height = mistake("colour-as-height")
-                            ? ((rgb >> 16 & 0xFF) + (rgb >> 8 & 0xFF) + (rgb & 0xFF)) / 3f / 0xFF
-                            : (float) (rgb & 0xFF) / 0xFF;
+                    float height = mistake("colour-as-height") ? (rgb & 0xFFFFFF) / 255f : (float) (rgb & 0xFF) / 0xFF;
                     bumpMap[row][col] = BUMP_FACTOR * height;
                 }
             }

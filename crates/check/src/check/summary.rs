@@ -39,6 +39,7 @@ pub fn opening(findings: &Findings) -> Vec<String> {
     // What the program is, or why its cases died, before anything about its images.
     lines.extend(findings.tick1_star.as_ref().map(|star| star.sentence()));
     lines.extend(findings.missing_class.as_ref().map(|m| m.sentence()));
+    lines.extend(findings.bump.as_ref().map(|b| b.sentence()));
     if let Some(noise) = findings.not_reproducible {
         lines.push(noise.sentence());
         return lines;

@@ -20,16 +20,17 @@ use crate::geometry::normalise;
 pub const BUMP_FACTOR: f32 = 5.0;
 
 /// A bump map as the course's `BumpySphere` holds it: `float[row][col]`, row 0 the top of
-/// the image. Also keeps the colour-as-height field (the mean of red, green and blue, scaled
-/// alike), which a student who ignores the channel reads instead.
+/// the image. Also keeps the colour-as-height field (the whole packed `getRGB` colour, scaled
+/// alike), which a student who does not take the blue byte out of it reads instead.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BumpMap {
     width: usize,
     height: usize,
     /// `BUMP_FACTOR * (blue / 255f)`, in f32 as the course computes it, row by row.
     heights: Vec<f32>,
-    /// `BUMP_FACTOR * (mean of r, g, b) / 255`: the `ColourAsHeight` mistake's field.
-    grey: Vec<f32>,
+    /// `BUMP_FACTOR * (rgb / 255f)` with `rgb` the packed `0xRRGGBB` (the alpha byte of
+    /// `getRGB` is a constant that no gradient sees): the `ColourAsHeight` mistake's field.
+    packed: Vec<f32>,
 }
 
 impl BumpMap {
@@ -44,17 +45,19 @@ impl BumpMap {
             .iter()
             .map(|&[_, _, b]| BUMP_FACTOR * (f32::from(b) / 255.0))
             .collect();
-        let grey = rgb
+        let packed = rgb
             .iter()
             .map(|&[r, g, b]| {
-                BUMP_FACTOR * ((f32::from(r) + f32::from(g) + f32::from(b)) / 3.0 / 255.0)
+                let colour = (u32::from(r) << 16) | (u32::from(g) << 8) | u32::from(b);
+                // Exact: a 24-bit integer fits f32's significand.
+                BUMP_FACTOR * (colour as f32 / 255.0)
             })
             .collect();
         Some(BumpMap {
             width,
             height,
             heights,
-            grey,
+            packed,
         })
     }
 
@@ -70,7 +73,7 @@ impl BumpMap {
     fn at(&self, source: HeightSource, row: usize, col: usize) -> f64 {
         let field = match source {
             HeightSource::Blue => &self.heights,
-            HeightSource::Grey => &self.grey,
+            HeightSource::Packed => &self.packed,
         };
         f64::from(field[row * self.width + col])
     }
@@ -95,7 +98,7 @@ fn clamp_index(t: f64, n: usize) -> usize {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum HeightSource {
     Blue,
-    Grey,
+    Packed,
 }
 
 /// The axis a parametrisation's poles lie on.
@@ -196,10 +199,7 @@ impl Parametrisation {
     pub fn formula(&self) -> String {
         let (p, a, b) = self.axis_names();
         let sign = if self.sense > 0.0 { "+" } else { "-" };
-        format!(
-            "u = {} {sign} atan2(n.{b}, n.{a})/2pi, v = acos(n.{p})/pi",
-            self.shift
-        )
+        format!("u = {} {sign} atan2(n.{b}, n.{a})/2pi, v = acos(n.{p})/pi", self.shift)
     }
 
     fn axis_names(&self) -> (char, char, char) {
@@ -262,7 +262,7 @@ pub enum BumpMistake {
     UnnormalisedResult,
     /// The gradient taken towards the texel to the left and above: h[left] - h[current].
     WrongTexel,
-    /// The height read from the colour (the mean of red, green and blue), not the blue byte.
+    /// The height read from the whole colour (`getRGB` not masked to its blue byte).
     ColourAsHeight,
 }
 
@@ -305,7 +305,7 @@ impl BumpMistake {
                 "the gradient is taken towards the texel left of / above the current one: use the texel to the right / below"
             }
             BumpMistake::ColourAsHeight => {
-                "the height is not the blue channel x 5 / 255: the colour is read as height"
+                "the height is the whole getRGB colour, not its blue byte (getRGB & 0xFF) x 5 / 255"
             }
         }
     }
@@ -329,7 +329,7 @@ pub fn perturb(method: &BumpMethod, map: &BumpMap, n: DVec3, radius: f64) -> (DV
         (safe_normalise(chart.p_u), safe_normalise(chart.p_v))
     };
     let source = if mistake == Some(BumpMistake::ColourAsHeight) {
-        HeightSource::Grey
+        HeightSource::Packed
     } else {
         HeightSource::Blue
     };
@@ -375,7 +375,7 @@ mod tests {
     fn map(width: usize, height: usize, blue: impl Fn(usize, usize) -> u8) -> BumpMap {
         let rgb: Vec<[u8; 3]> = (0..height)
             .flat_map(|r| (0..width).map(move |c| (r, c)))
-            .map(|(r, c)| [7, 9, blue(r, c)])
+            .map(|(r, c)| [((r * 11 + c * 5) % 256) as u8, 9, blue(r, c)])
             .collect();
         BumpMap::from_rgb8(width, height, &rgb).expect("map")
     }
@@ -383,10 +383,7 @@ mod tests {
     #[test]
     fn heights_are_five_times_blue_over_255_in_f32() {
         let m = map(2, 1, |_, c| [51, 255][c]);
-        assert_eq!(
-            m.at(HeightSource::Blue, 0, 0),
-            f64::from(5.0f32 * (51.0f32 / 255.0))
-        );
+        assert_eq!(m.at(HeightSource::Blue, 0, 0), f64::from(5.0f32 * (51.0f32 / 255.0)));
         assert_eq!(m.at(HeightSource::Blue, 0, 1), 5.0);
         assert!(BumpMap::from_rgb8(2, 2, &[[0; 3]; 3]).is_none());
     }
@@ -416,26 +413,12 @@ mod tests {
             };
             let back = p.chart(point(chart.u, chart.v) / 0.7, 0.7);
             assert!((back.u - chart.u).abs() < 1e-12, "{}", p.name);
-            assert!(
-                (point(chart.u, chart.v) / 0.7 - n).length() < 1e-12,
-                "{}",
-                p.name
-            );
+            assert!((point(chart.u, chart.v) / 0.7 - n).length() < 1e-12, "{}", p.name);
             let h = 1e-6;
             let du = (point(chart.u + h, chart.v) - point(chart.u - h, chart.v)) / (2.0 * h);
             let dv = (point(chart.u, chart.v + h) - point(chart.u, chart.v - h)) / (2.0 * h);
-            assert!(
-                (du - chart.p_u).length() < 1e-6,
-                "{} {du} {}",
-                p.name,
-                chart.p_u
-            );
-            assert!(
-                (dv - chart.p_v).length() < 1e-6,
-                "{} {dv} {}",
-                p.name,
-                chart.p_v
-            );
+            assert!((du - chart.p_u).length() < 1e-6, "{} {du} {}", p.name, chart.p_u);
+            assert!((dv - chart.p_v).length() < 1e-6, "{} {dv} {}", p.name, chart.p_v);
         }
     }
 

@@ -9,14 +9,14 @@ use super::streams::{CourseStream, PixelPoints, MAX_SOBOL_POINTS};
 use super::Star;
 use crate::accel::Accelerator;
 use crate::aov::Layer;
+use crate::film::{Film, PixelAccumulator};
+use crate::sample::StarValues;
 use crate::camera::Camera;
 use crate::course::Course;
 use crate::error::Result;
-use crate::film::{Film, PixelAccumulator};
 use crate::geometry::Ray;
 use crate::interrupt;
 use crate::model::Model;
-use crate::sample::StarValues;
 use crate::scene::Scene;
 use crate::trace::TraceOptions;
 
@@ -53,8 +53,9 @@ impl Default for NoiseFloor {
 /// an unbiased `p (1 - p)`.
 const SHADOW_POINTS: u32 = 4;
 
-/// Camera rays per pixel in the converged estimate's first round (with depth of field).
-const FIRST_ROUND: u32 = 16;
+/// Camera rays per pixel in the converged estimate's first round: four per replicate, so
+/// that the first standard error is not a lucky one.
+const FIRST_ROUND: u32 = 32;
 
 /// A Tick 1* image, linear radiance, row by row from the top-left pixel.
 #[derive(Debug, Clone, PartialEq)]
@@ -123,7 +124,11 @@ pub enum Sampling {
 /// A Tick 1* render as a film of `layers` (the tick's layers split each camera ray, plus
 /// `aov::star_layers`), for the image writers: every camera ray of a pixel is one sample.
 /// Also returns how many non-finite layer values were stored as 0.
-pub fn star_film(frame: &StarFrame, sampling: Sampling, layers: Vec<Layer>) -> Result<(Film, u64)> {
+pub fn star_film(
+    frame: &StarFrame,
+    sampling: Sampling,
+    layers: Vec<Layer>,
+) -> Result<(Film, u64)> {
     let (width, height) = (frame.camera.width, frame.camera.height);
     let mut film = Film::new(width, height, layers)?;
     film.display = (width, height);
@@ -376,6 +381,11 @@ fn draw_pixel(
     }
 }
 
+/// Independently scrambled Sobol sequences a pixel's camera rays are dealt out to, in turn:
+/// the spread of their means is the estimate's standard error, which (unlike the spread of
+/// single rays) credits low-discrepancy points with converging faster than random ones.
+const REPLICATES: usize = 8;
+
 /// Running sums over a pixel's camera rays.
 #[derive(Default)]
 struct Sums {
@@ -383,6 +393,27 @@ struct Sums {
     radiance: DVec3,
     squares: DVec3,
     spread: DVec3,
+    /// Radiance summed per replicate.
+    replicates: [DVec3; REPLICATES],
+}
+
+impl Sums {
+    /// The standard error of the mean from the replicates' means (n a multiple of
+    /// `REPLICATES`, at least two rays each).
+    fn standard_error(&self, mean: DVec3) -> DVec3 {
+        let per = f64::from(self.n) / REPLICATES as f64;
+        let r = REPLICATES as f64;
+        let variance: DVec3 = self
+            .replicates
+            .iter()
+            .map(|s| {
+                let d = *s / per - mean;
+                d * d
+            })
+            .sum::<DVec3>()
+            / (r - 1.0);
+        (variance / r).powf(0.5)
+    }
 }
 
 fn expect_pixel(
@@ -394,7 +425,10 @@ fn expect_pixel(
     mut keep: Option<&mut Vec<Path>>,
 ) -> PixelResult {
     let star = frame.star;
-    let points = PixelPoints::new(seed, pixel_index(frame, x, y));
+    let pixel = pixel_index(frame, x, y);
+    let replicates: [PixelPoints; REPLICATES] = std::array::from_fn(|r| {
+        PixelPoints::new(seed ^ (r as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15), pixel)
+    });
     let pinhole = frame.camera.pixel_centre_ray(x, y);
     let lights = frame.scene.lights.len() as u32;
     let mut visible = vec![0.0; lights as usize];
@@ -405,7 +439,7 @@ fn expect_pixel(
     } else {
         1
     };
-    let max_paths = floor.max_paths.clamp(1, MAX_SOBOL_POINTS / shadow_points);
+    let max_paths = floor.max_paths.clamp(FIRST_ROUND, MAX_SOBOL_POINTS);
     let mut sums = Sums::default();
     let mut target = if star.is_random() {
         FIRST_ROUND.min(max_paths)
@@ -414,7 +448,7 @@ fn expect_pixel(
     };
     loop {
         while sums.n < target {
-            let j = sums.n;
+            let (points, j) = (&replicates[sums.n as usize % REPLICATES], sums.n / REPLICATES as u32);
             let ray = match star.dof {
                 Some(dof) => dof.ray(&pinhole, points.aperture(j)),
                 None => pinhole,
@@ -422,10 +456,13 @@ fn expect_pixel(
             let mut sample = |q: ShadowQuery| match star.soft {
                 None => share(u32::from(!(q.blocked)(DVec3::ZERO)), 1),
                 Some(soft) => {
-                    let stream = q.depth * lights + q.light as u32;
+                    // Each of a ray's shadow points is point j of its own sequence: the
+                    // points of one ray are independent (so the spread is unbiased), each
+                    // sequence stratified over the pixel's rays.
+                    let stream = (q.depth * lights + q.light as u32) * shadow_points;
                     let lit = (0..shadow_points)
                         .filter(|s| {
-                            let u = points.shadow(stream, j * shadow_points + s);
+                            let u = points.shadow(stream + s, j);
                             !(q.blocked)(soft.sampling.point(u) * soft.light_size)
                         })
                         .count() as u32;
@@ -443,6 +480,7 @@ fn expect_pixel(
             );
             add_visible(&path, &mut visible);
             let c = path.radiance();
+            sums.replicates[sums.n as usize % REPLICATES] += c;
             sums.n += 1;
             sums.radiance += c;
             sums.squares += c * c;
@@ -453,12 +491,15 @@ fn expect_pixel(
         }
         let n = f64::from(sums.n);
         let mean = sums.radiance / n;
-        let sample_variance = if sums.n > 1 {
-            ((sums.squares - sums.radiance * mean) / (n - 1.0)).max(DVec3::ZERO)
+        let standard_error = if sums.n > 1 {
+            // The replicates credit the Sobol points' faster convergence, but a share of few
+            // stratified points can come out the same in all eight (a Bernoulli-like spread
+            // the replicates then miss): never less than a quarter of the iid error.
+            let iid = ((sums.squares - sums.radiance * mean) / (n - 1.0)).max(DVec3::ZERO) / n;
+            sums.standard_error(mean).max(iid.powf(0.5) / 4.0)
         } else {
             DVec3::ZERO
         };
-        let standard_error = (sample_variance / n).powf(0.5);
         let done = !star.is_random()
             || standard_error.max_element() <= floor.standard_error
             || sums.n >= max_paths;

@@ -106,6 +106,16 @@ pub fn add_findings(object: &mut Value, findings: &Findings) {
             "known_cause": m.known_cause,
         });
     }
+    if let Some(bump) = &findings.bump {
+        object["bump"] = json!({
+            "parametrisation": bump.parametrisation,
+            "mistake": bump.mistake.map(|m| m.name()),
+            "matched": bump.matched,
+            "matched_correct": bump.matched_correct,
+            "candidates": bump.tried,
+            "passes": bump.passes(),
+        });
+    }
     if let Some(star) = &findings.tick1_star {
         object["tick1_star"] = json!({
             "seen": star.seen.name(),
