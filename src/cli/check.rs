@@ -31,6 +31,7 @@ pub struct CheckArgs {
     /// <bumpy-sphere>]; `distributed` says whether the image is one draw of the course's
     /// soft shadows and depth of field on distributed.xml, or of which variant (needs
     /// --course)
+    #[arg(long, value_name = "OPTION", value_enum, conflicts_with = "program")]
     pub star: Option<StarCheck>,
 
     /// Largest difference of a channel, in LSB, that still passes

@@ -132,23 +132,30 @@ fn statistic(star: &Value, process: &str) -> f64 {
         .unwrap_or_else(|| panic!("no {process} in {star}"))
 }
 
-#[test]
-fn program_runs_each_option_s_handout_scene_once_at_2023_24_s_resolution() {
-    let d = tempfile::tempdir().expect("tempdir");
-    let started = std::time::Instant::now();
+/// `check --program` on our Java Tick 1* with the JVM options `flags`: its JSON and exit.
+fn check_program(d: &Path, flags: &str) -> (Value, Option<i32>) {
     let out = whitted(
-        d.path(),
+        d,
         &[
             "check",
             "--course",
             YEAR,
             "--json",
             "--program",
-            &program("-Dseed=101"),
+            &program(flags),
         ],
     );
     let json: Value = serde_json::from_slice(&out.stdout).expect(&stderr(&out));
-    assert_eq!(out.status.code(), Some(0), "{json}");
+    (json, out.status.code())
+}
+
+#[test]
+fn program_runs_each_option_s_handout_scene_once_at_2023_24_s_resolution() {
+    let d = tempfile::tempdir().expect("tempdir");
+    let started = std::time::Instant::now();
+    // Both options done: the distributed image is a draw of the course's process; the bump
+    // image has random rays too, which the bump check does not reproduce.
+    let (json, status) = check_program(d.path(), "-Dseed=101");
     let cases = json["cases"].as_array().expect("cases");
     let names: Vec<&str> = cases
         .iter()
@@ -162,11 +169,34 @@ fn program_runs_each_option_s_handout_scene_once_at_2023_24_s_resolution() {
     }
     assert_eq!(cases[0]["tick1_star"]["option"], "bump");
     assert_eq!(cases[1]["tick1_star"]["verdict"], "course-draw", "{json}");
+    assert_eq!(status, Some(1), "the bump image with random rays: {json}");
     let plan = json["tick1_star"]["plan"].as_str().expect("plan");
     assert!(plan.contains("--resolution 160x120"), "{plan}");
     assert!(plan.contains("once each"), "{plan}");
-    // Two runs of seconds each and one expectation: never a row of timeouts.
-    assert!(started.elapsed().as_secs() < 60, "{:?}", started.elapsed());
+    // Option 1 only (the Tick 1 renderer): its bump image is the handout's method, under the
+    // parametrisation it chose; the distributed image, hard-edged, is no draw.
+    let (json, _) = check_program(d.path(), "-Dsoft=none -Ddof=none -Dbump=z-yx");
+    let bump = &json["cases"][0]["tick1_star"];
+    assert_eq!(bump["verdict"], "bump-correct", "{json}");
+    assert!(
+        bump["line"].as_str().is_some_and(|l| l.contains("z-yx")),
+        "{bump}"
+    );
+    assert_eq!(
+        json["cases"][1]["tick1_star"]["verdict"], "not-a-draw",
+        "{json}"
+    );
+    let (json, _) = check_program(d.path(), "-Dsoft=none -Ddof=none -Dbump=y-xz,inverted");
+    let bump = &json["cases"][0]["tick1_star"];
+    assert_eq!(bump["verdict"], "bump-mistake", "{json}");
+    assert!(
+        bump["line"]
+            .as_str()
+            .is_some_and(|l| l.contains("bump-inverted")),
+        "{bump}"
+    );
+    // Six runs of seconds each and their checks: never a row of timeouts.
+    assert!(started.elapsed().as_secs() < 120, "{:?}", started.elapsed());
 }
 
 #[test]
@@ -179,7 +209,7 @@ fn the_correct_program_is_a_draw_of_the_course_s_process_for_every_seed() {
         assert_eq!(star["verdict"], "course-draw", "seed {seed}: {star}");
         assert_eq!(status, Some(0));
         let t = statistic(&star, "course");
-        assert!((0.5..1.0).contains(&t), "seed {seed}: {t}");
+        assert!((0.8..1.45).contains(&t), "seed {seed}: {t}");
     }
 }
 
@@ -203,8 +233,8 @@ fn each_variant_whitted_renders_is_named_with_its_region() {
         let (star, status) = judge(d.path(), &image);
         assert_eq!(status, Some(1), "{flag}: {star}");
         assert_eq!(star["verdict"], "variant-draw", "{flag}: {star}");
-        assert!(statistic(&star, "course") > 1.0, "{flag}: {star}");
-        assert!(statistic(&star, name) < 1.0, "{flag}: {star}");
+        assert!(statistic(&star, "course") > 1.45, "{flag}: {star}");
+        assert!(statistic(&star, name) < 1.45, "{flag}: {star}");
         let line = star["line"].as_str().expect("line");
         assert!(line.contains(&format!("but of {name}")), "{line}");
         assert!(line.contains("it shows most at x "), "{line}");
@@ -230,7 +260,7 @@ fn the_variants_whitted_does_not_render_are_no_draw_of_the_course_s() {
         let (star, status) = judge(d.path(), &image);
         assert_eq!(status, Some(1), "{flag}: {star}");
         assert_ne!(star["verdict"], "course-draw", "{flag}: {star}");
-        assert!(statistic(&star, "course") > 1.0, "{flag}: {star}");
+        assert!(statistic(&star, "course") > 1.45, "{flag}: {star}");
     }
 }
 
