@@ -7,7 +7,6 @@ mod project;
 use serde_json::Value;
 
 use crate::cli::{CheckArgs, StarCheck};
-use whitted_core::star::Star;
 use whitted_check::check::print::json::json;
 use whitted_check::check::print::text::{text, Detail};
 use whitted_check::check::print::write_report;
@@ -21,6 +20,7 @@ use whitted_check::mistakes::Bug;
 use whitted_core::course::Course;
 use whitted_core::error::Result;
 use whitted_core::scene;
+use whitted_core::star::Star;
 use whitted_io::output::destination::{refuse_clashes, Destination};
 use whitted_io::output::stdout;
 

@@ -80,7 +80,10 @@ pub fn run(args: &RenderArgs) -> Result<()> {
 }
 
 /// Runs `work` on a pool of `threads` workers, or on rayon's global pool (all cores).
-pub(crate) fn with_threads<T: Send>(threads: Option<usize>, work: impl FnOnce() -> T + Send) -> Result<T> {
+pub(crate) fn with_threads<T: Send>(
+    threads: Option<usize>,
+    work: impl FnOnce() -> T + Send,
+) -> Result<T> {
     match threads {
         None => Ok(work()),
         Some(n) => rayon::ThreadPoolBuilder::new()
