@@ -106,12 +106,13 @@ pub fn run(args: &RenderArgs, input: &Input) -> Result<()> {
         star: &star,
     };
     let started = Instant::now();
-    let (film, non_finite) =
+    let (film, stats) =
         super::render::with_threads(plan.threads, || star_film(&frame, sampling, layers.clone()))??;
     let seconds = started.elapsed().as_secs_f64();
-    if non_finite > 0 {
+    if stats.non_finite > 0 {
         eprintln!(
-            "warning: {non_finite} non-finite layer values (NaN or infinity) were written as 0"
+            "warning: {} non-finite layer values (NaN or infinity) were written as 0",
+            stats.non_finite
         );
     }
     let camera = plan.frame.camera();
@@ -141,12 +142,16 @@ pub fn run(args: &RenderArgs, input: &Input) -> Result<()> {
         png.commit()?;
     }
     if !args.quiet {
+        let pixels = f64::from(camera.width) * f64::from(camera.height);
         eprintln!(
-            "whitted: Tick 1* {}x{}, {} sampling, {bounces} bounce{} in {seconds:.2} s",
+            "whitted: Tick 1* {}x{}, {} sampling ({:.1} camera rays a pixel), {bounces} bounce{}, \
+             {} rays in {seconds:.2} s",
             camera.width,
             camera.height,
             if converged { "converged" } else { "course" },
+            stats.camera_rays as f64 / pixels,
             if bounces == 1 { "" } else { "s" },
+            stats.rays,
         );
     }
     Ok(())

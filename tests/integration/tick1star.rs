@@ -42,14 +42,21 @@ fn bump_xml_follows_the_handout_s_method_at_hand_computed_pixels() {
     let exr = render_exr(dir.path(), &star_scene("bump.xml"), "bump.exr", &args);
     let image = read_exr(&exr);
     let map = read_png(&star_scene("bumpmap.png"));
-    assert_eq!((map.width, map.height, map.color), (1500, 1500, png::ColorType::Rgb));
+    assert_eq!(
+        (map.width, map.height, map.color),
+        (1500, 1500, png::ColorType::Rgb)
+    );
     let height = |row: usize, col: usize| {
         let blue = map.data[(row * 1500 + col) * 3 + 2];
         f64::from(5.0f32 * (f32::from(blue) / 255.0))
     };
     let mut checked = 0;
     for (x, y) in [(80, 60), (70, 50), (95, 72), (60, 66), (88, 45), (75, 80)] {
-        assert_eq!(image.at("objectid.X", x, y), 1.0, "({x}, {y}) is on the sphere");
+        assert_eq!(
+            image.at("objectid.X", x, y),
+            1.0,
+            "({x}, {y}) is on the sphere"
+        );
         let p = ["P.X", "P.Y", "P.Z"].map(|c| f64::from(image.at(c, x, y)));
         let n = normalise([p[0], p[1], p[2] - 3.5]);
         // The default parametrisation `y-zx`: u = 0.5 + atan2(n.z, n.x)/2pi, v = acos(n.y)/pi.
@@ -65,7 +72,11 @@ fn bump_xml_follows_the_handout_s_method_at_hand_computed_pixels() {
         let b_u = height(row, col + 1) - height(row, col);
         let b_v = height(row + 1, col) - height(row, col);
         let p_u = [-phi.sin(), 0.0, phi.cos()];
-        let p_v = [theta.cos() * phi.cos(), -theta.sin(), theta.cos() * phi.sin()];
+        let p_v = [
+            theta.cos() * phi.cos(),
+            -theta.sin(),
+            theta.cos() * phi.sin(),
+        ];
         let (a, b) = (cross(n, p_v), cross(n, p_u));
         let expected = normalise([0, 1, 2].map(|i| n[i] + b_u * a[i] + b_v * b[i]));
         let got = ["N.X", "N.Y", "N.Z"].map(|c| f64::from(image.at(c, x, y)));
@@ -76,7 +87,10 @@ fn bump_xml_follows_the_handout_s_method_at_hand_computed_pixels() {
             );
         }
         let h = f64::from(image.at("height.Y", x, y));
-        assert!((h - height(row, col)).abs() < 1e-6, "({x}, {y}): height {h}");
+        assert!(
+            (h - height(row, col)).abs() < 1e-6,
+            "({x}, {y}): height {h}"
+        );
         checked += 1;
     }
     assert!(checked >= 4, "only {checked} pixels checked");
@@ -100,8 +114,20 @@ fn each_parametrisation_lays_the_map_differently() {
             let run = whitted(
                 dir.path(),
                 &[
-                    "render", "-q", "--course", "2020-21", "--width", "96", "--height", "72",
-                    "-i", s(&star_scene("bump.xml")), "-o", &out, "--bump-param", name,
+                    "render",
+                    "-q",
+                    "--course",
+                    "2020-21",
+                    "--width",
+                    "96",
+                    "--height",
+                    "72",
+                    "-i",
+                    s(&star_scene("bump.xml")),
+                    "-o",
+                    &out,
+                    "--bump-param",
+                    name,
                 ],
             );
             assert!(run.status.success(), "{name}: {}", stderr(&run));
@@ -131,11 +157,20 @@ fn tick1star_renders_are_byte_identical_on_one_and_two_threads() {
     let dir = tempfile::tempdir().expect("tempdir");
     let cases: [(&str, &[&str]); 3] = [
         ("bump.xml", &[]),
-        ("distributed.xml", &["--soft-shadows", "--dof", "--seed", "7"]),
         (
             "distributed.xml",
-            &["--soft-shadows", "--dof=3.51805,0.2,8", "--sampling", "converged",
-              "--noise-floor", "0.02"],
+            &["--soft-shadows", "--dof", "--seed", "7"],
+        ),
+        (
+            "distributed.xml",
+            &[
+                "--soft-shadows",
+                "--dof=3.51805,0.2,8",
+                "--sampling",
+                "converged",
+                "--noise-floor",
+                "0.02",
+            ],
         ),
     ];
     for (k, (scene_name, extra)) in cases.iter().enumerate() {
@@ -145,8 +180,20 @@ fn tick1star_renders_are_byte_identical_on_one_and_two_threads() {
                 let (png, exr) = (format!("{k}_{threads}.png"), format!("{k}_{threads}.exr"));
                 let input = star_scene(scene_name);
                 let mut args = vec![
-                    "render", "-q", "--course", "2020-21", "--width", "48", "--height", "36",
-                    "-i", s(&input), "-o", &png, "--exr", &exr,
+                    "render",
+                    "-q",
+                    "--course",
+                    "2020-21",
+                    "--width",
+                    "48",
+                    "--height",
+                    "36",
+                    "-i",
+                    s(&input),
+                    "-o",
+                    &png,
+                    "--exr",
+                    &exr,
                 ];
                 args.extend_from_slice(extra);
                 let run = whitted_on(threads, dir.path(), &args);
@@ -155,7 +202,10 @@ fn tick1star_renders_are_byte_identical_on_one_and_two_threads() {
                 (read(&png), read(&exr))
             })
             .collect();
-        assert!(outputs[0] == outputs[1], "case {k} ({scene_name}) differs by thread count");
+        assert!(
+            outputs[0] == outputs[1],
+            "case {k} ({scene_name}) differs by thread count"
+        );
     }
 }
 
@@ -186,19 +236,40 @@ fn soft_shadow_layers_sum_to_the_beauty_and_their_masks_are_fractions() {
         dir.path(),
         &star_scene("distributed.xml"),
         "soft.exr",
-        &["--course", "2020-21", "--width", "64", "--height", "48", "--soft-shadows",
-          "--dof=3.51805,0.2,4", "--seed", "3"],
+        &[
+            "--course",
+            "2020-21",
+            "--width",
+            "64",
+            "--height",
+            "48",
+            "--soft-shadows",
+            "--dof=3.51805,0.2,4",
+            "--seed",
+            "3",
+        ],
     );
     for (label, parts) in [
-        ("effects", &["ambient", "diffuse", "specular", "background"][..]),
+        (
+            "effects",
+            &["ambient", "diffuse", "specular", "background"][..],
+        ),
         ("bounces", &["direct", "reflected"][..]),
         ("lights", &["ambient", "light_0", "background"][..]),
     ] {
-        let (lhs, rhs) = (dir.path().join(format!("{label}.exr")), dir.path().join("rgb.exr"));
+        let (lhs, rhs) = (
+            dir.path().join(format!("{label}.exr")),
+            dir.path().join("rgb.exr"),
+        );
         oiio_sum(&exr, parts, &lhs);
         oiio_sum(&exr, &[""], &rhs);
         let run = idiff_aov(&lhs, &rhs);
-        assert_eq!(run.status.code(), Some(0), "{label}: {}", String::from_utf8_lossy(&run.stdout));
+        assert_eq!(
+            run.status.code(),
+            Some(0),
+            "{label}: {}",
+            String::from_utf8_lossy(&run.stdout)
+        );
     }
     let image = read_exr(&exr);
     let names = image.names();
@@ -219,10 +290,15 @@ fn soft_shadow_layers_sum_to_the_beauty_and_their_masks_are_fractions() {
 fn a_hostile_or_missing_bump_map_is_one_located_message_and_exit_2() {
     let dir = tempfile::tempdir().expect("tempdir");
     let bad = root().join("tests/bad_images");
-    let mut maps: Vec<PathBuf> = ["png_huge.png", "png_truncated.png", "png_bad_crc.png", "not_an_image.txt"]
-        .iter()
-        .map(|f| bad.join(f))
-        .collect();
+    let mut maps: Vec<PathBuf> = [
+        "png_huge.png",
+        "png_truncated.png",
+        "png_bad_crc.png",
+        "not_an_image.txt",
+    ]
+    .iter()
+    .map(|f| bad.join(f))
+    .collect();
     maps.push(dir.path().join("missing.png"));
     for map in maps {
         let xml = format!(
@@ -233,12 +309,24 @@ fn a_hostile_or_missing_bump_map_is_one_located_message_and_exit_2() {
         let scene_file = write_scene(dir.path(), "bad.xml", &xml);
         let run = whitted(
             dir.path(),
-            &["render", "-q", "--course", "2020-21", "-i", s(&scene_file), "-o", "out.png"],
+            &[
+                "render",
+                "-q",
+                "--course",
+                "2020-21",
+                "-i",
+                s(&scene_file),
+                "-o",
+                "out.png",
+            ],
         );
         let err = stderr(&run);
         assert_eq!(run.status.code(), Some(2), "{}: {err}", map.display());
         assert_eq!(err.trim().lines().count(), 1, "{}: {err}", map.display());
-        assert!(err.contains("bad.xml:3:3") && err.contains("bump map"), "{err}");
+        assert!(
+            err.contains("bad.xml:3:3") && err.contains("bump map"),
+            "{err}"
+        );
         assert!(!dir.path().join("out.png").exists(), "no partial output");
     }
 }

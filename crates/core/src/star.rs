@@ -30,7 +30,9 @@ use std::sync::Arc;
 
 pub use aperture::DepthOfField;
 pub use bump::{BumpMap, BumpMethod, BumpMistake, Parametrisation};
-pub use image::{course_draw, expectation, star_film, NoiseFloor, Sampling, StarFrame, StarImage};
+pub use image::{
+    course_draw, expectation, star_film, NoiseFloor, Sampling, StarFrame, StarImage, StarStats,
+};
 pub use light::{LightSampling, SoftShadows};
 
 /// A sphere of the scene that carries a bump map.

@@ -120,7 +120,9 @@ pub fn render_bump(
 /// Whether pixel `i` of `a` and `b` is within `PIXEL_TOLERANCE` on every channel.
 fn close(a: &Rgb8, b: &Rgb8, i: usize) -> bool {
     let (p, q) = (&a.bytes[3 * i..3 * i + 3], &b.bytes[3 * i..3 * i + 3]);
-    p.iter().zip(q).all(|(x, y)| x.abs_diff(*y) <= PIXEL_TOLERANCE)
+    p.iter()
+        .zip(q)
+        .all(|(x, y)| x.abs_diff(*y) <= PIXEL_TOLERANCE)
 }
 
 /// Share of the `telling` pixels of `a` within `PIXEL_TOLERANCE` of `b`.
@@ -171,7 +173,9 @@ pub fn check_bump(
         })
         .collect();
     if student.bytes.len() != 3 * (student.width as usize) * (student.height as usize) {
-        return Err(Error::Usage("the image is not 8-bit RGB of its size".into()));
+        return Err(Error::Usage(
+            "the image is not 8-bit RGB of its size".into(),
+        ));
     }
     let images: Vec<Rgb8> = candidates
         .par_iter()
@@ -245,8 +249,8 @@ mod tests {
                     parametrisation,
                     mistake,
                 };
-                let student = render_bump(&scene, &star, method, SIZE, 2, Course::Y2020)
-                    .expect("renders");
+                let student =
+                    render_bump(&scene, &star, method, SIZE, 2, Course::Y2020).expect("renders");
                 let (finding, _) =
                     check_bump(&scene, &star, &student, 2, Course::Y2020).expect("checks");
                 assert_eq!(
@@ -270,7 +274,8 @@ mod tests {
         let (scene, star) = bump_scene();
         let smooth = Star::default();
         let method = BumpMethod::default();
-        let student = render_bump(&scene, &smooth, method, SIZE, 2, Course::Y2020).expect("renders");
+        let student =
+            render_bump(&scene, &smooth, method, SIZE, 2, Course::Y2020).expect("renders");
         let (finding, _) = check_bump(&scene, &star, &student, 2, Course::Y2020).expect("checks");
         assert!(!finding.passes());
         assert!(finding.matched < FOLLOWS, "{}", finding.sentence());

@@ -25,7 +25,11 @@ impl Input {
     /// Tells the user, on stderr, what the year's loader ignored, and that bumped spheres are
     /// rendered smooth.
     pub fn report_warnings(&self) {
-        for warning in self.warnings.iter().chain(&BumpRef::smooth_warning(&self.bumps)) {
+        for warning in self
+            .warnings
+            .iter()
+            .chain(&BumpRef::smooth_warning(&self.bumps))
+        {
             eprintln!("warning: {warning}");
         }
     }

@@ -199,7 +199,10 @@ impl Parametrisation {
     pub fn formula(&self) -> String {
         let (p, a, b) = self.axis_names();
         let sign = if self.sense > 0.0 { "+" } else { "-" };
-        format!("u = {} {sign} atan2(n.{b}, n.{a})/2pi, v = acos(n.{p})/pi", self.shift)
+        format!(
+            "u = {} {sign} atan2(n.{b}, n.{a})/2pi, v = acos(n.{p})/pi",
+            self.shift
+        )
     }
 
     fn axis_names(&self) -> (char, char, char) {
@@ -383,7 +386,10 @@ mod tests {
     #[test]
     fn heights_are_five_times_blue_over_255_in_f32() {
         let m = map(2, 1, |_, c| [51, 255][c]);
-        assert_eq!(m.at(HeightSource::Blue, 0, 0), f64::from(5.0f32 * (51.0f32 / 255.0)));
+        assert_eq!(
+            m.at(HeightSource::Blue, 0, 0),
+            f64::from(5.0f32 * (51.0f32 / 255.0))
+        );
         assert_eq!(m.at(HeightSource::Blue, 0, 1), 5.0);
         assert!(BumpMap::from_rgb8(2, 2, &[[0; 3]; 3]).is_none());
     }
@@ -413,12 +419,26 @@ mod tests {
             };
             let back = p.chart(point(chart.u, chart.v) / 0.7, 0.7);
             assert!((back.u - chart.u).abs() < 1e-12, "{}", p.name);
-            assert!((point(chart.u, chart.v) / 0.7 - n).length() < 1e-12, "{}", p.name);
+            assert!(
+                (point(chart.u, chart.v) / 0.7 - n).length() < 1e-12,
+                "{}",
+                p.name
+            );
             let h = 1e-6;
             let du = (point(chart.u + h, chart.v) - point(chart.u - h, chart.v)) / (2.0 * h);
             let dv = (point(chart.u, chart.v + h) - point(chart.u, chart.v - h)) / (2.0 * h);
-            assert!((du - chart.p_u).length() < 1e-6, "{} {du} {}", p.name, chart.p_u);
-            assert!((dv - chart.p_v).length() < 1e-6, "{} {dv} {}", p.name, chart.p_v);
+            assert!(
+                (du - chart.p_u).length() < 1e-6,
+                "{} {du} {}",
+                p.name,
+                chart.p_u
+            );
+            assert!(
+                (dv - chart.p_v).length() < 1e-6,
+                "{} {dv} {}",
+                p.name,
+                chart.p_v
+            );
         }
     }
 

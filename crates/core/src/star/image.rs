@@ -9,14 +9,14 @@ use super::streams::{CourseStream, PixelPoints, MAX_SOBOL_POINTS};
 use super::Star;
 use crate::accel::Accelerator;
 use crate::aov::Layer;
-use crate::film::{Film, PixelAccumulator};
-use crate::sample::StarValues;
 use crate::camera::Camera;
 use crate::course::Course;
 use crate::error::Result;
+use crate::film::{Film, PixelAccumulator};
 use crate::geometry::Ray;
 use crate::interrupt;
 use crate::model::Model;
+use crate::sample::StarValues;
 use crate::scene::Scene;
 use crate::trace::TraceOptions;
 
@@ -112,6 +112,17 @@ pub fn expectation(frame: &StarFrame, floor: NoiseFloor, seed: u64) -> Result<St
     })
 }
 
+/// What a Tick 1* film took.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct StarStats {
+    /// Rays cast: camera, shadow and reflected.
+    pub rays: u64,
+    /// Camera rays (aperture rays with depth of field).
+    pub camera_rays: u64,
+    /// Layer values that were NaN or infinite and were stored as 0.
+    pub non_finite: u64,
+}
+
 /// How a Tick 1* film is sampled (`--sampling`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Sampling {
@@ -123,12 +134,11 @@ pub enum Sampling {
 
 /// A Tick 1* render as a film of `layers` (the tick's layers split each camera ray, plus
 /// `aov::star_layers`), for the image writers: every camera ray of a pixel is one sample.
-/// Also returns how many non-finite layer values were stored as 0.
 pub fn star_film(
     frame: &StarFrame,
     sampling: Sampling,
     layers: Vec<Layer>,
-) -> Result<(Film, u64)> {
+) -> Result<(Film, StarStats)> {
     let (width, height) = (frame.camera.width, frame.camera.height);
     let mut film = Film::new(width, height, layers)?;
     film.display = (width, height);
@@ -143,7 +153,7 @@ pub fn star_film(
     } else {
         film.data.chunks_mut(row_channels).collect()
     };
-    let non_finite: u64 = film
+    let stats = film
         .beauty
         .par_chunks_mut(width as usize)
         .zip(data)
@@ -151,7 +161,7 @@ pub fn star_film(
         .map(|(y, (beauty, data))| {
             let mut accumulator = PixelAccumulator::new(layers, channels);
             let mut paths = Vec::new();
-            let mut non_finite = 0;
+            let mut stats = StarStats::default();
             for (x, pixel) in beauty.iter_mut().enumerate() {
                 if interrupt::requested() {
                     break;
@@ -173,16 +183,22 @@ pub fn star_film(
                 };
                 for (i, path) in paths.iter().enumerate() {
                     let sample = path.sample(lights, frame.trace.bounces, star);
+                    stats.rays += sample.rays;
                     accumulator.add(&sample, i == 0);
                 }
+                stats.camera_rays += paths.len() as u64;
                 let values = &mut data[x * channels..(x + 1) * channels];
-                non_finite += accumulator.finish(pixel, values);
+                stats.non_finite += accumulator.finish(pixel, values);
             }
-            non_finite
+            stats
         })
-        .sum();
+        .reduce(StarStats::default, |a, b| StarStats {
+            rays: a.rays + b.rays,
+            camera_rays: a.camera_rays + b.camera_rays,
+            non_finite: a.non_finite + b.non_finite,
+        });
     interrupt::check()?;
-    Ok((film, non_finite))
+    Ok((film, stats))
 }
 
 /// The hierarchy where the model's hits allow it, else brute force.
@@ -324,7 +340,7 @@ fn draw_pixel(
             Some(soft) => {
                 let lit = (0..soft.rays)
                     .filter(|_| {
-                        let u = [stream.next(), stream.next(), stream.next()];
+                        let u = [stream.random(), stream.random(), stream.random()];
                         !(q.blocked)(soft.sampling.point(u) * soft.light_size)
                     })
                     .count() as u32;
@@ -354,7 +370,7 @@ fn draw_pixel(
         Some(dof) => {
             let mut sum = DVec3::ZERO;
             for _ in 0..dof.rays {
-                let u = [stream.next(), stream.next()];
+                let u = [stream.random(), stream.random()];
                 let path = trace(dof.ray(&pinhole, u), &mut stream);
                 add_visible(&path, &mut visible);
                 sum += path.radiance();
@@ -448,7 +464,10 @@ fn expect_pixel(
     };
     loop {
         while sums.n < target {
-            let (points, j) = (&replicates[sums.n as usize % REPLICATES], sums.n / REPLICATES as u32);
+            let (points, j) = (
+                &replicates[sums.n as usize % REPLICATES],
+                sums.n / REPLICATES as u32,
+            );
             let ray = match star.dof {
                 Some(dof) => dof.ray(&pinhole, points.aperture(j)),
                 None => pinhole,

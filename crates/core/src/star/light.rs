@@ -93,7 +93,10 @@ mod tests {
         let n = 64;
         let mean = |s: LightSampling| {
             (0..n)
-                .map(|i| s.point([(f64::from(i) + 0.5) / f64::from(n), 0.3, 0.7]).length())
+                .map(|i| {
+                    s.point([(f64::from(i) + 0.5) / f64::from(n), 0.3, 0.7])
+                        .length()
+                })
                 .sum::<f64>()
                 / f64::from(n)
         };

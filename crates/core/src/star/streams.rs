@@ -14,7 +14,7 @@ fn mix(mut z: u64) -> u64 {
     z ^ (z >> 31)
 }
 
-/// The course's `Math.random()` for one pixel: uniform doubles in [0, 1), 53 bits each.
+/// The course's `Math.random()` for one pixel (`random`): uniform doubles in [0, 1), 53 bits each.
 pub struct CourseStream(Pcg64);
 
 impl CourseStream {
@@ -23,7 +23,7 @@ impl CourseStream {
         CourseStream(Pcg64::new(u128::from(mix(seed)), u128::from(pixel)))
     }
 
-    pub fn next(&mut self) -> f64 {
+    pub fn random(&mut self) -> f64 {
         (self.0.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
     }
 }
@@ -75,15 +75,15 @@ mod tests {
     fn streams_are_reproducible_and_distinct_per_pixel() {
         let a: Vec<f64> = {
             let mut s = CourseStream::new(7, 3);
-            (0..4).map(|_| s.next()).collect()
+            (0..4).map(|_| s.random()).collect()
         };
         let again: Vec<f64> = {
             let mut s = CourseStream::new(7, 3);
-            (0..4).map(|_| s.next()).collect()
+            (0..4).map(|_| s.random()).collect()
         };
         let other: Vec<f64> = {
             let mut s = CourseStream::new(7, 4);
-            (0..4).map(|_| s.next()).collect()
+            (0..4).map(|_| s.random()).collect()
         };
         assert_eq!(a, again);
         assert_ne!(a, other);

@@ -101,7 +101,10 @@ fn the_expected_visible_share_matches_the_closed_form_for_both_distributions() {
         for i in floor_pixels(&image) {
             let got = f64::from(image.visible[0][i]);
             // Sobol points converge far faster than the iid bound; 4096 rays of 4 points.
-            assert!((got - visible).abs() < 3e-3, "{sampling:?} pixel {i}: {got} vs {visible}");
+            assert!(
+                (got - visible).abs() < 3e-3,
+                "{sampling:?} pixel {i}: {got} vs {visible}"
+            );
         }
     }
     // The two distributions differ here by far more than the tolerance.
@@ -123,13 +126,21 @@ fn the_course_draw_is_binomial_around_the_closed_form() {
     };
     let image = course_draw(&wide, 11).expect("renders");
     let pixels = floor_pixels(&image);
-    let shares: Vec<f64> = pixels.iter().map(|&i| f64::from(image.visible[0][i])).collect();
+    let shares: Vec<f64> = pixels
+        .iter()
+        .map(|&i| f64::from(image.visible[0][i]))
+        .collect();
     // Each share is k/10: whole tenths.
-    assert!(shares.iter().all(|s| ((s * 10.0).round() - s * 10.0).abs() < 1e-6));
+    assert!(shares
+        .iter()
+        .all(|s| ((s * 10.0).round() - s * 10.0).abs() < 1e-6));
     let n = shares.len() as f64;
     let mean = shares.iter().sum::<f64>() / n;
     let sigma = (p * (1.0 - p) / 10.0 / n).sqrt();
-    assert!((mean - p).abs() < 4.0 * sigma, "{mean} vs {p} (sigma {sigma})");
+    assert!(
+        (mean - p).abs() < 4.0 * sigma,
+        "{mean} vs {p} (sigma {sigma})"
+    );
     let variance = shares.iter().map(|s| (s - mean).powi(2)).sum::<f64>() / (n - 1.0);
     let expected = p * (1.0 - p) / 10.0;
     assert!(
@@ -246,5 +257,8 @@ fn course_draws_scatter_around_the_expectation_by_the_reported_variance() {
     }
     assert!(tested > 300, "{tested} random channels");
     // |z| > 4 has probability 6e-5 for a normal; allow a few for the heavier tails of small K.
-    assert!(outliers <= tested / 200, "{outliers} of {tested} channels beyond 4 sigma");
+    assert!(
+        outliers <= tested / 200,
+        "{outliers} of {tested} channels beyond 4 sigma"
+    );
 }
