@@ -145,7 +145,8 @@ fn check_program(d: &Path, flags: &str) -> (Value, Option<i32>) {
             &program(flags),
         ],
     );
-    let json: Value = serde_json::from_slice(&out.stdout).expect(&stderr(&out));
+    let json: Value =
+        serde_json::from_slice(&out.stdout).unwrap_or_else(|_| panic!("{}", stderr(&out)));
     (json, out.status.code())
 }
 

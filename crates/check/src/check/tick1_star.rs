@@ -106,6 +106,7 @@ mod tests {
             seen: StarSeen::FirstCaseTimedOut,
             timeout: 3,
             stopped: true,
+            plan: None,
         };
         let line = star.sentence();
         for words in [
@@ -123,5 +124,21 @@ mod tests {
         assert!(!in_package(
             "java -cp out uk.ac.cam.cl.gfxintro.ab1.tick1.Tick1"
         ));
+    }
+
+    #[test]
+    fn a_planned_run_says_what_was_run_instead_of_the_suite() {
+        let star = Tick1Star {
+            seen: StarSeen::Package,
+            timeout: 60,
+            stopped: false,
+            plan: Some("ran the handout's scenes once each".into()),
+        };
+        let line = star.sentence();
+        assert!(
+            line.contains("whitted ran the handout's scenes once each"),
+            "{line}"
+        );
+        assert!(!line.contains("--timeout"), "{line}");
     }
 }
