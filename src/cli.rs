@@ -9,14 +9,22 @@ mod check;
 mod grade;
 mod look;
 mod parse;
+<<<<<<< HEAD
 mod serve;
+=======
+mod star;
+>>>>>>> starjava
 mod values;
 
-pub use check::CheckArgs;
+pub use check::{CheckArgs, StarCheck};
 pub use grade::GradeArgs;
 pub use look::{ExplainArgs, RelightArgs, ServeArgs, ViewArgs};
 use parse::*;
+<<<<<<< HEAD
 pub use serve::{ServeAction, ServiceArgs};
+=======
+pub use star::StarArgs;
+>>>>>>> starjava
 pub use values::{CompressionArg, CourseArg, ToneMapArg};
 use whitted_core::course::Course;
 use whitted_core::error::Result;
@@ -433,6 +441,9 @@ pub struct RenderArgs {
 
     #[command(flatten)]
     pub tone: ToneArgs,
+
+    #[command(flatten)]
+    pub star: StarArgs,
 
     /// Worker threads [default: all cores]; the output is identical for any number
     #[arg(long, value_name = "N", value_parser = parse_threads)]

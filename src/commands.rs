@@ -11,6 +11,7 @@ pub mod merge;
 pub mod regions;
 pub mod relight;
 pub mod render;
+pub mod render_star;
 pub mod serve;
 pub mod sheet;
 pub mod tonemap;

@@ -26,6 +26,14 @@ pub struct CheckArgs {
           value_parser = parse_bounces, allow_negative_numbers = true, conflicts_with = "program")]
     pub bounces: u32,
 
+    /// Check a Tick 1* image: `bump` finds the parametrisation a bump-mapped image follows
+    /// and names what is wrong against it [default: `bump` when the scene has a
+    /// <bumpy-sphere>]; `distributed` says whether the image is one draw of the course's
+    /// soft shadows and depth of field on distributed.xml, or of which variant (needs
+    /// --course)
+    #[arg(long, value_name = "OPTION", value_enum, conflicts_with = "program")]
+    pub star: Option<StarCheck>,
+
     /// Largest difference of a channel, in LSB, that still passes
     #[arg(long, value_name = "LSB", default_value_t = 2)]
     pub tolerance: u8,
@@ -99,4 +107,13 @@ impl CheckArgs {
             allowance: self.max_beyond.unwrap_or(Allowance::NONE),
         }
     }
+}
+
+/// The Tick 1* option an image is checked as.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum StarCheck {
+    /// Option 1, bump mapping
+    Bump,
+    /// Option 2, soft shadows and depth of field
+    Distributed,
 }

@@ -3,10 +3,11 @@
 //! every image passes, 1 when one differs, 2 when they cannot be compared.
 
 mod project;
+mod star;
 
 use serde_json::Value;
 
-use crate::cli::CheckArgs;
+use crate::cli::{CheckArgs, StarCheck};
 use whitted_check::check::print::json::json;
 use whitted_check::check::print::text::{text, Detail};
 use whitted_check::check::print::write_report;
@@ -15,11 +16,12 @@ use whitted_check::check::report::heat_map;
 use whitted_check::check::result::CheckResult;
 use whitted_check::check::suite;
 use whitted_check::check::which_course::{self, Chosen};
-use whitted_check::check::{check_image, student_png};
+use whitted_check::check::{check_bump_image, check_image, student_png};
 use whitted_check::mistakes::Bug;
 use whitted_core::course::Course;
 use whitted_core::error::Result;
 use whitted_core::scene;
+use whitted_core::star::Star;
 use whitted_io::output::destination::{refuse_clashes, Destination};
 use whitted_io::output::stdout;
 
@@ -37,6 +39,7 @@ pub fn run(args: &CheckArgs) -> Result<bool> {
     }
     match (&args.program, &args.image) {
         (Some(program), _) => run_program(args, program),
+        (None, Some(image)) if args.star == Some(StarCheck::Distributed) => star::run(args, image),
         (None, Some(dir)) if project::is_project_arg(dir) => project::run(args, dir),
         (None, Some(image)) if args.view => view(args, image),
         (None, Some(image)) => run_image(args, image),
@@ -106,14 +109,30 @@ fn run_image(args: &CheckArgs, image: &std::path::Path) -> Result<bool> {
     for warning in &input.warnings {
         eprintln!("warning: {warning}");
     }
-    let (case, findings) = check_image(
-        &input.scene,
-        &input.name,
-        args.bounces,
-        args.rule(),
-        student,
-        chosen.course,
-    )?;
+    let bump = args.star == Some(StarCheck::Bump) || !input.bumps.is_empty();
+    let (case, findings) = if bump {
+        let star = Star {
+            bumps: super::render_star::bumped_spheres(&input, args.input.as_deref())?,
+            ..Star::default()
+        };
+        check_bump_image(
+            &input.scene,
+            &input.name,
+            &star,
+            (args.bounces, args.rule()),
+            student,
+            chosen.course,
+        )?
+    } else {
+        check_image(
+            &input.scene,
+            &input.name,
+            args.bounces,
+            args.rule(),
+            student,
+            chosen.course,
+        )?
+    };
     if let Some(out) = heatmap.as_mut() {
         out.write_png(&heat_map(&case.student, &case.reference, args.tolerance))?;
     }

@@ -18,6 +18,10 @@ use whitted_io::render_record;
 pub fn run(args: &RenderArgs) -> Result<()> {
     let started = Instant::now();
     let input = scene::input::load_input(args.input.as_deref(), args.frame.course.course())?;
+    if super::render_star::wanted(args, &input) {
+        input.report_warnings_applying_bumps();
+        return super::render_star::run(args, &input);
+    }
     input.report_warnings();
     let load_time = started.elapsed();
     let scene = &input.scene;
@@ -76,7 +80,10 @@ pub fn run(args: &RenderArgs) -> Result<()> {
 }
 
 /// Runs `work` on a pool of `threads` workers, or on rayon's global pool (all cores).
-fn with_threads<T: Send>(threads: Option<usize>, work: impl FnOnce() -> T + Send) -> Result<T> {
+pub(crate) fn with_threads<T: Send>(
+    threads: Option<usize>,
+    work: impl FnOnce() -> T + Send,
+) -> Result<T> {
     match threads {
         None => Ok(work()),
         Some(n) => rayon::ThreadPoolBuilder::new()

@@ -6,6 +6,7 @@
 //! the student is in the handout (`check::progress`). `--program` runs the student's own
 //! program over a suite of scenes and diagnoses every case at once.
 
+pub mod bump;
 pub mod case;
 pub mod diagnose;
 pub mod difference;
@@ -24,6 +25,9 @@ pub mod report;
 pub mod reproduce;
 pub mod result;
 pub mod score;
+pub mod star_draw;
+pub mod star_option;
+pub mod star_run;
 pub mod student_png;
 pub mod suite;
 pub mod summary;
@@ -84,6 +88,8 @@ pub struct Findings {
     pub tick1_star: Option<Tick1Star>,
     /// Where no candidate explains the images well: where what it leaves lies.
     pub outside: Option<Outside>,
+    /// A Tick 1* bump-mapped image: the parametrisation and mistake it follows.
+    pub bump: Option<bump::BumpFinding>,
 }
 
 impl Findings {
@@ -111,6 +117,24 @@ impl Findings {
         findings
     }
 
+    /// A Tick 1* program's run (`star_run.rs`): its images are judged by their options,
+    /// nothing is diagnosed.
+    pub fn of_star(course: Course) -> Findings {
+        Findings::nothing(0, Evidence::Nothing, course)
+    }
+
+    /// A bump-mapped image's findings: the bump check's, nothing else diagnosed.
+    pub fn of_bump(finding: bump::BumpFinding, course: Course) -> Findings {
+        let evidence = if finding.passes() {
+            Evidence::AllCorrect
+        } else {
+            Evidence::Unexplained
+        };
+        let mut findings = Findings::nothing(1, evidence, course);
+        findings.bump = Some(finding);
+        findings
+    }
+
     /// Nothing found: no images, or every one identical.
     fn nothing(cases: usize, evidence: Evidence, course: Course) -> Findings {
         Findings {
@@ -123,6 +147,7 @@ impl Findings {
             missing_class: None,
             tick1_star: None,
             outside: None,
+            bump: None,
         }
     }
 }
@@ -193,6 +218,7 @@ pub fn find(cases: &[Case], all_pass: bool, course: Course) -> Result<Findings> 
         missing_class: None,
         tick1_star: None,
         outside: None,
+        bump: None,
     };
     if findings.weak() {
         let fit = match fitted {
@@ -287,6 +313,7 @@ impl Fitted {
             missing_class: None,
             tick1_star: None,
             outside: None,
+            bump: None,
         };
         self.tell(&mut findings, cases);
         findings.progress = Stages::of(&evidence(&findings, all_pass), course);
@@ -365,6 +392,30 @@ fn fit_terms(cases: &[Case]) -> Result<Vec<TermFit>> {
         })
         .collect::<Result<_>>()?;
     Ok(terms::fit(&term_cases))
+}
+
+/// A student's Tick 1* bump-mapped image of `scene` (its bumped spheres in `star`) checked
+/// (`bump.rs`): the case is judged by `rule` against the correct method in the
+/// parametrisation the image follows.
+pub fn check_bump_image(
+    scene: &Scene,
+    scene_name: &str,
+    star: &whitted_core::star::Star,
+    (bounces, rule): (u32, PassRule),
+    student: Rgb8,
+    course: Course,
+) -> Result<(CaseReport, Findings)> {
+    let (finding, reference) = bump::check_bump(scene, star, &student, bounces, course)?;
+    let report = CaseReport {
+        scene_name: scene_name.to_string(),
+        bounces,
+        difference: difference(&student, &reference, rule),
+        diagnosis: Vec::new(),
+        hidden_mistakes: Mistakes::NONE,
+        student,
+        reference,
+    };
+    Ok((report, Findings::of_bump(finding, course)))
 }
 
 /// Everything known about one student image of one scene.

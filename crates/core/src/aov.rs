@@ -36,6 +36,12 @@ pub enum Quantity {
     Albedo,
     /// 1-based index of the primary hit's object.
     ObjectId,
+    /// Tick 1*: the variance of one course draw of the pixel (linear radiance squared).
+    Variance,
+    /// Tick 1*: the side in pixels of the square depth of field spreads the pinhole hit over.
+    CircleOfConfusion,
+    /// Tick 1*: the bump map's height at the pinhole hit.
+    Height,
 }
 
 /// How a layer may be stored and shown.
@@ -73,7 +79,7 @@ impl Quantity {
     pub fn channels(self) -> &'static [&'static str] {
         match self {
             Quantity::Beauty => &["R", "G", "B", "A"],
-            Quantity::Shadow(_) => &["Y"],
+            Quantity::Shadow(_) | Quantity::CircleOfConfusion | Quantity::Height => &["Y"],
             Quantity::Depth => &["Z"],
             Quantity::Normal | Quantity::Position => &["X", "Y", "Z"],
             Quantity::ObjectId => &["X"],
@@ -88,7 +94,10 @@ impl Quantity {
             | Quantity::Normal
             | Quantity::Position
             | Quantity::Albedo
-            | Quantity::ObjectId => Kind::Data,
+            | Quantity::ObjectId
+            | Quantity::Variance
+            | Quantity::CircleOfConfusion
+            | Quantity::Height => Kind::Data,
             _ => Kind::Colour,
         }
     }
@@ -118,12 +127,15 @@ impl Quantity {
             Quantity::Background => rgb(out, s.background),
             Quantity::Light(i) => rgb(out, s.lights[i].shadowed),
             Quantity::Unshadowed(i) => rgb(out, s.lights[i].unshadowed),
-            Quantity::Shadow(i) => out[0] = f64::from(u8::from(s.lights[i].occluded_at_primary)),
+            Quantity::Shadow(i) => out[0] = s.lights[i].shadowed_at_primary,
             Quantity::Depth => out[0] = hit.map_or(Z_MISS, |h| h.position.z),
             Quantity::Normal => rgb(out, hit.map_or(glam::DVec3::ZERO, |h| h.normal)),
             Quantity::Position => rgb(out, hit.map_or(glam::DVec3::ZERO, |h| h.position)),
             Quantity::Albedo => rgb(out, hit.map_or(glam::DVec3::ZERO, |h| h.albedo)),
             Quantity::ObjectId => out[0] = hit.map_or(0.0, |h| (h.object + 1) as f64),
+            Quantity::Variance => rgb(out, s.star.variance),
+            Quantity::CircleOfConfusion => out[0] = s.star.circle_of_confusion,
+            Quantity::Height => out[0] = s.star.height,
         }
     }
 }
@@ -244,6 +256,9 @@ fn fixed_name(q: Quantity) -> Option<&'static str> {
         Quantity::Position => "P",
         Quantity::Albedo => "albedo",
         Quantity::ObjectId => "objectid",
+        Quantity::Variance => "variance",
+        Quantity::CircleOfConfusion => "coc",
+        Quantity::Height => "height",
         Quantity::ReflectedBounce(_)
         | Quantity::Light(_)
         | Quantity::Unshadowed(_)
@@ -252,7 +267,7 @@ fn fixed_name(q: Quantity) -> Option<&'static str> {
 }
 
 /// Every quantity that has a fixed name, for parsing.
-const FIXED: [Quantity; 12] = [
+const FIXED: [Quantity; 15] = [
     Quantity::Beauty,
     Quantity::Direct,
     Quantity::Reflected,
@@ -265,6 +280,9 @@ const FIXED: [Quantity; 12] = [
     Quantity::Position,
     Quantity::Albedo,
     Quantity::ObjectId,
+    Quantity::Variance,
+    Quantity::CircleOfConfusion,
+    Quantity::Height,
 ];
 
 impl Quantity {
@@ -372,6 +390,21 @@ pub fn all_layers(light_names: &[String], bounces: u32) -> Vec<Layer> {
             q => Layer::new(q.name(light_names), q),
         })
         .collect()
+}
+
+/// The layers a Tick 1* render adds after `all_layers`: the variance of one course draw
+/// (when the estimate is converged and random), the circle of confusion (with depth of
+/// field) and the bump height (with bumped spheres). Its shadow masks are then fractions.
+pub fn star_layers(variance: bool, dof: bool, bumps: bool) -> Vec<Layer> {
+    [
+        (variance, Quantity::Variance),
+        (dof, Quantity::CircleOfConfusion),
+        (bumps, Quantity::Height),
+    ]
+    .into_iter()
+    .filter(|(wanted, _)| *wanted)
+    .map(|(_, q)| Layer::new(q.name(&[]), q))
+    .collect()
 }
 
 /// The canonical `--aovs` of `selected` (as `select` returns them from `available`): `all`

@@ -57,6 +57,7 @@ pub mod progress;
 pub mod render;
 pub mod sample;
 pub mod scene;
+pub mod star;
 pub mod suggest;
 pub mod tonemap;
 pub mod trace;

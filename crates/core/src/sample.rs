@@ -33,6 +33,20 @@ pub struct Sample {
     pub primary: Option<PrimaryHit>,
     /// Rays cast for this sample: primary, shadow and reflected.
     pub rays: u64,
+    /// What only a Tick 1* render measures (zero otherwise).
+    pub star: StarValues,
+}
+
+/// The per-pixel values of a Tick 1* render's own layers (docs/tick1star.md), carried by each
+/// of the pixel's samples.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct StarValues {
+    /// The variance of one course draw of the pixel (the converged estimate's; 0 in a draw).
+    pub variance: DVec3,
+    /// The side in pixels of the square the aperture spreads the pinhole hit over.
+    pub circle_of_confusion: f64,
+    /// The bump map's height at the pinhole hit (0 off bumped spheres).
+    pub height: f64,
 }
 
 /// One light's share of a sample.
@@ -42,8 +56,9 @@ pub struct LightSample {
     pub shadowed: DVec3,
     /// The same with visibility forced to 1.
     pub unshadowed: DVec3,
-    /// Whether the primary hit point is in this light's shadow.
-    pub occluded_at_primary: bool,
+    /// The share of this light hidden at the primary hit: 0 or 1 for the tick's hard shadow
+    /// ray, the occluded share of the shadow rays under Tick 1*'s soft shadows.
+    pub shadowed_at_primary: f64,
 }
 
 /// The first surface along the camera ray: what the data layers (Z, N, P, albedo, objectid)
@@ -72,6 +87,7 @@ impl Sample {
             lights: vec![LightSample::default(); lights],
             primary: None,
             rays: 0,
+            star: StarValues::default(),
         }
     }
 
@@ -88,6 +104,7 @@ impl Sample {
         self.lights.fill(LightSample::default());
         self.primary = None;
         self.rays = 0;
+        self.star = StarValues::default();
     }
 
     /// Everything that came through at least one mirror.
@@ -105,7 +122,7 @@ mod tests {
         let mut s = Sample::empty(2, 3);
         s.beauty = DVec3::ONE;
         s.reflected_by_bounce[1] = DVec3::ONE;
-        s.lights[0].occluded_at_primary = true;
+        s.lights[0].shadowed_at_primary = 1.0;
         s.rays = 9;
         s.primary = Some(PrimaryHit {
             position: DVec3::ONE,

@@ -285,7 +285,7 @@ pub fn java_max_zero(x: f64) -> f64 {
 /// `pow(+0, n)` is +0 for every `n > 0` (IEEE 754 and C's `pow`), so the library call is
 /// skipped for an exponent of 0 (the plane's default) and for a clamped `R.V` of +0 (a lit
 /// point whose mirror direction turns away from the viewer) with the very same result.
-fn phong_power(x: f64, n: f64) -> f64 {
+pub(crate) fn phong_power(x: f64, n: f64) -> f64 {
     if n == 0.0 {
         1.0
     } else if x.to_bits() == 0 && n > 0.0 {
@@ -435,7 +435,7 @@ fn shade<const LAYERS: bool, O: Observer>(
         if LAYERS {
             out.unshadowed += (diffuse + specular) * weight;
             if vertex.depth == 0 {
-                out.occluded_at_primary = record.in_shadow;
+                out.shadowed_at_primary = f64::from(u8::from(record.in_shadow));
             }
         }
         if record.reaches && !record.in_shadow {
@@ -519,7 +519,7 @@ mod tests {
         assert_eq!(s.rays, 2);
         let hit = s.primary.expect("hit");
         assert_eq!(hit.position, DVec3::new(0.0, 0.0, 4.0));
-        assert!(!s.lights[0].occluded_at_primary);
+        assert_eq!(s.lights[0].shadowed_at_primary, 0.0);
     }
 
     #[test]
@@ -537,7 +537,7 @@ mod tests {
         });
         let s = trace(&scene, Ray::new(DVec3::ZERO, DVec3::Z), NO_BOUNCES);
         assert_eq!(s.beauty, DVec3::new(0.2, 0.1, 0.05));
-        assert!(s.lights[0].occluded_at_primary);
+        assert_eq!(s.lights[0].shadowed_at_primary, 1.0);
         assert_eq!(s.lights[0].shadowed, DVec3::ZERO);
         assert!(s.lights[0].unshadowed.min_element() > 0.0);
 
@@ -551,7 +551,7 @@ mod tests {
         );
         assert!(lit.beauty.min_element() > 0.2 * 0.25);
         assert_eq!(lit.lights[0].shadowed, lit.lights[0].unshadowed);
-        assert!(!lit.lights[0].occluded_at_primary);
+        assert_eq!(lit.lights[0].shadowed_at_primary, 0.0);
     }
 
     #[test]

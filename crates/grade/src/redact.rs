@@ -67,7 +67,8 @@ impl Redactor {
                         RunStatus::Ok(_)
                         | RunStatus::Timeout(_)
                         | RunStatus::WrongSize { .. }
-                        | RunStatus::NotRun(_) => {}
+                        | RunStatus::NotRun(_)
+                        | RunStatus::Star(_) => {}
                     }
                 }
                 Outcome::Ran(run)

@@ -13,6 +13,7 @@
 //! PNG) and [`render_record`] (the command that made a file). Reading: [`input`]. Over images:
 //! [`compare`], [`stats`], [`merge`], [`sheet`] (drawn on a [`canvas`]), [`relight`].
 
+pub mod bump_map;
 pub mod canvas;
 pub mod compare;
 pub mod html;

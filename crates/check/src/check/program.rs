@@ -16,6 +16,7 @@ use crate::check::missing_class::MissingClass;
 use crate::check::noise::{self, Noise, Seen};
 use crate::check::pass_rule::PassRule;
 use crate::check::renderer::SharedScene;
+use crate::check::star_run::{self, StarImage};
 use crate::check::student_png::{self, Rgb8};
 use crate::check::suite::{cases_of, SuiteCase};
 use crate::check::tick1_star::{self, StarSeen, Tick1Star};
@@ -60,6 +61,8 @@ pub enum RunStatus {
     OutputTooLarge(String),
     /// It was not run: a Tick 1* program ran out of time on an earlier case (why, in words).
     NotRun(String),
+    /// A Tick 1* option's image, judged by its option (`star_run.rs`), not by the suite.
+    Star(Box<StarImage>),
 }
 
 impl RunStatus {
@@ -73,13 +76,16 @@ impl RunStatus {
             RunStatus::OutOfMemory(_) => "out-of-memory",
             RunStatus::OutputTooLarge(_) => "output-too-large",
             RunStatus::NotRun(_) => "not-run",
+            RunStatus::Star(_) => "tick1-star",
         }
     }
 
-    /// How a case that wrote no image to check ended, in a line (None for `Ok`).
+    /// How a case that wrote no image to check against the suite ended, in a line (None for
+    /// `Ok`); a Tick 1* image's line is its judge's.
     pub fn failure_line(&self) -> Option<String> {
         Some(match self {
             RunStatus::Ok(_) => return None,
+            RunStatus::Star(s) => format!("{}: {}", s.option.what(), s.verdict.line()),
             RunStatus::WrongSize {
                 width,
                 height,
@@ -111,7 +117,11 @@ pub struct CaseOutcome {
 
 impl CaseOutcome {
     pub fn passed(&self) -> bool {
-        matches!(&self.status, RunStatus::Ok(c) if c.difference.verdict.passes())
+        match &self.status {
+            RunStatus::Ok(c) => c.difference.verdict.passes(),
+            RunStatus::Star(s) => s.verdict.passes(),
+            _ => false,
+        }
     }
 }
 
@@ -186,9 +196,14 @@ impl Launch for Plain {
     }
 }
 
-/// Runs `program` over the suite and passes each image by `rule`.
+/// Runs `program` over the suite and passes each image by `rule`; a Tick 1* program (its
+/// package `tick1star`) over its options' handout scenes instead (`star_run.rs`). `grade` and
+/// `check DIR` still run the suite and stop at its first case out of time.
 pub fn run_suite(program: &str, rule: PassRule, timeout: u64, course: Course) -> Result<SuiteRun> {
     let plain = Plain(words(program)?);
+    if is_tick1_star(program) {
+        return star_run::run(&plain, program, course, timeout);
+    }
     let cache = ImageCache::new();
     run_suite_with(&plain, program, &cases_of(course), rule, timeout, &cache)
 }
@@ -205,8 +220,8 @@ pub fn run_suite_with(
     cache: &Arc<ImageCache>,
 ) -> Result<SuiteRun> {
     let star = is_tick1_star(program);
-    let (finished, stopped) = run_programs(launch, suite, Duration::from_secs(timeout), star)?;
     let course = suite.first().map_or(Course::Y2016, |c| c.course);
+    let (finished, stopped) = run_programs(launch, suite, Duration::from_secs(timeout), star)?;
     let missing = {
         let tails: Vec<Option<&str>> = finished
             .iter()
@@ -226,6 +241,7 @@ pub fn run_suite_with(
         seen,
         timeout,
         stopped,
+        plan: None,
     });
     let mut statuses: Vec<Option<RunStatus>> = Vec::new();
     let mut tails = Vec::new();
@@ -241,7 +257,7 @@ pub fn run_suite_with(
                 images.push(image);
                 statuses.push(None);
             }
-            Ran::Failed(status) => statuses.push(Some(said_once(status, &missing, star))),
+            Ran::Failed(status) => statuses.push(Some(said_once(status, &missing, star.clone()))),
         }
     }
     let count = scenes.len();
@@ -296,6 +312,7 @@ pub fn run_suite_with(
                     seen: StarSeen::TwoRunsDiffer,
                     timeout,
                     stopped: false,
+                    plan: None,
                 }));
                 Findings::not_reproducible(prepared.len(), course, noise)
             }
@@ -361,7 +378,7 @@ fn said_above(status: &RunStatus, findings: &Findings) -> bool {
 }
 
 /// What running one case gave.
-enum Ran {
+pub(crate) enum Ran {
     Image(Rgb8),
     Failed(RunStatus),
 }
@@ -446,7 +463,7 @@ const NOT_RUN: &str = "not run";
 /// `star` (a Tick 1* program) the first case out of time stops the others, and any program's
 /// first case (the suite's quickest) out of time does too: a row of timeouts would tell nothing
 /// more, and the report says once what it is (`tick1_star.rs`).
-fn run_programs(
+pub(crate) fn run_programs(
     launch: &dyn Launch,
     suite: &[SuiteCase],
     timeout: Duration,
@@ -543,8 +560,12 @@ fn start(launch: &dyn Launch, case: &SuiteCase, index: usize) -> Result<Running>
         .tempdir_in(&scratch)
         .map_err(|e| Error::io(&scratch, "cannot create a temporary directory", e))?;
     let scene = dir.path().join(&*case.file);
-    std::fs::write(&scene, case.xml.as_bytes())
+    std::fs::write(&scene, case.xml_in(dir.path()).as_bytes())
         .map_err(|e| Error::io(&scene, "cannot write", e))?;
+    for (name, bytes) in case.assets() {
+        let path = dir.path().join(name);
+        std::fs::write(&path, bytes).map_err(|e| Error::io(&path, "cannot write", e))?;
+    }
     let output = output_path(dir.path());
     let mut command = launch.command(dir.path())?;
     command
@@ -564,7 +585,7 @@ fn start(launch: &dyn Launch, case: &SuiteCase, index: usize) -> Result<Running>
         index,
         process,
         dir,
-        expected: case.course.size(),
+        expected: case.expected_size(),
     })
 }
 

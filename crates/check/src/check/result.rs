@@ -74,7 +74,10 @@ impl CaseResult {
     }
 
     pub fn passed(&self) -> bool {
-        self.report().is_some_and(|r| r.difference.verdict.passes())
+        match &self.status {
+            RunStatus::Star(s) => s.verdict.passes(),
+            _ => self.report().is_some_and(|r| r.difference.verdict.passes()),
+        }
     }
 
     /// Whether its commands are worth a student's time: it fails, or passes while rendering
@@ -182,6 +185,13 @@ impl CheckResult {
             .filter(|c| c.passed() && c.report().is_some_and(|r| !r.hidden_mistakes.is_empty()))
             .count();
         (passed, hiding)
+    }
+
+    /// Whether this is a Tick 1* program's run of its options' scenes (`star_run.rs`).
+    pub fn star_run(&self) -> bool {
+        self.cases
+            .iter()
+            .any(|c| matches!(c.role, Some(Role::Star(_))))
     }
 
     /// Whether any case wrote an image to diagnose.

@@ -10,6 +10,8 @@ use std::borrow::Cow;
 use std::path::Path;
 use whitted_core::course::Course;
 
+use crate::check::star_option::{self, StarOption};
+
 use whitted_core::error::{Error, Result};
 
 /// What a case is for, which decides what counts towards a grade and what a student may see.
@@ -24,6 +26,9 @@ pub enum Role {
     /// A scene the people running the course keep from students (`grade --scenes`): reported
     /// to them by name and verdict only.
     Hidden,
+    /// The handout's scene of a Tick 1* option, run instead of the suite for a Tick 1*
+    /// program (`star_option.rs`): judged by its option's own check.
+    Star(StarOption),
 }
 
 impl Role {
@@ -32,6 +37,7 @@ impl Role {
             Role::Course => "course",
             Role::Diagnostic => "diagnostic",
             Role::Hidden => "hidden",
+            Role::Star(_) => "tick1-star",
         }
     }
 }
@@ -50,12 +56,38 @@ pub struct SuiteCase {
 
 impl SuiteCase {
     /// The size option the year's program takes, `--resolution WxH` (2023-24's `-r`): the
-    /// year's own size, asked for explicitly where the program has the option.
+    /// year's own size (a Tick 1* scene's reduced one), asked for explicitly where the
+    /// program has the option.
     pub fn size_option(&self) -> Option<[String; 2]> {
-        (self.course == Course::Y2023).then(|| {
-            let (w, h) = self.course.size();
+        takes_resolution(self.course).then(|| {
+            let (w, h) = self.expected_size();
             ["--resolution".to_string(), format!("{w}x{h}")]
         })
+    }
+
+    /// The size the case's image must have.
+    pub fn expected_size(&self) -> (u32, u32) {
+        match self.role {
+            Role::Star(_) => star_option::size(self.course),
+            _ => self.course.size(),
+        }
+    }
+
+    /// The scene as written into the case's folder `dir`: a Tick 1* scene's files named by
+    /// their paths there, since the program runs in the user's folder, not the case's.
+    pub fn xml_in(&self, dir: &Path) -> Cow<'_, str> {
+        match self.role {
+            Role::Star(option) => Cow::Owned(option.xml_in(dir)),
+            _ => Cow::Borrowed(&self.xml),
+        }
+    }
+
+    /// The files the scene reads beside it (a Tick 1* bump map), by name.
+    pub fn assets(&self) -> &'static [(&'static str, &'static [u8])] {
+        match self.role {
+            Role::Star(option) => option.assets(),
+            _ => &[],
+        }
     }
 
     /// `tick2.xml -b 2`.
@@ -71,6 +103,11 @@ impl SuiteCase {
             self.bounces
         )
     }
+}
+
+/// Whether `course`'s program takes `--resolution WxH` (2023-24's `-r`).
+pub fn takes_resolution(course: Course) -> bool {
+    course == Course::Y2023
 }
 
 /// Writes every scene of `course`'s suite into `dir` (made if missing), so that a student can

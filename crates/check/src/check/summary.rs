@@ -31,10 +31,15 @@ pub fn fits(findings: &Findings) -> Vec<String> {
 /// The progress line, what the program is or why its cases died (a Tick 1* program, a class
 /// that did not compile), then, when the catalogue explains little, what explains most.
 pub fn opening(findings: &Findings) -> Vec<String> {
+    // A Tick 1* program's options' scenes say nothing of the Tick 1 stages: what was run.
+    if let Some(star) = findings.tick1_star.as_ref().filter(|s| s.plan.is_some()) {
+        return vec![star.sentence()];
+    }
     let mut lines = vec![findings.progress.sentence()];
     // What the program is, or why its cases died, before anything about its images.
-    lines.extend(findings.tick1_star.map(|star| star.sentence()));
+    lines.extend(findings.tick1_star.as_ref().map(|star| star.sentence()));
     lines.extend(findings.missing_class.as_ref().map(|m| m.sentence()));
+    lines.extend(findings.bump.as_ref().map(|b| b.sentence()));
     if let Some(noise) = findings.not_reproducible {
         lines.push(noise.sentence());
         return lines;

@@ -26,13 +26,16 @@ impl StarSeen {
 }
 
 /// What the check knows of a Tick 1* program.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Tick1Star {
     pub seen: StarSeen,
     /// The time each case was given, in seconds.
     pub timeout: u64,
     /// Whether the suite was stopped at its first case out of time.
     pub stopped: bool,
+    /// How its options' scenes were run instead of the suite (`star_option::plan`), when
+    /// it was recognised before running.
+    pub plan: Option<String>,
 }
 
 /// Whether `program` (its command line) runs a class of the course's `tick1star` package.
@@ -43,6 +46,15 @@ pub fn in_package(program: &str) -> bool {
 impl Tick1Star {
     /// The report's one line: what it is, why whitted thinks so, what to do.
     pub fn sentence(&self) -> String {
+        if let Some(plan) = &self.plan {
+            return format!(
+                "a Tick 1* program (its package is tick1star): whitted {plan}. Each image is \
+                 judged as its option's (the bump map under the parametrisations students \
+                 choose; the random image as a draw of the course's distribution), not against \
+                 the Tick 1 suite. To check your ray tracer itself, run your Tick 1 code \
+                 (package tick1)."
+            );
+        }
         let why = match self.seen {
             StarSeen::Package => "its package is tick1star".to_string(),
             StarSeen::TwoRunsDiffer => {
@@ -94,6 +106,7 @@ mod tests {
             seen: StarSeen::FirstCaseTimedOut,
             timeout: 3,
             stopped: true,
+            plan: None,
         };
         let line = star.sentence();
         for words in [
@@ -111,5 +124,21 @@ mod tests {
         assert!(!in_package(
             "java -cp out uk.ac.cam.cl.gfxintro.ab1.tick1.Tick1"
         ));
+    }
+
+    #[test]
+    fn a_planned_run_says_what_was_run_instead_of_the_suite() {
+        let star = Tick1Star {
+            seen: StarSeen::Package,
+            timeout: 60,
+            stopped: false,
+            plan: Some("ran the handout's scenes once each".into()),
+        };
+        let line = star.sentence();
+        assert!(
+            line.contains("whitted ran the handout's scenes once each"),
+            "{line}"
+        );
+        assert!(!line.contains("--timeout"), "{line}");
     }
 }

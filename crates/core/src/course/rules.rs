@@ -174,7 +174,7 @@ mod tests {
         for course in Course::ALL {
             let rules = course.rules();
             let layered = tick2.trace::<true, _>(&rules, |s| {
-                let shadowed = s.lights.iter().any(|l| l.occluded_at_primary);
+                let shadowed = s.lights.iter().any(|l| l.shadowed_at_primary > 0.0);
                 (s.beauty.to_array().map(f64::to_bits), shadowed)
             });
             let bare = tick2.trace::<false, _>(&rules, |s| s.beauty.to_array().map(f64::to_bits));

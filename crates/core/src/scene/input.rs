@@ -5,6 +5,7 @@
 
 use crate::course::Course;
 use crate::error::Result;
+use crate::scene::xml::course::BumpRef;
 use crate::scene::xml::{self, parse_bytes, read_file};
 use crate::scene::Scene;
 
@@ -16,11 +17,25 @@ pub struct Input {
     pub name: String,
     /// One line each, `file:line:col: ...` (empty under 2016-17, whose format is strict).
     pub warnings: Vec<String>,
+    /// The scene's bumped spheres (Tick 1*), whose maps a command that renders them reads.
+    pub bumps: Vec<BumpRef>,
 }
 
 impl Input {
-    /// Tells the user, on stderr, what the year's loader ignored.
+    /// Tells the user, on stderr, what the year's loader ignored, and that bumped spheres are
+    /// rendered smooth.
     pub fn report_warnings(&self) {
+        for warning in self
+            .warnings
+            .iter()
+            .chain(&BumpRef::smooth_warning(&self.bumps))
+        {
+            eprintln!("warning: {warning}");
+        }
+    }
+
+    /// `report_warnings` for a command that applies the bump maps.
+    pub fn report_warnings_applying_bumps(&self) {
         for warning in &self.warnings {
             eprintln!("warning: {warning}");
         }
@@ -45,7 +60,7 @@ pub fn input_of(
     let (embedded, embedded_name) = course.default_scene();
     let bytes = read.unwrap_or_else(|| embedded.as_bytes().to_vec());
     let name = path.map_or(embedded_name.to_string(), |p| p.display().to_string());
-    let (scene, mut warnings) = parse_for_course(&name, &bytes, course)?;
+    let (scene, mut warnings, bumps) = parse_with_bumps(&name, &bytes, course)?;
     if path.is_none() {
         // The course's own file, read as the course read it: nothing for the user to fix.
         warnings.clear();
@@ -55,16 +70,29 @@ pub fn input_of(
         bytes,
         name,
         warnings,
+        bumps,
     })
 }
 
 /// Parses scene bytes named `name` as `course` reads scenes: the scene, and the warnings of a
 /// course year's loader.
+/// Bumped spheres are rendered smooth, with a warning.
 pub fn parse_for_course(name: &str, bytes: &[u8], course: Course) -> Result<(Scene, Vec<String>)> {
+    let (scene, mut warnings, bumps) = parse_with_bumps(name, bytes, course)?;
+    warnings.extend(BumpRef::smooth_warning(&bumps));
+    Ok((scene, warnings))
+}
+
+/// `parse_for_course` with the bumped spheres apart, for a command that renders their maps.
+pub fn parse_with_bumps(
+    name: &str,
+    bytes: &[u8],
+    course: Course,
+) -> Result<(Scene, Vec<String>, Vec<BumpRef>)> {
     if !course.dialect().course_loader {
-        return Ok((parse_bytes(name, bytes)?, Vec::new()));
+        return Ok((parse_bytes(name, bytes)?, Vec::new(), Vec::new()));
     }
     let text = xml::utf8(name, bytes)?;
     let read = xml::course::parse(name, text, course)?;
-    Ok((read.scene, read.warnings))
+    Ok((read.scene, read.warnings, read.bumps))
 }

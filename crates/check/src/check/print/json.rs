@@ -106,11 +106,22 @@ pub fn add_findings(object: &mut Value, findings: &Findings) {
             "known_cause": m.known_cause,
         });
     }
-    if let Some(star) = findings.tick1_star {
+    if let Some(bump) = &findings.bump {
+        object["bump"] = json!({
+            "parametrisation": bump.parametrisation,
+            "mistake": bump.mistake.map(|m| m.name()),
+            "matched": bump.matched,
+            "matched_correct": bump.matched_correct,
+            "candidates": bump.tried,
+            "passes": bump.passes(),
+        });
+    }
+    if let Some(star) = &findings.tick1_star {
         object["tick1_star"] = json!({
             "seen": star.seen.name(),
             "timeout": star.timeout,
             "stopped": star.stopped,
+            "plan": star.plan,
         });
     }
 }
@@ -152,6 +163,9 @@ fn outcome_json(case: &CaseResult) -> Value {
     object["case"] = json!(case.name);
     object["status"] = json!(case.status.name());
     object["stderr_tail"] = json!(case.stderr_tail);
+    if let RunStatus::Star(star) = &case.status {
+        object["tick1_star"] = star.json();
+    }
     if let RunStatus::WrongSize {
         width,
         height,

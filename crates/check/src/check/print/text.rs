@@ -220,7 +220,9 @@ fn program(result: &CheckResult, detail: Detail, screen: &mut Screen, hidden: &m
         Keep::Always,
         words::pass_count(passed, result.cases.len(), hiding),
     );
-    if !result.any_image() {
+    if result.star_run() {
+        // Each option's image was judged on its line; there is no suite to diagnose.
+    } else if !result.any_image() {
         screen.line(
             Keep::Always,
             "diagnosis: no case wrote an image to diagnose",

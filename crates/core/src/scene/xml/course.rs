@@ -31,9 +31,39 @@ use crate::suggest;
 /// of larger ones overflow and the object would silently vanish.
 const MAX_COORDINATE: f64 = 1e150;
 
+/// A `<bumpy-sphere>` as the scene names it: the map is read by the caller that renders it
+/// (the scene reader reads no images).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct BumpRef {
+    /// Index into `Scene::objects`.
+    pub object: usize,
+    /// The `bump-map` attribute as written, if any (relative to the scene file's folder).
+    pub map: Option<String>,
+    /// `file:line:col` of the element, for messages.
+    pub at: String,
+}
+
+impl BumpRef {
+    /// The warning for bumped spheres rendered smooth, by a command that does not apply maps.
+    pub fn smooth_warning(bumps: &[BumpRef]) -> Option<String> {
+        let first = bumps.first()?;
+        let more = match bumps.len() {
+            1 => String::new(),
+            n => format!(" ({n} times; the first shown)"),
+        };
+        Some(format!(
+            "{}: <bumpy-sphere> is rendered as a smooth sphere: its bump map (Tick 1*) is not \
+             applied here (`whitted render` applies it){more}",
+            first.at
+        ))
+    }
+}
+
 /// A scene read under a course profile, with what the reader ignored or defaulted.
 pub struct CourseScene {
     pub scene: Scene,
+    /// The bumped spheres, in file order.
+    pub bumps: Vec<BumpRef>,
     /// One line per kind of thing ignored (`file:line:col: ...`), first place and count.
     pub warnings: Vec<String>,
 }
@@ -49,6 +79,7 @@ pub fn parse(file: &str, text: &str, course: Course) -> Result<CourseScene> {
         builder: SceneBuilder::default(),
         ambient: None,
         warnings: BTreeMap::new(),
+        bumps: Vec::new(),
     };
     reader.walk()?;
     let ambient = reader.ambient.unwrap_or(DVec3::ONE);
@@ -71,6 +102,7 @@ pub fn parse(file: &str, text: &str, course: Course) -> Result<CourseScene> {
     warnings.sort();
     Ok(CourseScene {
         scene,
+        bumps: reader.bumps,
         warnings: warnings
             .into_iter()
             .map(|(_, w)| format!("{file}:{w}"))
@@ -94,6 +126,7 @@ struct CourseReader<'a> {
     ambient: Option<DVec3>,
     /// Keyed by kind, so a thousand spheres with `kd` make one line.
     warnings: BTreeMap<String, Warning>,
+    bumps: Vec<BumpRef>,
 }
 
 /// An element's attributes as written: name, value (references expanded) and offset.
@@ -422,11 +455,16 @@ impl<'a> CourseReader<'a> {
         let colour = self.colour(a)?;
         let material = self.material(a, self.dialect.sphere, colour)?;
         if a.element == "bumpy-sphere" {
-            self.warn(
-                "bump".into(),
-                a.offset,
-                "<bumpy-sphere> is rendered as a smooth sphere: its bump map (Tick 1*) is not applied".into(),
-            );
+            let map = a
+                .values
+                .iter()
+                .find(|(name, _, _)| *name == "bump-map")
+                .map(|(_, value, _)| value.to_string());
+            self.bumps.push(BumpRef {
+                object: self.builder.objects.len(),
+                map,
+                at: format!("{}:{}", self.source.file, self.source.position(a.offset)),
+            });
         }
         Ok(Object {
             shape: Shape::Sphere { centre, radius },

@@ -1,0 +1,386 @@
+//! Whether a Tick 1* option 2 image (soft shadows and depth of field on `distributed.xml`) is
+//! one draw of the course's random process, and if not, of which variant (docs/check.md,
+//! "Tick 1*"). No two correct images are alike, so no byte comparison can judge one; but every
+//! pixel's distribution is known (`whitted_core::star::expectation`: its expectation and the
+//! variance of one draw, in linear radiance before the tone map).
+//!
+//! The test: each channel's byte y is scored as z = (y - E[y]) / sd[y], where E[y] and sd[y]
+//! are the mean and spread of the course's tone map and 8-bit quantisation over a normal of
+//! the pixel's expectation and variance (Gauss-Hermite nodes, so the curve's bend, its clamp
+//! and the truncation to a byte are in them), widened by the expectation's own estimate error
+//! and a floor of a quarter byte squared for arithmetic that differs in the last bit. The
+//! statistic is the mean of z^2 over every channel the process spreads by a byte or more: about 1 for a draw of the
+//! process, above it for another one. An image whose statistic exceeds [`THRESHOLD`] is not a
+//! draw; the variants whitted can render are scored the same way, and the one scoring lowest
+//! under the threshold is named, with the tile where the course's score is worst.
+
+use glam::DVec3;
+
+use crate::check::student_png::Rgb8;
+use whitted_core::course::Course;
+use whitted_core::error::{Error, Result};
+use whitted_core::frame::{Frame, FrameSpec};
+use whitted_core::scene::{self, Scene};
+use whitted_core::star::{
+    expectation, DepthOfField, LightSampling, NoiseFloor, SoftShadows, Star, StarFrame,
+};
+use whitted_io::output::png::bytes_with;
+
+/// The mean z^2 above which an image is no draw of a distribution. Measured at 160x120 on
+/// 2023-24 with our Java Tick 1* (tests/java/tick1star) against the expectation of
+/// `whitted_core::star` as merged: 24 seeded draws of the correct program scored 1.03 to 1.25
+/// (spread about 0.05), none above the threshold (0 false alarms in 24; 1.45 is four spreads
+/// above the highest); each variant's image scored 1.68 (focal distance along the ray) to
+/// thousands (not averaged) against the course's process, and 0.97 to 1.28 against its own.
+/// tests/integration/check_star.rs measures it again on fresh seeds.
+pub const THRESHOLD: f64 = 1.45;
+
+/// The expectation's noise floor (linear standard error per channel): about one byte of the
+/// tone-mapped image, its error added to each pixel's spread. A quarter of that costs ten
+/// times the time and changes no verdict.
+const FLOOR: f64 = 0.004;
+
+/// The Sobol scrambling of the expectation: fixed, so that a check is reproducible.
+const SEED: u64 = 1;
+
+/// Squared bytes every channel's spread is at least: the last bit of arithmetic done another
+/// way (Java's doubles and whitted's agree to it, not beyond).
+const BYTE_FLOOR: f64 = 0.25;
+
+/// Squared bytes a channel's spread must reach to be scored: a channel the process hardly
+/// moves is the same in every variant and only dilutes the statistic.
+const RANDOM: f64 = 1.0;
+
+/// Side in pixels of the tiles the report's region is chosen among.
+const TILE: u32 = 16;
+
+/// The process an image may be a draw of: the course's, or a variant of it whitted renders.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Process {
+    /// The handout's: 10 shadow rays to `randomInsideUnitSphere` points of radius 0.4, 50
+    /// aperture rays of a square of side 0.2, averaged.
+    Course,
+    /// The light's points uniform in its ball, not the course's centre-heavy draw.
+    UniformSphere,
+    /// The light's radius halved (0.4 taken as its diameter).
+    LightSize,
+    /// The aperture's coordinates span the whole side 0.2 each way (a square of side 0.4).
+    ApertureFullSide,
+    /// The 50 aperture rays summed, not averaged.
+    DofNotAveraged,
+}
+
+impl Process {
+    pub const ALL: [Process; 5] = [
+        Process::Course,
+        Process::UniformSphere,
+        Process::LightSize,
+        Process::ApertureFullSide,
+        Process::DofNotAveraged,
+    ];
+
+    /// The JSON value.
+    pub fn name(self) -> &'static str {
+        match self {
+            Process::Course => "course",
+            Process::UniformSphere => "uniform-sphere",
+            Process::LightSize => "light-size",
+            Process::ApertureFullSide => "aperture-full-side",
+            Process::DofNotAveraged => "dof-not-averaged",
+        }
+    }
+
+    /// What a program drawing from it does, in words.
+    pub fn explanation(self) -> &'static str {
+        match self {
+            Process::Course => "the handout's soft shadows and depth of field",
+            Process::UniformSphere => {
+                "the light's points are uniform in its sphere; the course's \
+                 Vector3.randomInsideUnitSphere draws radius and angles uniformly (denser at \
+                 the centre): use it"
+            }
+            Process::LightSize => {
+                "the light's sphere has radius 0.2: LIGHT_SIZE (0.4) is the radius, scale the \
+                 unit sphere's point by it"
+            }
+            Process::ApertureFullSide => {
+                "the aperture's points span [-0.2, 0.2]: DOF_AMOUNT (0.2) is the side, so each \
+                 coordinate is (2 random - 1) times half of it"
+            }
+            Process::DofNotAveraged => {
+                "the 50 aperture rays' colours are summed: divide by DOF_RAY_COUNT"
+            }
+        }
+    }
+
+    /// What it renders, and by what its expectation is scaled (a sum of D draws is D times
+    /// their mean, its variance D^2 times).
+    fn star(self) -> (Star, f64) {
+        let mut soft = SoftShadows::default();
+        let mut dof = DepthOfField::default();
+        let mut scale = 1.0;
+        match self {
+            Process::Course => {}
+            Process::UniformSphere => soft.sampling = LightSampling::Uniform,
+            Process::LightSize => soft.light_size /= 2.0,
+            Process::ApertureFullSide => dof.side *= 2.0,
+            Process::DofNotAveraged => scale = f64::from(dof.rays),
+        }
+        let star = Star {
+            soft: Some(soft),
+            dof: Some(dof),
+            ..Star::default()
+        };
+        (star, scale)
+    }
+}
+
+/// How well an image fits one process.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Fit {
+    pub process: Process,
+    /// The mean z^2 over every channel of every pixel.
+    pub statistic: f64,
+}
+
+impl Fit {
+    pub fn is_draw(&self) -> bool {
+        self.statistic <= THRESHOLD
+    }
+}
+
+/// The judge's verdict on an option 2 image.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DrawCheck {
+    /// The course's fit, then each variant's that was scored (only when the course's fails).
+    pub fits: Vec<Fit>,
+    /// The tile (x, y, width, height) where the course's process fits worst.
+    pub region: (u32, u32, u32, u32),
+}
+
+impl DrawCheck {
+    pub fn course(&self) -> &Fit {
+        &self.fits[0]
+    }
+
+    /// The process the image is a draw of: the course's when it fits, else the variant that
+    /// fits best, if any does.
+    pub fn drawn_from(&self) -> Option<Process> {
+        if self.course().is_draw() {
+            return Some(Process::Course);
+        }
+        self.fits[1..]
+            .iter()
+            .filter(|f| f.is_draw())
+            .min_by(|a, b| a.statistic.total_cmp(&b.statistic))
+            .map(|f| f.process)
+    }
+
+    /// The verdict in a line.
+    pub fn line(&self) -> String {
+        let course = self.course().statistic;
+        let (x, y, w, h) = self.region;
+        match self.drawn_from() {
+            Some(Process::Course) => format!(
+                "one draw of the course's distribution (mean z^2 {course:.2}, at most \
+                 {THRESHOLD} passes)"
+            ),
+            Some(variant) => format!(
+                "not a draw of the course's distribution (mean z^2 {course:.2} > {THRESHOLD}), \
+                 but of {} (mean z^2 {:.2}): {}; it shows most at x {x}..{}, y {y}..{}",
+                variant.name(),
+                self.fits
+                    .iter()
+                    .find(|f| f.process == variant)
+                    .map_or(0.0, |f| f.statistic),
+                variant.explanation(),
+                x + w,
+                y + h
+            ),
+            None => format!(
+                "not a draw of the course's distribution (mean z^2 {course:.2} > {THRESHOLD}) \
+                 nor of a variant whitted renders (uniform-sphere, light-size, \
+                 aperture-full-side, dof-not-averaged); it differs most at x {x}..{}, y {y}..{}",
+                x + w,
+                y + h
+            ),
+        }
+    }
+}
+
+/// The scene of option 2 as `course` reads it.
+pub fn distributed_scene(course: Course) -> Result<Scene> {
+    let option = crate::check::star_option::StarOption::Distributed;
+    let (scene, _) =
+        scene::input::parse_for_course(option.file(), option.xml().as_bytes(), course)?;
+    Ok(scene)
+}
+
+/// Judges `image` as a draw of option 2 of `scene` rendered under `course` at `bounces`.
+pub fn check(scene: &Scene, image: &Rgb8, bounces: u32, course: Course) -> Result<DrawCheck> {
+    let course_score = score(scene, image, bounces, course, Process::Course)?;
+    let mut fits = vec![Fit {
+        process: Process::Course,
+        statistic: course_score.mean(),
+    }];
+    if !fits[0].is_draw() {
+        for process in &Process::ALL[1..] {
+            let s = score(scene, image, bounces, course, *process)?;
+            fits.push(Fit {
+                process: *process,
+                statistic: s.mean(),
+            });
+        }
+    }
+    Ok(DrawCheck {
+        fits,
+        region: course_score.worst_tile(image.width, image.height),
+    })
+}
+
+/// Every pixel's z^2, summed over its random channels, and how many it has.
+struct Score(Vec<f64>, Vec<u8>);
+
+impl Score {
+    /// The mean z^2 over the random channels of every pixel (where the process spreads a byte
+    /// or more: the rest say nothing of it).
+    fn mean(&self) -> f64 {
+        let channels: u32 = self.1.iter().map(|&n| u32::from(n)).sum();
+        self.0.iter().sum::<f64>() / f64::from(channels.max(1))
+    }
+
+    /// The tile of [`TILE`] pixels a side whose mean z^2 is highest.
+    fn worst_tile(&self, width: u32, height: u32) -> (u32, u32, u32, u32) {
+        let mut best = (0.0, (0, 0, width.min(TILE), height.min(TILE)));
+        for ty in (0..height).step_by(TILE as usize) {
+            for tx in (0..width).step_by(TILE as usize) {
+                let (w, h) = (TILE.min(width - tx), TILE.min(height - ty));
+                let sum: f64 = (ty..ty + h)
+                    .flat_map(|y| (tx..tx + w).map(move |x| (y * width + x) as usize))
+                    .map(|i| self.0[i])
+                    .sum();
+                let mean = sum / f64::from(w * h);
+                if mean > best.0 {
+                    best = (mean, (tx, ty, w, h));
+                }
+            }
+        }
+        best.1
+    }
+}
+
+/// The nodes and weights of 8-point Gauss-Hermite quadrature for a standard normal
+/// (probabilists' form: the weights sum to 1).
+const NODES: [(f64, f64); 8] = [
+    (-4.1445471861258945, 0.00011261453837516037),
+    (-2.802485861287542, 0.009635220120788),
+    (-1.6365190424351077, 0.1172399076617591),
+    (-0.539079811351375, 0.37301225767907725),
+    (0.539079811351375, 0.37301225767907725),
+    (1.6365190424351077, 0.1172399076617591),
+    (2.802485861287542, 0.009635220120788),
+    (4.1445471861258945, 0.00011261453837516037),
+];
+
+/// `image` scored against `process`'s distribution.
+fn score(
+    scene: &Scene,
+    image: &Rgb8,
+    bounces: u32,
+    course: Course,
+    process: Process,
+) -> Result<Score> {
+    let mut spec = FrameSpec::tick(image.width, image.height, bounces, true);
+    spec.course = course;
+    let frame = Frame::new(scene, &spec)?;
+    let (star, scale) = process.star();
+    let star_frame = StarFrame {
+        scene,
+        camera: *frame.camera(),
+        course,
+        trace: frame.trace(),
+        star: &star,
+    };
+    let floor = NoiseFloor {
+        standard_error: FLOOR,
+        ..NoiseFloor::default()
+    };
+    let expected = expectation(&star_frame, floor, SEED)?;
+    let pixels = (image.width * image.height) as usize;
+    if expected.beauty.len() != pixels || expected.variance.len() != pixels {
+        return Err(Error::Usage(
+            "the expectation's size is not the image's".into(),
+        ));
+    }
+    // Every pixel's quadrature points (and the points one standard error either side), tone
+    // mapped and quantised by the course's own bytes in one call.
+    let per_pixel = NODES.len() + 2;
+    let mut points = Vec::with_capacity(pixels * per_pixel);
+    for i in 0..pixels {
+        let mean = expected.beauty[i] * scale;
+        let sd = (expected.variance[i] * scale * scale)
+            .max(DVec3::ZERO)
+            .to_array()
+            .map(f64::sqrt);
+        let se = expected.standard_error[i] * scale;
+        for (x, _) in NODES {
+            points.push(mean + DVec3::from(sd.map(|s| s * x)));
+        }
+        points.push(mean - se);
+        points.push(mean + se);
+    }
+    let bytes = bytes_with(course.tonemap(), &points);
+    let (score, random): (Vec<f64>, Vec<u8>) = (0..pixels)
+        .map(|i| {
+            let at = |k: usize, c: usize| f64::from(bytes[3 * (i * per_pixel + k) + c]);
+            (0..3)
+                .map(|c| {
+                    let mean: f64 = NODES
+                        .iter()
+                        .enumerate()
+                        .map(|(k, (_, w))| w * at(k, c))
+                        .sum();
+                    let square: f64 = NODES
+                        .iter()
+                        .enumerate()
+                        .map(|(k, (_, w))| w * at(k, c).powi(2))
+                        .sum();
+                    let spread = (square - mean * mean).max(0.0);
+                    let estimate = ((at(NODES.len() + 1, c) - at(NODES.len(), c)) / 2.0).powi(2);
+                    let y = f64::from(image.bytes[3 * i + c]);
+                    match spread >= RANDOM {
+                        true => ((y - mean).powi(2) / (spread + estimate + BYTE_FLOOR), 1),
+                        false => (0.0, 0),
+                    }
+                })
+                .fold((0.0, 0), |(z, n), (dz, dn)| (z + dz, n + dn))
+        })
+        .unzip();
+    Ok(Score(score, random))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_quadrature_is_a_standard_normal() {
+        let total: f64 = NODES.iter().map(|(_, w)| w).sum();
+        let variance: f64 = NODES.iter().map(|(x, w)| w * x * x).sum();
+        let fourth: f64 = NODES.iter().map(|(x, w)| w * x.powi(4)).sum();
+        assert!((total - 1.0).abs() < 1e-9, "{total}");
+        assert!((variance - 1.0).abs() < 1e-9, "{variance}");
+        assert!((fourth - 3.0).abs() < 1e-9, "{fourth}");
+    }
+
+    #[test]
+    fn the_worst_tile_is_where_the_score_is() {
+        let (w, h) = (40, 20);
+        let mut s = vec![0.0; (w * h) as usize];
+        s[(18 * w + 35) as usize] = 30.0;
+        assert_eq!(
+            Score(s, vec![3; (w * h) as usize]).worst_tile(w, h),
+            (32, 16, 8, 4)
+        );
+    }
+}

@@ -1,0 +1,184 @@
+//! `check --program` on a Tick 1* program: instead of the Tick 1 suite (whose cases would run
+//! out of time one after another, and whose byte-for-byte check no random image passes), the
+//! handout's scene of each option once (`star_option.rs`), at a size and a time that fit. Each
+//! image written goes to its option's judge.
+
+use std::sync::Arc;
+use std::time::Duration;
+
+use crate::check::bump::{self, BumpFinding};
+use crate::check::program::{run_programs, CaseOutcome, Launch, Ran, RunStatus, SuiteRun};
+use crate::check::star_draw::{self, DrawCheck, Process};
+use crate::check::star_option::{self, StarOption};
+use crate::check::student_png::{self, Rgb8};
+use crate::check::tick1_star::{StarSeen, Tick1Star};
+use crate::check::Findings;
+use whitted_core::course::Course;
+use whitted_core::error::{Error, Result};
+use whitted_core::scene;
+use whitted_core::star::{BumpMap, BumpedSphere, Star};
+
+/// A Tick 1* option's image and what its judge said of it.
+#[derive(Debug, Clone)]
+pub struct StarImage {
+    pub option: StarOption,
+    pub image: Rgb8,
+    pub verdict: StarVerdict,
+}
+
+impl StarImage {
+    /// The case's `"tick1_star"` object in the JSON.
+    pub fn json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "option": self.option.name(),
+            "width": self.image.width,
+            "height": self.image.height,
+            "verdict": self.verdict.name(),
+            "line": self.verdict.line(),
+            "fits": match &self.verdict {
+                StarVerdict::Draw(d) => d
+                    .fits
+                    .iter()
+                    .map(|f| serde_json::json!({"process": f.process.name(), "statistic": f.statistic}))
+                    .collect::<Vec<_>>(),
+                StarVerdict::Bump(_) | StarVerdict::NotJudged(_) => Vec::new(),
+            },
+        })
+    }
+}
+
+/// What a Tick 1* option's judge says of an image.
+#[derive(Debug, Clone, PartialEq)]
+pub enum StarVerdict {
+    /// Option 1's image: the parametrisation and mistake it follows (`bump.rs`).
+    Bump(BumpFinding),
+    /// Option 2's image scored as a draw of the course's process and its variants.
+    Draw(DrawCheck),
+    /// No judge of this option's images is built into this whitted: why, in words.
+    NotJudged(&'static str),
+}
+
+impl StarVerdict {
+    /// The JSON value.
+    pub fn name(&self) -> &'static str {
+        match self {
+            StarVerdict::Bump(b) => match (b.passes(), b.mistake) {
+                (true, _) => "bump-correct",
+                (false, Some(_)) => "bump-mistake",
+                (false, None) => "bump-unmatched",
+            },
+            StarVerdict::Draw(d) => match d.drawn_from() {
+                Some(Process::Course) => "course-draw",
+                Some(_) => "variant-draw",
+                None => "not-a-draw",
+            },
+            StarVerdict::NotJudged(_) => "not-judged",
+        }
+    }
+
+    /// Whether nothing wrong was found (the exit status).
+    pub fn passes(&self) -> bool {
+        match self {
+            StarVerdict::Bump(b) => b.passes(),
+            StarVerdict::Draw(d) => d.drawn_from() == Some(Process::Course),
+            StarVerdict::NotJudged(_) => true,
+        }
+    }
+
+    /// The verdict in a line.
+    pub fn line(&self) -> String {
+        match self {
+            StarVerdict::Bump(b) => b.sentence(),
+            StarVerdict::Draw(d) => d.line(),
+            StarVerdict::NotJudged(why) => format!("not judged: {why}"),
+        }
+    }
+}
+
+/// The judge of `option`'s image, rendered under `course` at `bounces`.
+pub fn judge(
+    option: StarOption,
+    image: &Rgb8,
+    bounces: u32,
+    course: Course,
+) -> Result<StarVerdict> {
+    Ok(match option {
+        StarOption::Bump => {
+            let (scene, _, bumps) =
+                scene::input::parse_with_bumps(option.file(), option.xml().as_bytes(), course)?;
+            let map = Arc::new(handout_map(option)?);
+            let star = Star {
+                bumps: bumps
+                    .iter()
+                    .map(|b| BumpedSphere {
+                        object: b.object,
+                        map: Arc::clone(&map),
+                    })
+                    .collect(),
+                ..Star::default()
+            };
+            StarVerdict::Bump(bump::check_bump(&scene, &star, image, bounces, course)?.0)
+        }
+        StarOption::Distributed => {
+            let scene = star_draw::distributed_scene(course)?;
+            StarVerdict::Draw(star_draw::check(&scene, image, bounces, course)?)
+        }
+    })
+}
+
+/// The handout's bump map, shipped with its scene, read as the course reads it.
+fn handout_map(option: StarOption) -> Result<BumpMap> {
+    let bad = |why: String| Error::Usage(format!("the handout's bump map: {why}"));
+    let (_, bytes) = option
+        .assets()
+        .first()
+        .ok_or_else(|| bad("missing".into()))?;
+    let rgb = student_png::decode(bytes).map_err(bad)?;
+    let texels: Vec<[u8; 3]> = rgb
+        .bytes
+        .chunks_exact(3)
+        .map(|c| [c[0], c[1], c[2]])
+        .collect();
+    BumpMap::from_rgb8(rgb.width as usize, rgb.height as usize, &texels)
+        .ok_or_else(|| bad("empty".into()))
+}
+
+/// Runs the Tick 1* program `launch` starts (shown as `program`) on each option's handout
+/// scene of `course`, once, giving each `asked` seconds (at least `LONG_TIMEOUT` at a year's
+/// own size); one option out of time does not stop the other.
+pub fn run(launch: &dyn Launch, program: &str, course: Course, asked: u64) -> Result<SuiteRun> {
+    let cases = star_option::cases(course);
+    let timeout = star_option::timeout(course, asked);
+    let (finished, _) = run_programs(launch, &cases, Duration::from_secs(timeout), false)?;
+    let mut outcomes = Vec::new();
+    for (case, (ran, stderr_tail)) in cases.iter().zip(finished) {
+        let status = match (ran, StarOption::of_file(&case.file)) {
+            (Ran::Image(image), Some(option)) => RunStatus::Star(Box::new(StarImage {
+                option,
+                verdict: judge(option, &image, case.bounces, course)?,
+                image,
+            })),
+            (Ran::Image(_), None) => RunStatus::Crashed("not a Tick 1* scene".into()),
+            (Ran::Failed(status), _) => status,
+        };
+        outcomes.push(CaseOutcome {
+            name: case.name(),
+            case: case.clone(),
+            status,
+            stderr_tail,
+            said_above: false,
+        });
+    }
+    let mut findings = Findings::of_star(course);
+    findings.tick1_star = Some(Tick1Star {
+        seen: StarSeen::Package,
+        timeout,
+        stopped: false,
+        plan: Some(star_option::plan(course, asked)),
+    });
+    Ok(SuiteRun {
+        program: program.to_string(),
+        cases: outcomes,
+        findings,
+    })
+}
