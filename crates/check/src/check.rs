@@ -25,6 +25,7 @@ pub mod report;
 pub mod reproduce;
 pub mod result;
 pub mod score;
+pub mod star_reference;
 pub mod star_draw;
 pub mod star_option;
 pub mod star_run;

@@ -181,10 +181,18 @@ pub fn star_film(
                     circle_of_confusion: f64::from(result.coc),
                     height: f64::from(result.height),
                 };
+                // Z, P and objectid come from the ray nearest the pinhole (the first of ties).
+                let nearest = (0..paths.len())
+                    .min_by(|&a, &b| {
+                        paths[a]
+                            .aperture_offset
+                            .total_cmp(&paths[b].aperture_offset)
+                    })
+                    .unwrap_or(0);
                 for (i, path) in paths.iter().enumerate() {
                     let sample = path.sample(lights, frame.trace.bounces, star);
                     stats.rays += sample.rays;
-                    accumulator.add(&sample, i == 0);
+                    accumulator.add(&sample, i == nearest);
                 }
                 stats.camera_rays += paths.len() as u64;
                 let values = &mut data[x * channels..(x + 1) * channels];

@@ -89,6 +89,9 @@ pub struct Path {
     /// `beta_k * background` where the chain leaves the scene, else 0.
     pub background: DVec3,
     pub primary: Option<PathPrimary>,
+    /// How far from the pinhole the camera ray starts (its aperture point): the ray nearest
+    /// the pinhole gives the layers that are never blended (Z, P, objectid).
+    pub aperture_offset: f64,
 }
 
 impl Path {
@@ -174,7 +177,10 @@ pub fn trace_path<M: Model>(
     options: TraceOptions,
     visibility: &mut dyn FnMut(ShadowQuery) -> Visibility,
 ) -> Path {
-    let mut path = Path::default();
+    let mut path = Path {
+        aperture_offset: ray.origin.length(),
+        ..Path::default()
+    };
     let mut throughput = 1.0;
     for k in 0..=options.bounces {
         let Some(hit) = accel.closest_hit(model, &ray) else {
