@@ -9,22 +9,16 @@ mod check;
 mod grade;
 mod look;
 mod parse;
-<<<<<<< HEAD
 mod serve;
-=======
 mod star;
->>>>>>> starjava
 mod values;
 
 pub use check::{CheckArgs, StarCheck};
 pub use grade::GradeArgs;
 pub use look::{ExplainArgs, RelightArgs, ServeArgs, ViewArgs};
 use parse::*;
-<<<<<<< HEAD
 pub use serve::{ServeAction, ServiceArgs};
-=======
 pub use star::StarArgs;
->>>>>>> starjava
 pub use values::{CompressionArg, CourseArg, ToneMapArg};
 use whitted_core::course::Course;
 use whitted_core::error::Result;
