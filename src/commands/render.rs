@@ -26,20 +26,14 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let load_time = started.elapsed();
     let scene = &input.scene;
     let plan = RenderPlan::new(&args.request(), scene)?;
-    // Open outputs before rendering, so that an unwritable path fails in milliseconds.
-    let mut png = plan.png.as_deref().map(Destination::open).transpose()?;
-    let mut exr_file = plan.exr.as_deref().map(AtomicFile::create).transpose()?;
+    let mut targets = Targets::open(&plan)?;
 
     let progress = Bar::new(u64::from(plan.frame.region().height()), args.quiet);
     let started = Instant::now();
     // Both writers take each strip as it is finished, into temporary files: then rename, so
     // that there are all outputs or none.
     let (stats, exr_time) = with_threads(plan.threads, || -> Result<(RenderStats, Duration)> {
-        let mut writers = Writers::open(
-            &outputs(&plan, &input, exr_file.is_some()),
-            png.as_mut(),
-            exr_file.as_mut(),
-        )?;
+        let mut writers = targets.writers(&outputs(&plan, &input, plan.frame.layers()))?;
         let stats = render_strips(
             scene,
             &plan.frame,
@@ -58,14 +52,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             stats.non_finite
         );
     }
-    // Ctrl-C while the files were being written: drop them rather than publish them.
-    whitted_core::interrupt::check()?;
-    if let Some(file) = exr_file {
-        file.commit()?;
-    }
-    if let Some(png) = png {
-        png.commit()?;
-    }
+    targets.publish()?;
 
     if !args.quiet {
         let layers = plan.frame.layers().len();
@@ -142,12 +129,51 @@ fn summary(plan: &RenderPlan, stats: &RenderStats, layers: usize, times: Times) 
     )
 }
 
-/// What the writers are to write for `plan`: the EXR's header metadata (the render record)
-/// is built here, with the rest of the plan's facts, so that `output/` knows nothing of plans
-/// or scenes.
-fn outputs<'a>(plan: &'a RenderPlan, input: &scene::input::Input, exr: bool) -> Outputs<'a> {
+/// The files a render writes: opened before it renders, so that an unwritable path fails in
+/// milliseconds, written into temporary files and published together at the end, so that
+/// there are all outputs or none. Every render (the tick's and Tick 1*'s) goes through it.
+pub(crate) struct Targets {
+    png: Option<Destination>,
+    exr: Option<AtomicFile>,
+}
+
+impl Targets {
+    pub(crate) fn open(plan: &RenderPlan) -> Result<Self> {
+        Ok(Targets {
+            png: plan.png.as_deref().map(Destination::open).transpose()?,
+            exr: plan.exr.as_deref().map(AtomicFile::create).transpose()?,
+        })
+    }
+
+    /// The PNG and EXR writers over these files.
+    pub(crate) fn writers<'a>(&'a mut self, outputs: &Outputs) -> Result<Writers<'a>> {
+        Writers::open(outputs, self.png.as_mut(), self.exr.as_mut())
+    }
+
+    /// Renames the finished files into place, unless Ctrl-C came while they were being
+    /// written: then they are dropped rather than published.
+    pub(crate) fn publish(self) -> Result<()> {
+        whitted_core::interrupt::check()?;
+        if let Some(file) = self.exr {
+            file.commit()?;
+        }
+        if let Some(png) = self.png {
+            png.commit()?;
+        }
+        Ok(())
+    }
+}
+
+/// What the writers are to write for `plan`: `layers` over the plan's region. The EXR's header
+/// metadata (the render record) is built here, with the rest of the plan's facts, so that
+/// `output/` knows nothing of plans or scenes.
+pub(crate) fn outputs<'a>(
+    plan: &RenderPlan,
+    input: &scene::input::Input,
+    layers: &'a [whitted_core::aov::Layer],
+) -> Outputs<'a> {
     let (region, camera) = (plan.frame.region(), plan.frame.camera());
-    let metadata = exr.then(|| {
+    let metadata = plan.exr.is_some().then(|| {
         let lights = input.scene.lights.iter().map(|l| l.name.clone()).collect();
         render_record::metadata(plan, &input.name, &input.bytes, lights)
     });
@@ -157,7 +183,7 @@ fn outputs<'a>(plan: &'a RenderPlan, input: &scene::input::Input, exr: bool) -> 
             origin: (region.x0 as i32, region.y0 as i32),
             display: ((0, 0), (camera.width as usize, camera.height as usize)),
         },
-        layers: plan.frame.layers(),
+        layers,
         encoding: plan.encoding,
         exr_options: plan.exr_options,
         metadata,

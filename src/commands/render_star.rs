@@ -7,17 +7,14 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
+use super::render::{outputs, Targets};
 use crate::cli::RenderArgs;
 use whitted_core::aov;
 use whitted_core::error::{Error, Result};
 use whitted_core::scene::input::Input;
 use whitted_core::star::{star_film, BumpMethod, BumpedSphere, Sampling, Star, StarFrame};
-use whitted_io::output::atomic::AtomicFile;
-use whitted_io::output::destination::Destination;
-use whitted_io::output::exr::Placement;
-use whitted_io::output::writers::{Outputs, Writers};
+use whitted_io::bump_map;
 use whitted_io::plan::RenderPlan;
-use whitted_io::{bump_map, render_record};
 
 /// Whether `render` takes this path: a Tick 1* effect is asked for or the scene has bumps.
 pub fn wanted(args: &RenderArgs, input: &Input) -> bool {
@@ -96,8 +93,7 @@ pub fn run(args: &RenderArgs, input: &Input) -> Result<()> {
     } else {
         Vec::new()
     };
-    let mut png = plan.png.as_deref().map(Destination::open).transpose()?;
-    let mut exr_file = plan.exr.as_deref().map(AtomicFile::create).transpose()?;
+    let mut targets = Targets::open(&plan)?;
     let frame = StarFrame {
         scene,
         camera: *plan.frame.camera(),
@@ -115,32 +111,11 @@ pub fn run(args: &RenderArgs, input: &Input) -> Result<()> {
             stats.non_finite
         );
     }
-    let camera = plan.frame.camera();
-    let metadata = exr_file.is_some().then(|| {
-        let lights = scene.lights.iter().map(|l| l.name.clone()).collect();
-        render_record::metadata(&plan, &input.name, &input.bytes, lights)
-    });
-    let outputs = Outputs {
-        placement: Placement {
-            size: (camera.width as usize, camera.height as usize),
-            origin: (0, 0),
-            display: ((0, 0), (camera.width as usize, camera.height as usize)),
-        },
-        layers: &film.layers,
-        encoding: plan.encoding,
-        exr_options: plan.exr_options,
-        metadata,
-    };
-    let mut writers = Writers::open(&outputs, png.as_mut(), exr_file.as_mut())?;
+    let mut writers = targets.writers(&outputs(&plan, input, &film.layers))?;
     writers.write(&film)?;
     writers.finish()?;
-    whitted_core::interrupt::check()?;
-    if let Some(file) = exr_file {
-        file.commit()?;
-    }
-    if let Some(png) = png {
-        png.commit()?;
-    }
+    targets.publish()?;
+    let camera = plan.frame.camera();
     if !args.quiet {
         let pixels = f64::from(camera.width) * f64::from(camera.height);
         eprintln!(
