@@ -45,8 +45,15 @@ fn main() -> ExitCode {
         Some(Command::Man(args)) => commands::man::run(args).map(|()| true),
         None => commands::render::run(&cli.render).map(|()| true),
     };
+    // A server (`view`, `serve`) runs until it is stopped: Ctrl-C is how it ends, not an
+    // error, though the status stays the signal's (128 + n) as a shell expects.
+    let serving = matches!(cli.command, Some(Command::View(_) | Command::Serve(_)));
     match result {
         Ok(true) => ExitCode::SUCCESS,
+        Err(e @ whitted_core::error::Error::Interrupted { signal }) if serving => {
+            eprintln!("whitted: stopped by signal {signal}");
+            ExitCode::from(e.exit_code())
+        }
         // A comparison that found differences (`diff`): not an error, but not a pass.
         Ok(false) => ExitCode::from(1),
         Err(e) => {
