@@ -81,6 +81,16 @@ fn a_kill_mid_upload_and_mid_run_loses_nothing_and_doubles_nothing() {
         "{}",
         String::from_utf8_lossy(&backup.stderr)
     );
+    use std::os::unix::fs::PermissionsExt;
+    let mode = std::fs::metadata(&copy)
+        .expect("the copy")
+        .permissions()
+        .mode();
+    assert_eq!(
+        mode & 0o777,
+        0o600,
+        "the copy holds the secrets: its user's alone"
+    );
     let again = whitted(
         dir.path(),
         &["serve", "backup", s(&copy), "--data", s(&data)],

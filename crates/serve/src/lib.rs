@@ -219,6 +219,20 @@ pub fn backup(dir: &Path, to: &Path) -> Result<()> {
         )));
     }
     let partial = to.with_extension("partial");
+    // The copy holds every student's link secret: private to its user from its first byte,
+    // as the data folder is (SQLite would create it 0644).
+    std::os::unix::fs::OpenOptionsExt::mode(
+        std::fs::OpenOptions::new().write(true).create_new(true),
+        0o600,
+    )
+    .open(&partial)
+    .map_err(|e| match e.kind() {
+        std::io::ErrorKind::AlreadyExists => Error::Usage(format!(
+            "{}: already exists (left by an interrupted backup?); remove it or give another file",
+            partial.display()
+        )),
+        _ => Error::io(&partial, "cannot create", e),
+    })?;
     let done = store::Store::open(&data.database())?
         .backup(&partial)
         .and_then(|()| std::fs::rename(&partial, to).map_err(|e| Error::io(to, "cannot write", e)));
