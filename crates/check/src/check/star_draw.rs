@@ -22,7 +22,8 @@ use whitted_core::error::{Error, Result};
 use whitted_core::frame::{Frame, FrameSpec};
 use whitted_core::scene::{self, Scene};
 use whitted_core::star::{
-    expectation, DepthOfField, LightSampling, NoiseFloor, SoftShadows, Star, StarFrame,
+    expectation, DepthOfField, Focus, LightSampling, NoiseFloor, ShadowShare, ShadowedTerms,
+    SoftShadows, Star, StarFrame,
 };
 use whitted_io::output::png::bytes_with;
 
@@ -68,15 +69,27 @@ pub enum Process {
     ApertureFullSide,
     /// The 50 aperture rays summed, not averaged.
     DofNotAveraged,
+    /// The light's points on its sphere's surface: the course's point normalised, times 0.4.
+    LightSurface,
+    /// The count of unoccluded shadow rays used as the scale, not divided by the 10 cast.
+    ShadowsNotAveraged,
+    /// The visible share scales the diffuse term only; the specular is added whole.
+    SpecularNotScaled,
+    /// The focal point `DOF_FOCAL_PLANE` along the pinhole ray, not on the plane z = 3.51805.
+    FocalDistance,
 }
 
 impl Process {
-    pub const ALL: [Process; 5] = [
+    pub const ALL: [Process; 9] = [
         Process::Course,
         Process::UniformSphere,
         Process::LightSize,
         Process::ApertureFullSide,
         Process::DofNotAveraged,
+        Process::LightSurface,
+        Process::ShadowsNotAveraged,
+        Process::SpecularNotScaled,
+        Process::FocalDistance,
     ];
 
     /// The JSON value.
@@ -87,6 +100,10 @@ impl Process {
             Process::LightSize => "light-size",
             Process::ApertureFullSide => "aperture-full-side",
             Process::DofNotAveraged => "dof-not-averaged",
+            Process::LightSurface => "light-surface",
+            Process::ShadowsNotAveraged => "shadows-not-averaged",
+            Process::SpecularNotScaled => "specular-not-scaled",
+            Process::FocalDistance => "focal-distance",
         }
     }
 
@@ -110,6 +127,24 @@ impl Process {
             Process::DofNotAveraged => {
                 "the 50 aperture rays' colours are summed: divide by DOF_RAY_COUNT"
             }
+            Process::LightSurface => {
+                "the light's points lie on its sphere's surface (the random point normalised): \
+                 the handout's point is LIGHT_SIZE times Vector3.randomInsideUnitSphere() as it \
+                 comes, inside the sphere; do not normalise it"
+            }
+            Process::ShadowsNotAveraged => {
+                "the light's terms are scaled by the number of shadow rays that reach it: \
+                 divide that count by SHADOW_RAY_COUNT before scaling diffuse and specular"
+            }
+            Process::SpecularNotScaled => {
+                "only the diffuse term is scaled by the share of shadow rays that reach the \
+                 light: scale the specular term by the same share (highlights show in shadow)"
+            }
+            Process::FocalDistance => {
+                "the focal point is DOF_FOCAL_PLANE along the ray (ray.evaluateAt(3.51805)): \
+                 it is where the ray meets the plane z = DOF_FOCAL_PLANE, at \
+                 DOF_FOCAL_PLANE / direction.z along it"
+            }
         }
     }
 
@@ -125,6 +160,10 @@ impl Process {
             Process::LightSize => soft.light_size /= 2.0,
             Process::ApertureFullSide => dof.side *= 2.0,
             Process::DofNotAveraged => scale = f64::from(dof.rays),
+            Process::LightSurface => soft.sampling = LightSampling::Surface,
+            Process::ShadowsNotAveraged => soft.share = ShadowShare::Count,
+            Process::SpecularNotScaled => soft.scaled = ShadowedTerms::DiffuseOnly,
+            Process::FocalDistance => dof.focus = Focus::Distance,
         }
         let star = Star {
             soft: Some(soft),
@@ -199,8 +238,12 @@ impl DrawCheck {
             ),
             None => format!(
                 "not a draw of the course's distribution (mean z^2 {course:.2} > {THRESHOLD}) \
-                 nor of a variant whitted renders (uniform-sphere, light-size, \
-                 aperture-full-side, dof-not-averaged); it differs most at x {x}..{}, y {y}..{}",
+                 nor of a variant whitted renders ({}); it differs most at x {x}..{}, y {y}..{}",
+                Process::ALL[1..]
+                    .iter()
+                    .map(|p| p.name())
+                    .collect::<Vec<_>>()
+                    .join(", "),
                 x + w,
                 y + h
             ),

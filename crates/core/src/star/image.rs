@@ -299,10 +299,9 @@ fn pinhole_layers(
         return (0.0, DVec3::ZERO, 0.0);
     };
     let step = frame.camera.plane_point(1, 0).0 - frame.camera.plane_point(0, 0).0;
-    let coc = frame
-        .star
-        .dof
-        .map_or(0.0, |dof| dof.circle_of_confusion(hit.position.z, step));
+    let coc = frame.star.dof.map_or(0.0, |dof| {
+        dof.circle_of_confusion(hit.position.z, pinhole.direction, step)
+    });
     (coc as f32, hit.normal, hit.height.unwrap_or(0.0) as f32)
 }
 
