@@ -14,7 +14,7 @@ use crate::hits::Hits;
 use crate::model::Model;
 use crate::sample::{PrimaryHit, Sample, StarValues};
 use crate::scene::Scene;
-use crate::trace::{java_max_zero, phong_power, TraceOptions};
+use crate::trace::{light_geometry, TraceOptions};
 
 /// A light's visibility at a vertex as a sampler estimated it.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -250,22 +250,12 @@ pub fn trace_path<M: Model>(
         let v = model.view(point, ray.origin);
         let mut lights = SmallVec::new();
         for (index, light) in model.lights(&scene.lights).iter().enumerate() {
-            let to_light = light.position - point;
-            let d = to_light.length();
-            let illumination = model.illumination(light, d);
-            let l = model.to_light(to_light, d);
-            let raw_n_dot_l = normal.dot(l);
-            if !model.reaches(raw_n_dot_l) {
+            let geometry = light_geometry(model, light, point, normal, v);
+            if !geometry.reaches {
                 lights.push(LightTerm::new(DVec3::ZERO, DVec3::ZERO, Visibility::LIT));
                 continue;
             }
-            let n_dot_l = java_max_zero(raw_n_dot_l);
-            let r = model.specular_mirror(normal, l, n_dot_l);
-            let r_dot_v = model.clamp_r_dot_v(r.dot(v));
-            let m = material;
-            let diffuse = model.diffuse(m.colour, illumination, m.kd, n_dot_l);
-            let phong = phong_power(r_dot_v, model.specular_exponent(m.n));
-            let specular = model.specular(light, illumination, m.ks, phong, m.colour, n_dot_l);
+            let (diffuse, specular) = geometry.terms(model, light, material);
             let seen = if options.shadows {
                 let blocked = |offset: DVec3| {
                     let target = light.position + offset;
