@@ -23,6 +23,8 @@ pub enum LightSamplingArg {
     Course,
     /// Uniform in the ball's volume
     Uniform,
+    /// On the sphere's surface: the course's point normalised (radius always the light's)
+    Surface,
 }
 
 #[derive(Debug, Clone, Args)]
@@ -77,7 +79,9 @@ impl StarArgs {
             sampling: match self.light_sampling {
                 LightSamplingArg::Course => LightSampling::Course,
                 LightSamplingArg::Uniform => LightSampling::Uniform,
+                LightSamplingArg::Surface => LightSampling::Surface,
             },
+            ..SoftShadows::default()
         })
     }
 
@@ -140,6 +144,7 @@ fn parse_dof(s: &str) -> Result<DepthOfField, String> {
         rays: parse_shadow_rays(rays).map_err(|_| {
             format!("expected 1 to {MAX_SHADOW_RAYS} depth-of-field rays, got `{rays}`")
         })?,
+        ..DepthOfField::default()
     })
 }
 

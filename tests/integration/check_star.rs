@@ -242,26 +242,103 @@ fn each_variant_whitted_renders_is_named_with_its_region() {
     }
 }
 
+/// Our Java's distributed image with `flags` and each seed is named `name` by the check,
+/// with the course's statistic above the threshold and the variant's own under it.
+fn named_for_every_seed(d: &Path, flag: &str, name: &str, seeds: &[u32]) {
+    for seed in seeds {
+        let seed = format!("-Dseed={seed}");
+        let image = java_image(d, "distributed.xml", &[&seed, flag], "160x120", "n.png");
+        let (star, status) = judge(d, &image);
+        assert_eq!(status, Some(1), "{flag} {seed}: {star}");
+        assert_eq!(star["verdict"], "variant-draw", "{flag} {seed}: {star}");
+        assert!(statistic(&star, "course") > 1.45, "{flag} {seed}: {star}");
+        assert!(statistic(&star, name) < 1.45, "{flag} {seed}: {star}");
+        let line = star["line"].as_str().expect("line");
+        assert!(
+            line.contains(&format!("but of {name}")),
+            "{flag} {seed}: {line}"
+        );
+    }
+}
+
 #[test]
-fn the_variants_whitted_does_not_render_are_no_draw_of_the_course_s() {
+fn a_light_drawn_on_its_surface_is_named_for_two_seeds() {
+    // The student's `randomInsideUnitSphere().normalised()`.
     let d = tempfile::tempdir().expect("tempdir");
-    for flag in [
-        "-Dsoft=sphere-surface",
+    named_for_every_seed(
+        d.path(),
+        "-Dsoft=light-surface",
+        "light-surface",
+        &[501, 502],
+    );
+}
+
+#[test]
+fn shadow_counts_not_averaged_are_named_for_two_seeds() {
+    let d = tempfile::tempdir().expect("tempdir");
+    named_for_every_seed(
+        d.path(),
         "-Dsoft=not-averaged",
+        "shadows-not-averaged",
+        &[511, 512],
+    );
+}
+
+#[test]
+fn a_specular_term_not_scaled_is_named_for_two_seeds() {
+    let d = tempfile::tempdir().expect("tempdir");
+    named_for_every_seed(
+        d.path(),
         "-Dsoft=specular-not-scaled",
-        "-Ddof=focal-plane-moved",
-    ] {
+        "specular-not-scaled",
+        &[521, 522],
+    );
+}
+
+#[test]
+fn a_focus_taken_as_a_distance_is_named_for_two_seeds() {
+    // The student's `ray.evaluateAt(DOF_FOCAL_PLANE)`.
+    let d = tempfile::tempdir().expect("tempdir");
+    named_for_every_seed(
+        d.path(),
+        "-Ddof=focal-distance",
+        "focal-distance",
+        &[531, 532],
+    );
+}
+
+#[test]
+fn a_bump_normal_of_a_sphere_at_the_origin_is_named_under_two_parametrisations() {
+    // The student's `position.normalised()` for n: `check -i bump.xml IMAGE` names the
+    // mistake and the parametrisation it was made in.
+    let d = tempfile::tempdir().expect("tempdir");
+    for param in ["y-xz", "z-yx"] {
+        let flag = format!("-Dbump={param},no-centre");
         let image = java_image(
             d.path(),
-            "distributed.xml",
-            &["-Dseed=401", flag],
+            "bump.xml",
+            &[&flag, "-Dsoft=none", "-Ddof=none"],
             "160x120",
-            "u.png",
+            "b.png",
         );
-        let (star, status) = judge(d.path(), &image);
-        assert_eq!(status, Some(1), "{flag}: {star}");
-        assert_ne!(star["verdict"], "course-draw", "{flag}: {star}");
-        assert!(statistic(&star, "course") > 1.45, "{flag}: {star}");
+        let out = whitted(
+            d.path(),
+            &[
+                "check",
+                "--course",
+                YEAR,
+                "-i",
+                "bump.xml",
+                "--json",
+                s(&image),
+            ],
+        );
+        assert_eq!(out.status.code(), Some(1), "{param}: {}", stderr(&out));
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            text.contains("bump-no-centre under parametrisation ") && text.contains(param),
+            "{param}: {text}"
+        );
     }
 }
 

@@ -330,3 +330,43 @@ fn a_hostile_or_missing_bump_map_is_one_located_message_and_exit_2() {
         assert!(!dir.path().join("out.png").exists(), "no partial output");
     }
 }
+
+#[test]
+fn light_sampling_surface_moves_only_the_light_s_points() {
+    // `--light-sampling surface` (the course's point normalised) changes the soft shadows;
+    // with a light of radius 0 every sampling is the same point and the same image.
+    let dir = tempfile::tempdir().expect("tempdir");
+    let input = star_scene("distributed.xml");
+    let render = |sampling: &str, size: &str| -> Vec<u8> {
+        let out = format!("{sampling}_{size}.png");
+        let run = whitted_on(
+            2,
+            dir.path(),
+            &[
+                "render",
+                "-q",
+                "--course",
+                "2020-21",
+                "--width",
+                "48",
+                "--height",
+                "36",
+                "-i",
+                s(&input),
+                "-o",
+                &out,
+                "--soft-shadows",
+                "--light-size",
+                size,
+                "--light-sampling",
+                sampling,
+                "--seed",
+                "3",
+            ],
+        );
+        assert!(run.status.success(), "{sampling}: {}", stderr(&run));
+        std::fs::read(dir.path().join(out)).expect("written")
+    };
+    assert!(render("surface", "0.4") != render("course", "0.4"));
+    assert!(render("surface", "0") == render("course", "0"));
+}

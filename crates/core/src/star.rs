@@ -28,12 +28,12 @@ pub mod streams;
 
 use std::sync::Arc;
 
-pub use aperture::DepthOfField;
+pub use aperture::{DepthOfField, Focus};
 pub use bump::{BumpMap, BumpMethod, BumpMistake, Parametrisation};
 pub use image::{
     course_draw, expectation, star_film, NoiseFloor, Sampling, StarFrame, StarImage, StarStats,
 };
-pub use light::{LightSampling, SoftShadows};
+pub use light::{LightSampling, ShadowShare, ShadowedTerms, SoftShadows};
 
 /// A sphere of the scene that carries a bump map.
 #[derive(Debug, Clone, PartialEq)]

@@ -295,6 +295,72 @@ pub(crate) fn phong_power(x: f64, n: f64) -> f64 {
     }
 }
 
+/// One light's unshadowed geometry at a point, in the course's order (docs/rendering.md,
+/// Shading): the one computation of the per-light step, shared by the tick trace
+/// (`light_terms`) and Tick 1*'s paths (`star::path`), so that both shade a point alike.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LightGeometry {
+    /// `d`, `I = c * k / (4 pi d^2)`, `L`.
+    pub distance: f64,
+    pub illumination: DVec3,
+    pub to_light: DVec3,
+    /// Whether the light reaches the point at all (`Model::reaches` of the raw `N.L`).
+    pub reaches: bool,
+    /// `max(0, N.L)`, `R` (the mirror of `L` the specular term uses), `max(0, R.V)`.
+    pub n_dot_l: f64,
+    pub mirror: DVec3,
+    pub r_dot_v: f64,
+}
+
+/// The geometry of `light` at `point` with normal `n`, seen along `v` (towards the viewer).
+/// Inlined: the tick trace is bit-exact and its loop body is one function (`trace_observed`).
+#[inline(always)]
+pub fn light_geometry(
+    model: &impl Model,
+    light: &PointLight,
+    point: DVec3,
+    n: DVec3,
+    v: DVec3,
+) -> LightGeometry {
+    let to_light = light.position - point;
+    let distance = to_light.length();
+    let illumination = model.illumination(light, distance);
+    let l = model.to_light(to_light, distance);
+    let raw_n_dot_l = n.dot(l);
+    let reaches = model.reaches(raw_n_dot_l);
+    let n_dot_l = java_max_zero(raw_n_dot_l);
+    let mirror = model.specular_mirror(n, l, n_dot_l);
+    let r_dot_v = model.clamp_r_dot_v(mirror.dot(v));
+    LightGeometry {
+        distance,
+        illumination,
+        to_light: l,
+        reaches,
+        n_dot_l,
+        mirror,
+        r_dot_v,
+    }
+}
+
+impl LightGeometry {
+    /// The light's diffuse and specular terms on material `m` with the light unoccluded: pure
+    /// functions of the geometry, so a caller may compute them only where it adds them.
+    #[inline(always)]
+    pub fn terms(&self, model: &impl Model, light: &PointLight, m: &Material) -> (DVec3, DVec3) {
+        let diffuse = model.diffuse(m.colour, self.illumination, m.kd, self.n_dot_l);
+        let phong = phong_power(self.r_dot_v, model.specular_exponent(m.n));
+        let specular = model.specular(
+            light,
+            self.illumination,
+            m.ks,
+            phong,
+            m.colour,
+            self.n_dot_l,
+        );
+        (diffuse, specular)
+    }
+}
+
 /// A surface point being shaded and how much it counts towards the pixel.
 struct Vertex<'a> {
     /// Where the ray that found the point started.
@@ -329,15 +395,16 @@ fn light_terms<O: Observer>(
         material: m,
         ..
     } = *vertex;
-    let to_light = light.position - p;
-    let d = to_light.length();
-    let illumination = model.illumination(light, d);
-    let l = model.to_light(to_light, d);
-    let raw_n_dot_l = n.dot(l);
-    let reaches = model.reaches(raw_n_dot_l);
-    let n_dot_l = java_max_zero(raw_n_dot_l);
-    let r = model.specular_mirror(n, l, n_dot_l);
-    let r_dot_v = model.clamp_r_dot_v(r.dot(v));
+    let geometry = light_geometry(model, light, p, n, v);
+    let LightGeometry {
+        distance: d,
+        illumination,
+        to_light: l,
+        reaches,
+        n_dot_l,
+        mirror: r,
+        r_dot_v,
+    } = geometry;
     let shadow_ray = model.shadow_ray(p, l, n);
     let reach = model.shadow_reach(d);
     let cast = shadows && reaches;
@@ -356,10 +423,7 @@ fn light_terms<O: Observer>(
     // functions of the vertex and the light, so computing them after the shadow test, or not
     // at all where the pixel never adds them, changes no value it gets.
     let (diffuse, specular) = if reaches && (all_terms || !in_shadow) {
-        let diffuse = model.diffuse(m.colour, illumination, m.kd, n_dot_l);
-        let phong = phong_power(r_dot_v, model.specular_exponent(m.n));
-        let specular = model.specular(light, illumination, m.ks, phong, m.colour, n_dot_l);
-        (diffuse, specular)
+        geometry.terms(model, light, m)
     } else {
         (DVec3::ZERO, DVec3::ZERO)
     };

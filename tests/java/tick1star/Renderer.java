@@ -15,9 +15,12 @@ import java.util.Set;
  * package tick1star as the handout has students copy their Tick 1.
  *
  * The ways students write it are system properties, so that one program serves every test:
- * -Dsoft=course|uniform-sphere|sphere-surface|light-size|not-averaged|specular-not-scaled|none,
- * -Ddof=course|aperture-full-side|focal-plane-moved|not-averaged|none ("none": the option not
- * done, the plain Tick 1 shadow or pinhole); -Dseed=N draws from a seeded java.util.Random
+ * -Dsoft=course|uniform-sphere|light-surface|light-size|not-averaged|specular-not-scaled|none,
+ * -Ddof=course|aperture-full-side|focal-distance|not-averaged|none ("none": the option not
+ * done, the plain Tick 1 shadow or pinhole); each variant is written as a student writes it
+ * (light-surface: the course's point normalised; not-averaged: the shadow rays' count used
+ * as the scale; specular-not-scaled: the scale applied to the diffuse term only;
+ * focal-distance: ray.evaluateAt(DOF_FOCAL_PLANE) as the focal point); -Dseed=N draws from a seeded java.util.Random
  * instead of the course's Math.random (reproducible tests; unseeded by default, as the course);
  * -Drays=F scales both ray counts by F (10 shadow rays, 50 lens rays; at least one each), which
  * changes the distribution: a check must be told the counts.
@@ -68,21 +71,21 @@ public class Renderer {
                     if (p.dot(p) <= 1) return p;
                 }
             }
-            case "sphere-surface": {
-                // On the sphere's surface: uniform in direction, radius one.
-                double z = 2 * random() - 1;
-                double phi = 2 * Math.PI * random();
-                double s = Math.sqrt(1 - z * z);
-                return new Vector3(s * Math.cos(phi), s * Math.sin(phi), z);
-            }
+            case "light-surface":
+                // "The light is a sphere": its surface, the random point pushed out to radius one.
+                return insideUnitSphere().normalised();
             default:
-                if (SEEDED == null) return Vector3.randomInsideUnitSphere();
-                // The course's Vector3.randomInsideUnitSphere, its draws from the seeded generator.
-                double r = random();
-                double theta = random() * Math.PI;
-                double phi = random() * 2 * Math.PI;
-                return new Vector3(r * Math.sin(theta) * Math.cos(phi), r * Math.sin(theta) * Math.sin(phi), r * Math.cos(theta));
+                return insideUnitSphere();
         }
+    }
+
+    /** The course's Vector3.randomInsideUnitSphere, its draws from the seeded generator when -Dseed is given. */
+    private static Vector3 insideUnitSphere() {
+        if (SEEDED == null) return Vector3.randomInsideUnitSphere();
+        double r = random();
+        double theta = random() * Math.PI;
+        double phi = random() * 2 * Math.PI;
+        return new Vector3(r * Math.sin(theta) * Math.cos(phi), r * Math.sin(theta) * Math.sin(phi), r * Math.cos(theta));
     }
 
     protected ColorRGB trace(Scene scene, Ray ray, int bouncesLeft) {
@@ -164,9 +167,11 @@ public class Renderer {
     /** Depth of field: DOF_RAY_COUNT rays from random points of the square aperture through the
      *  point where the pinhole ray meets the focal plane, their colours averaged. */
     private ColorRGB throughLens(Scene scene, Ray ray) {
-        // The focal plane z = DOF_FOCAL_PLANE; "focal-plane-moved": that distance along the ray.
-        double s = DOF.equals("focal-plane-moved") ? DOF_FOCAL_PLANE : DOF_FOCAL_PLANE / ray.getDirection().z;
-        Vector3 focus = ray.evaluateAt(s);
+        // Where the ray meets the focal plane z = DOF_FOCAL_PLANE; "focal-distance": the
+        // constant taken as a distance along the ray.
+        Vector3 focus = DOF.equals("focal-distance")
+                ? ray.evaluateAt(DOF_FOCAL_PLANE)
+                : ray.evaluateAt(DOF_FOCAL_PLANE / ray.getDirection().z);
         double half = DOF.equals("aperture-full-side") ? DOF_AMOUNT : DOF_AMOUNT / 2;
         ColorRGB sum = new ColorRGB(0);
         for (int k = 0; k < DOF_RAY_COUNT; k++) {

@@ -267,16 +267,21 @@ pub enum BumpMistake {
     WrongTexel,
     /// The height read from the whole colour (`getRGB` not masked to its blue byte).
     ColourAsHeight,
+    /// "A normal left in object space of another sphere": n taken as P normalised, the
+    /// centre not subtracted, so n (and the (u, v) and tangents read from it) is the normal
+    /// of the sphere about the origin through P, not of this one.
+    NoCentre,
 }
 
 impl BumpMistake {
-    pub const ALL: [BumpMistake; 6] = [
+    pub const ALL: [BumpMistake; 7] = [
         BumpMistake::Inverted,
         BumpMistake::SwappedGradients,
         BumpMistake::UnnormalisedTangents,
         BumpMistake::UnnormalisedResult,
         BumpMistake::WrongTexel,
         BumpMistake::ColourAsHeight,
+        BumpMistake::NoCentre,
     ];
 
     /// The name `check` reports.
@@ -288,6 +293,7 @@ impl BumpMistake {
             BumpMistake::UnnormalisedResult => "bump-unnormalised-normal",
             BumpMistake::WrongTexel => "bump-wrong-texel",
             BumpMistake::ColourAsHeight => "bump-colour-as-height",
+            BumpMistake::NoCentre => "bump-no-centre",
         }
     }
 
@@ -310,6 +316,11 @@ impl BumpMistake {
             BumpMistake::ColourAsHeight => {
                 "the height is the whole getRGB colour, not its blue byte (getRGB & 0xFF) x 5 / 255"
             }
+            BumpMistake::NoCentre => {
+                "n is the position normalised, the normal of a sphere at the origin: subtract \
+                 the sphere's centre first (position.subtract(getPosition()).normalised(), or \
+                 super.getNormalAt(position))"
+            }
         }
     }
 }
@@ -321,11 +332,22 @@ pub struct BumpMethod {
     pub mistake: Option<BumpMistake>,
 }
 
-/// The perturbed normal at a point with smooth unit normal `n` on a sphere of `radius`, and
+/// The perturbed normal at `point` with smooth unit normal `n` on a sphere of `radius`, and
 /// the height of the texel it reads (the `height` layer).
-pub fn perturb(method: &BumpMethod, map: &BumpMap, n: DVec3, radius: f64) -> (DVec3, f64) {
-    let chart = method.parametrisation.chart(n, radius);
+pub fn perturb(
+    method: &BumpMethod,
+    map: &BumpMap,
+    point: DVec3,
+    n: DVec3,
+    radius: f64,
+) -> (DVec3, f64) {
     let mistake = method.mistake;
+    let n = if mistake == Some(BumpMistake::NoCentre) {
+        normalise(point)
+    } else {
+        n
+    };
+    let chart = method.parametrisation.chart(n, radius);
     let (p_u, p_v) = if mistake == Some(BumpMistake::UnnormalisedTangents) {
         (chart.p_u, chart.p_v)
     } else {
@@ -447,7 +469,7 @@ mod tests {
         let n = normalise(DVec3::new(0.2, 0.3, -0.9));
         let flat = map(8, 8, |_, _| 100);
         let method = BumpMethod::default();
-        let (same, _) = perturb(&method, &flat, n, 1.0);
+        let (same, _) = perturb(&method, &flat, n, n, 1.0);
         assert!((same - n).length() < 1e-15);
         // Blue rises by 51 per column: B_u = 5 * 51/255 = 1 (in f32), B_v = 0.
         let ramp = map(5, 5, |_, c| (c * 51) as u8);
@@ -457,22 +479,40 @@ mod tests {
         let b_u = ramp.at(HeightSource::Blue, row, col + 1) - ramp.at(HeightSource::Blue, row, col);
         assert!((b_u - 1.0).abs() < 1e-6);
         let expected = normalise(n + n.cross(chart.p_v.normalize()) * b_u);
-        let (got, height) = perturb(&method, &ramp, n, 1.0);
+        let (got, height) = perturb(&method, &ramp, n, n, 1.0);
         assert!((got - expected).length() < 1e-15, "{got} {expected}");
         assert_eq!(height, ramp.at(HeightSource::Blue, row, col));
+    }
+
+    #[test]
+    fn without_the_centre_the_normal_is_the_origin_sphere_s() {
+        let flat = map(8, 8, |_, _| 100);
+        let centre = DVec3::new(0.0, 0.0, 3.5);
+        let n = normalise(DVec3::new(0.3, 0.4, -0.8));
+        let point = centre + n * 0.7;
+        let method = BumpMethod {
+            mistake: Some(BumpMistake::NoCentre),
+            ..BumpMethod::default()
+        };
+        // A flat map adds nothing: what is left is P / |P|, far from the true normal.
+        let (got, _) = perturb(&method, &flat, point, n, 0.7);
+        assert!((got - point / point.length()).length() < 1e-15, "{got}");
+        assert!(got.dot(n) < 0.0, "{got} faces away from the camera's side");
     }
 
     #[test]
     fn every_mistake_changes_the_normal_of_a_bumpy_map() {
         let bumpy = map(16, 16, |r, c| ((r * 37 + c * 91) % 256) as u8);
         let n = normalise(DVec3::new(-0.4, 0.2, -0.85));
-        let (right, _) = perturb(&BumpMethod::default(), &bumpy, n, 0.7);
+        // On a sphere of radius 0.7 about (0, 0, 3.5), as bump.xml's.
+        let point = DVec3::new(0.0, 0.0, 3.5) + n * 0.7;
+        let (right, _) = perturb(&BumpMethod::default(), &bumpy, point, n, 0.7);
         for mistake in BumpMistake::ALL {
             let method = BumpMethod {
                 mistake: Some(mistake),
                 ..BumpMethod::default()
             };
-            let (wrong, _) = perturb(&method, &bumpy, n, 0.7);
+            let (wrong, _) = perturb(&method, &bumpy, point, n, 0.7);
             assert!((wrong - right).length() > 1e-3, "{mistake:?}");
         }
     }

@@ -299,10 +299,9 @@ fn pinhole_layers(
         return (0.0, DVec3::ZERO, 0.0);
     };
     let step = frame.camera.plane_point(1, 0).0 - frame.camera.plane_point(0, 0).0;
-    let coc = frame
-        .star
-        .dof
-        .map_or(0.0, |dof| dof.circle_of_confusion(hit.position.z, step));
+    let coc = frame.star.dof.map_or(0.0, |dof| {
+        dof.circle_of_confusion(hit.position.z, pinhole.direction, step)
+    });
     (coc as f32, hit.normal, hit.height.unwrap_or(0.0) as f32)
 }
 
@@ -313,6 +312,42 @@ fn add_visible(path: &Path, sums: &mut [f64]) {
             *sum += light.visibility.fraction;
         }
     }
+}
+
+/// A camera ray's path under `frame`, the one call both samplers make: each light's
+/// visibility from `rays` shadow rays towards the light's position plus a point of the light
+/// drawn from `uniform(query, s)`, the uniform numbers of shadow ray s (one hard shadow ray,
+/// drawing nothing, without soft shadows).
+fn trace_camera_ray(
+    model: &impl Model,
+    accel: &Accelerator,
+    frame: &StarFrame,
+    ray: Ray,
+    rays: u32,
+    uniform: &mut dyn FnMut(&ShadowQuery, u32) -> [f64; 3],
+) -> Path {
+    let star = frame.star;
+    let mut sample = |q: ShadowQuery| match star.soft {
+        None => share(u32::from(!(q.blocked)(DVec3::ZERO)), 1),
+        Some(soft) => {
+            let lit = (0..rays)
+                .filter(|&s| {
+                    let u = uniform(&q, s);
+                    !(q.blocked)(soft.sampling.point(u) * soft.light_size)
+                })
+                .count() as u32;
+            share(lit, rays)
+        }
+    };
+    trace_path(
+        model,
+        frame.scene,
+        accel,
+        star,
+        ray,
+        frame.trace,
+        &mut sample,
+    )
 }
 
 /// The visible share from `n` shadow rays of which `lit` were not blocked.
@@ -343,27 +378,10 @@ fn draw_pixel(
     let pinhole = frame.camera.pixel_centre_ray(x, y);
     let mut visible = vec![0.0; frame.scene.lights.len()];
     let trace = |ray: Ray, stream: &mut CourseStream| {
-        let mut sample = |q: ShadowQuery| match star.soft {
-            None => share(u32::from(!(q.blocked)(DVec3::ZERO)), 1),
-            Some(soft) => {
-                let lit = (0..soft.rays)
-                    .filter(|_| {
-                        let u = [stream.random(), stream.random(), stream.random()];
-                        !(q.blocked)(soft.sampling.point(u) * soft.light_size)
-                    })
-                    .count() as u32;
-                share(lit, soft.rays)
-            }
-        };
-        trace_path(
-            model,
-            frame.scene,
-            accel,
-            star,
-            ray,
-            frame.trace,
-            &mut sample,
-        )
+        let rays = star.soft.map_or(1, |soft| soft.rays);
+        trace_camera_ray(model, accel, frame, ray, rays, &mut |_, _| {
+            [stream.random(), stream.random(), stream.random()]
+        })
     };
     let (beauty, paths) = match star.dof {
         None => {
@@ -480,31 +498,13 @@ fn expect_pixel(
                 Some(dof) => dof.ray(&pinhole, points.aperture(j)),
                 None => pinhole,
             };
-            let mut sample = |q: ShadowQuery| match star.soft {
-                None => share(u32::from(!(q.blocked)(DVec3::ZERO)), 1),
-                Some(soft) => {
-                    // Each of a ray's shadow points is point j of its own sequence: the
-                    // points of one ray are independent (so the spread is unbiased), each
-                    // sequence stratified over the pixel's rays.
-                    let stream = (q.depth * lights + q.light as u32) * shadow_points;
-                    let lit = (0..shadow_points)
-                        .filter(|s| {
-                            let u = points.shadow(stream + s, j);
-                            !(q.blocked)(soft.sampling.point(u) * soft.light_size)
-                        })
-                        .count() as u32;
-                    share(lit, shadow_points)
-                }
-            };
-            let path = trace_path(
-                model,
-                frame.scene,
-                accel,
-                star,
-                ray,
-                frame.trace,
-                &mut sample,
-            );
+            // Each of a ray's shadow points is point j of its own sequence: the points of
+            // one ray are independent (so the spread is unbiased), each sequence stratified
+            // over the pixel's rays.
+            let path = trace_camera_ray(model, accel, frame, ray, shadow_points, &mut |q, s| {
+                let stream = (q.depth * lights + q.light as u32) * shadow_points;
+                points.shadow(stream + s, j)
+            });
             add_visible(&path, &mut visible);
             let c = path.radiance();
             sums.replicates[sums.n as usize % REPLICATES] += c;

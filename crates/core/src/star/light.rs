@@ -21,6 +21,11 @@ pub enum LightSampling {
     Course,
     /// Uniform in volume: radius `cbrt(u)`, `cos(theta)` uniform in [-1, 1].
     Uniform,
+    /// On the sphere's surface: the course's point normalised (radius 1, its polar angle and
+    /// azimuth as the course draws them), what a student writes as
+    /// `Vector3.randomInsideUnitSphere().normalised()` times `LIGHT_SIZE`. Its polar angle is
+    /// uniform, so the points crowd the poles; the radius is always the light's.
+    Surface,
 }
 
 impl LightSampling {
@@ -28,13 +33,18 @@ impl LightSampling {
         match self {
             LightSampling::Course => "course",
             LightSampling::Uniform => "uniform",
+            LightSampling::Surface => "surface",
         }
     }
 
     pub fn named(name: &str) -> Option<LightSampling> {
-        [LightSampling::Course, LightSampling::Uniform]
-            .into_iter()
-            .find(|s| s.name() == name)
+        [
+            LightSampling::Course,
+            LightSampling::Uniform,
+            LightSampling::Surface,
+        ]
+        .into_iter()
+        .find(|s| s.name() == name)
     }
 
     /// The point of the unit ball for uniform numbers (u1, u2, u3), in the course's order:
@@ -43,6 +53,8 @@ impl LightSampling {
         let (radius, cos_theta) = match self {
             LightSampling::Course => (u1, (u2 * PI).cos()),
             LightSampling::Uniform => (u1.cbrt(), 1.0 - 2.0 * u2),
+            // The radius's draw is still made (and ignored), as the student's call makes it.
+            LightSampling::Surface => (1.0, (u2 * PI).cos()),
         };
         let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
         let (sin_phi, cos_phi) = (u3 * 2.0 * PI).sin_cos();
@@ -54,13 +66,46 @@ impl LightSampling {
     }
 }
 
-/// The soft-shadow settings: shadow rays per light, the light's radius and how its points are
-/// drawn.
+/// What the light's terms are scaled by, from the k of n shadow rays not occluded.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ShadowShare {
+    /// The handout's fraction k / n.
+    #[default]
+    Averaged,
+    /// The count k itself (the division by `SHADOW_RAY_COUNT` left out): n times the
+    /// fraction, so n times the expectation and n^2 times the variance of the lit terms.
+    Count,
+}
+
+impl ShadowShare {
+    /// The factor on the fraction k / n for `rays` shadow rays.
+    pub fn gain(self, rays: u32) -> f64 {
+        match self {
+            ShadowShare::Averaged => 1.0,
+            ShadowShare::Count => f64::from(rays),
+        }
+    }
+}
+
+/// Which of a light's terms the visible share scales.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ShadowedTerms {
+    /// The handout's: diffuse and specular.
+    #[default]
+    Both,
+    /// Diffuse only: the specular highlight is added whole, even in full shadow.
+    DiffuseOnly,
+}
+
+/// The soft-shadow settings: shadow rays per light, the light's radius, how its points are
+/// drawn, and how the visible share scales the light's terms.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SoftShadows {
     pub rays: u32,
     pub light_size: f64,
     pub sampling: LightSampling,
+    pub share: ShadowShare,
+    pub scaled: ShadowedTerms,
 }
 
 impl Default for SoftShadows {
@@ -69,6 +114,8 @@ impl Default for SoftShadows {
             rays: COURSE_SHADOW_RAYS,
             light_size: COURSE_LIGHT_SIZE,
             sampling: LightSampling::Course,
+            share: ShadowShare::Averaged,
+            scaled: ShadowedTerms::Both,
         }
     }
 }
@@ -85,6 +132,15 @@ mod tests {
         let q = LightSampling::Uniform.point([0.125, 0.0, 0.0]);
         // r = cbrt(1/8) = 0.5, cos theta = 1: (0, 0, 0.5).
         assert!((q - DVec3::new(0.0, 0.0, 0.5)).length() < 1e-15, "{q}");
+        // The surface keeps the course's angles at radius 1.
+        let s = LightSampling::Surface.point([0.1, 0.5, 0.25]);
+        assert!((s - DVec3::new(0.0, 1.0, 0.0)).length() < 1e-15, "{s}");
+        for u in [[0.3, 0.2, 0.9], [0.01, 0.999, 0.5]] {
+            let c = LightSampling::Course.point(u);
+            let s = LightSampling::Surface.point(u);
+            assert!((s.length() - 1.0).abs() < 1e-15);
+            assert!((s - c / c.length()).length() < 1e-12, "{s} {c}");
+        }
     }
 
     #[test]

@@ -7,13 +7,14 @@ use glam::DVec3;
 use smallvec::SmallVec;
 
 use super::bump::perturb;
+use super::light::ShadowedTerms;
 use super::Star;
 use crate::geometry::{normalise, Ray};
 use crate::hits::Hits;
 use crate::model::Model;
 use crate::sample::{PrimaryHit, Sample, StarValues};
 use crate::scene::Scene;
-use crate::trace::{java_max_zero, phong_power, TraceOptions};
+use crate::trace::{light_geometry, TraceOptions};
 
 /// A light's visibility at a vertex as a sampler estimated it.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -47,16 +48,58 @@ pub struct ShadowQuery<'q> {
 /// One light's terms at a vertex.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LightTerm {
-    /// The diffuse and specular terms with the light unoccluded.
+    /// The diffuse and specular terms with the light unoccluded, as the model gives them.
     pub diffuse: DVec3,
     pub specular: DVec3,
     pub visibility: Visibility,
+    /// The factor on the visible fraction (`ShadowShare::gain`): 1, or the shadow-ray count
+    /// where the count is used unaveraged.
+    pub gain: f64,
+    /// Which terms the visible share scales.
+    pub scaled: ShadowedTerms,
 }
 
 impl LightTerm {
+    /// A term the sampler's share scales as the handout says.
+    pub fn new(diffuse: DVec3, specular: DVec3, visibility: Visibility) -> LightTerm {
+        LightTerm {
+            diffuse,
+            specular,
+            visibility,
+            gain: 1.0,
+            scaled: ShadowedTerms::Both,
+        }
+    }
+
+    /// The sum of the terms the visible fraction multiplies (times the gain): the radiance is
+    /// linear in the fraction with this slope.
+    pub fn varying(&self) -> DVec3 {
+        match self.scaled {
+            ShadowedTerms::Both => (self.diffuse + self.specular) * self.gain,
+            ShadowedTerms::DiffuseOnly => self.diffuse * self.gain,
+        }
+    }
+
+    /// The diffuse and specular terms at visible fraction `f`.
+    pub fn lit_at(&self, f: f64) -> (DVec3, DVec3) {
+        let share = self.gain * f;
+        let specular = match self.scaled {
+            ShadowedTerms::Both => self.specular * share,
+            ShadowedTerms::DiffuseOnly => self.specular,
+        };
+        (self.diffuse * share, specular)
+    }
+
+    /// Diffuse + specular at the sampler's visible fraction.
+    pub fn lit(&self) -> DVec3 {
+        let (diffuse, specular) = self.lit_at(self.visibility.fraction);
+        diffuse + specular
+    }
+
     /// Diffuse + specular with the light unoccluded.
     pub fn unshadowed(&self) -> DVec3 {
-        self.diffuse + self.specular
+        let (diffuse, specular) = self.lit_at(1.0);
+        diffuse + specular
     }
 }
 
@@ -100,11 +143,7 @@ impl Path {
         self.vertices
             .iter()
             .map(|v| {
-                let lit: DVec3 = v
-                    .lights
-                    .iter()
-                    .map(|l| l.unshadowed() * l.visibility.fraction)
-                    .sum();
+                let lit: DVec3 = v.lights.iter().map(LightTerm::lit).sum();
                 (v.ambient + lit) * v.weight
             })
             .sum::<DVec3>()
@@ -122,7 +161,7 @@ impl Path {
             s.ambient += v.ambient * v.weight;
             for (out, l) in s.lights.iter_mut().zip(&v.lights) {
                 let f = l.visibility.fraction;
-                let (diffuse, specular) = (l.diffuse * f, l.specular * f);
+                let (diffuse, specular) = l.lit_at(f);
                 shaded += diffuse + specular;
                 out.shadowed += (diffuse + specular) * v.weight;
                 out.unshadowed += l.unshadowed() * v.weight;
@@ -151,14 +190,15 @@ impl Path {
         s
     }
 
-    /// `sum_k sum_i (w_k terms_ki)^2 spread_ki`: divided by a shadow-ray count n, the
-    /// variance of the radiance when each visibility is a mean of n independent rays.
+    /// `sum_k sum_i (w_k varying_ki)^2 spread_ki`: divided by a shadow-ray count n, the
+    /// variance of the radiance when each visibility is a mean of n independent rays (the
+    /// terms the fraction scales, times its gain: n^2 times for the count unaveraged).
     pub fn spread(&self) -> DVec3 {
         self.vertices
             .iter()
             .flat_map(|v| {
                 v.lights.iter().map(move |l| {
-                    let t = l.unshadowed() * v.weight;
+                    let t = l.varying() * v.weight;
                     t * t * l.visibility.spread
                 })
             })
@@ -195,7 +235,7 @@ pub fn trace_path<M: Model>(
         if let (Some(map), crate::geometry::Shape::Sphere { radius, .. }) =
             (star.bump_map(hit.object), object.shape)
         {
-            let (bumped, h) = perturb(&star.bump, map, normal, radius);
+            let (bumped, h) = perturb(&star.bump, map, point, normal, radius);
             normal = bumped;
             height = Some(h);
         }
@@ -210,26 +250,12 @@ pub fn trace_path<M: Model>(
         let v = model.view(point, ray.origin);
         let mut lights = SmallVec::new();
         for (index, light) in model.lights(&scene.lights).iter().enumerate() {
-            let to_light = light.position - point;
-            let d = to_light.length();
-            let illumination = model.illumination(light, d);
-            let l = model.to_light(to_light, d);
-            let raw_n_dot_l = normal.dot(l);
-            if !model.reaches(raw_n_dot_l) {
-                lights.push(LightTerm {
-                    diffuse: DVec3::ZERO,
-                    specular: DVec3::ZERO,
-                    visibility: Visibility::LIT,
-                });
+            let geometry = light_geometry(model, light, point, normal, v);
+            if !geometry.reaches {
+                lights.push(LightTerm::new(DVec3::ZERO, DVec3::ZERO, Visibility::LIT));
                 continue;
             }
-            let n_dot_l = java_max_zero(raw_n_dot_l);
-            let r = model.specular_mirror(normal, l, n_dot_l);
-            let r_dot_v = model.clamp_r_dot_v(r.dot(v));
-            let m = material;
-            let diffuse = model.diffuse(m.colour, illumination, m.kd, n_dot_l);
-            let phong = phong_power(r_dot_v, model.specular_exponent(m.n));
-            let specular = model.specular(light, illumination, m.ks, phong, m.colour, n_dot_l);
+            let (diffuse, specular) = geometry.terms(model, light, material);
             let seen = if options.shadows {
                 let blocked = |offset: DVec3| {
                     let target = light.position + offset;
@@ -246,11 +272,12 @@ pub fn trace_path<M: Model>(
             } else {
                 Visibility::LIT
             };
-            lights.push(LightTerm {
-                diffuse,
-                specular,
-                visibility: seen,
-            });
+            let mut term = LightTerm::new(diffuse, specular, seen);
+            if let (Some(soft), true) = (star.soft, options.shadows) {
+                term.gain = soft.share.gain(soft.rays);
+                term.scaled = soft.scaled;
+            }
+            lights.push(term);
         }
         if k == 0 {
             path.primary = Some(PathPrimary {

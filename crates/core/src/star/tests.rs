@@ -54,6 +54,19 @@ fn course_tail(t: f64) -> f64 {
     (t.acos() - t * ((1.0 + (1.0 - t * t).sqrt()) / t).ln()) / std::f64::consts::PI
 }
 
+/// `P(z > t)` for the course's point normalised (its polar angle uniform): `acos(t) / pi`.
+fn surface_tail(t: f64) -> f64 {
+    t.acos() / std::f64::consts::PI
+}
+
+/// The penumbra scene with a glossy floor, so that a light's specular term is not zero.
+fn glossy_penumbra_scene() -> Scene {
+    let mut scene = penumbra_scene();
+    scene.objects[0].material.ks = 0.6;
+    scene.objects[0].material.n = 1.0;
+    scene
+}
+
 /// `P(z > t)` for a point uniform in the unit ball: the cap's share `(1 - t)^2 (2 + t) / 4`.
 fn uniform_tail(t: f64) -> f64 {
     (1.0 - t) * (1.0 - t) * (2.0 + t) / 4.0
@@ -85,6 +98,7 @@ fn the_expected_visible_share_matches_the_closed_form_for_both_distributions() {
     for (sampling, visible) in [
         (LightSampling::Course, 1.0 - course_tail(t)),
         (LightSampling::Uniform, 1.0 - uniform_tail(t)),
+        (LightSampling::Surface, 1.0 - surface_tail(t)),
     ] {
         let star = Star {
             soft: Some(SoftShadows {
@@ -107,8 +121,9 @@ fn the_expected_visible_share_matches_the_closed_form_for_both_distributions() {
             );
         }
     }
-    // The two distributions differ here by far more than the tolerance.
+    // The distributions differ here by far more than the tolerance.
     assert!((course_tail(t) - uniform_tail(t)).abs() > 0.05);
+    assert!((course_tail(t) - surface_tail(t)).abs() > 0.05);
 }
 
 #[test]
@@ -152,46 +167,81 @@ fn the_course_draw_is_binomial_around_the_closed_form() {
     assert_ne!(image.visible, other.visible);
 }
 
-#[test]
-fn the_reported_variance_is_the_binomial_one_of_the_light_s_terms() {
-    let scene = penumbra_scene();
-    let star = Star {
-        soft: Some(SoftShadows::default()),
-        ..Star::default()
-    };
+/// The expectation of `scene` with `star` and shadows as given, to a tight floor.
+fn converged(scene: &Scene, star: &Star, shadows: bool) -> StarImage {
     let floor = NoiseFloor {
         standard_error: 1e-4,
         max_paths: 4096,
     };
-    let f = frame(&scene, &star);
-    let image = expectation(&f, floor, 5).expect("renders");
-    // The light's unoccluded terms at a pixel: the render without shadows minus the ambient
-    // term, which is the converged one with visibility 1.
-    let lit = Star::default();
-    let unshadowed = expectation(
-        &StarFrame {
-            trace: TraceOptions {
-                bounces: 0,
-                shadows: false,
-            },
-            ..frame(&scene, &lit)
+    let f = StarFrame {
+        trace: TraceOptions {
+            bounces: 0,
+            shadows,
         },
-        floor,
-        5,
-    )
-    .expect("renders");
+        ..frame(scene, star)
+    };
+    expectation(&f, floor, 5).expect("renders")
+}
+
+#[test]
+fn the_reported_variance_is_the_binomial_one_of_the_light_s_terms() {
+    // On a glossy floor, for the handout's share and the two ways students misuse it: the
+    // radiance is ambient + g p (terms scaled) + (terms not scaled), its variance
+    // (g terms scaled)^2 p (1 - p) / 10, with g = 10 for the count unaveraged.
+    let scene = glossy_penumbra_scene();
+    let mut matte = scene.clone();
+    matte.objects[0].material.ks = 0.0;
+    // The light's unoccluded terms at a pixel: the render without shadows minus the ambient
+    // term, which is the converged one with visibility 1; the diffuse alone from the floor
+    // without its gloss.
+    let lit = Star::default();
+    let unshadowed = converged(&scene, &lit, false);
+    let diffuse_only = converged(&matte, &lit, false);
     let p = 1.0 - course_tail(H / RADIUS);
-    for i in floor_pixels(&image) {
-        let ambient = DVec3::splat(0.05) * 0.8;
-        let terms = unshadowed.beauty[i] - ambient;
-        let expected = terms * terms * (p * (1.0 - p) / 10.0);
-        let got = image.variance[i];
-        assert!(
-            ((got - expected) / expected).abs().max_element() < 0.03,
-            "pixel {i}: {got} vs {expected}"
-        );
-        let mean = ambient + terms * p;
-        assert!((image.beauty[i] - mean).abs().max_element() < 3e-3 * terms.max_element());
+    for (share, scaled, gain) in [
+        (ShadowShare::Averaged, ShadowedTerms::Both, 1.0),
+        (ShadowShare::Count, ShadowedTerms::Both, 10.0),
+        (ShadowShare::Averaged, ShadowedTerms::DiffuseOnly, 1.0),
+    ] {
+        let star = Star {
+            soft: Some(SoftShadows {
+                share,
+                scaled,
+                ..SoftShadows::default()
+            }),
+            ..Star::default()
+        };
+        let image = converged(&scene, &star, true);
+        let mut glossy = 0;
+        for i in floor_pixels(&image) {
+            let ambient = DVec3::splat(0.05) * 0.8;
+            let terms = unshadowed.beauty[i] - ambient;
+            let diffuse = diffuse_only.beauty[i] - ambient;
+            let specular = terms - diffuse;
+            glossy += usize::from(specular.min_element() > 0.05 * terms.max_element());
+            let (scaled_terms, fixed) = match scaled {
+                ShadowedTerms::Both => (terms, DVec3::ZERO),
+                ShadowedTerms::DiffuseOnly => (diffuse, specular),
+            };
+            let slope = scaled_terms * gain;
+            let expected = slope * slope * (p * (1.0 - p) / 10.0);
+            let got = image.variance[i];
+            assert!(
+                ((got - expected) / expected).abs().max_element() < 0.03,
+                "{share:?} {scaled:?} pixel {i}: {got} vs {expected}"
+            );
+            let mean = ambient + slope * p + fixed;
+            assert!(
+                (image.beauty[i] - mean).abs().max_element() < 3e-3 * slope.max_element(),
+                "{share:?} {scaled:?} pixel {i}: {} vs {mean}",
+                image.beauty[i]
+            );
+            // The visible share is the light's, whatever scales the terms.
+            assert!((f64::from(image.visible[0][i]) - p).abs() < 3e-3);
+        }
+        // The specular term is a real share of the light's at most floor pixels.
+        let pixels = floor_pixels(&image).len();
+        assert!(glossy * 2 > pixels, "{glossy} of {pixels} glossy");
     }
 }
 
@@ -211,21 +261,62 @@ fn without_effects_the_star_render_is_the_tick_render() {
 
 #[test]
 fn course_draws_scatter_around_the_expectation_by_the_reported_variance() {
-    // Soft shadows and depth of field together, at 32 x 24: the mean of K course draws of a
-    // pixel is normal around the expectation with variance `variance / K`.
-    let scene = penumbra_scene();
-    let star = Star {
-        soft: Some(SoftShadows::default()),
-        dof: Some(DepthOfField {
-            focal_z: 3.0,
-            side: 0.4,
-            rays: 6,
-        }),
-        ..Star::default()
+    // Soft shadows and depth of field together, at 32 x 24, on the glossy floor: the mean of
+    // K course draws of a pixel is normal around the expectation with variance
+    // `variance / K`, for the handout's process and each variant a check names.
+    let scene = glossy_penumbra_scene();
+    let soft = SoftShadows::default();
+    let dof = DepthOfField {
+        focal_z: 3.0,
+        side: 0.4,
+        rays: 6,
+        ..DepthOfField::default()
     };
+    let variants = [
+        (soft, dof),
+        (
+            SoftShadows {
+                sampling: LightSampling::Surface,
+                ..soft
+            },
+            dof,
+        ),
+        (
+            SoftShadows {
+                share: ShadowShare::Count,
+                ..soft
+            },
+            dof,
+        ),
+        (
+            SoftShadows {
+                scaled: ShadowedTerms::DiffuseOnly,
+                ..soft
+            },
+            dof,
+        ),
+        (
+            soft,
+            DepthOfField {
+                focus: aperture::Focus::Distance,
+                ..dof
+            },
+        ),
+    ];
+    for (soft, dof) in variants {
+        let star = Star {
+            soft: Some(soft),
+            dof: Some(dof),
+            ..Star::default()
+        };
+        draws_scatter_around_the_expectation(&scene, &star);
+    }
+}
+
+fn draws_scatter_around_the_expectation(scene: &Scene, star: &Star) {
     let frame = StarFrame {
         camera: Camera::new(32, 24),
-        ..frame(&scene, &star)
+        ..frame(scene, star)
     };
     let expected = expectation(&frame, NoiseFloor::default(), 1).expect("renders");
     let k = 40;
@@ -246,7 +337,10 @@ fn course_draws_scatter_around_the_expectation_by_the_reported_variance() {
         let sd = (expected.variance[i] / k as f64 + error * error).powf(0.5);
         for c in 0..3 {
             if sd[c] < 1e-9 {
-                assert!((mean[c] - expected.beauty[i][c]).abs() < 1e-9, "pixel {i}");
+                assert!(
+                    (mean[c] - expected.beauty[i][c]).abs() < 1e-9,
+                    "{star:?} pixel {i}"
+                );
                 continue;
             }
             tested += 1;
@@ -255,10 +349,10 @@ fn course_draws_scatter_around_the_expectation_by_the_reported_variance() {
             }
         }
     }
-    assert!(tested > 300, "{tested} random channels");
+    assert!(tested > 300, "{star:?}: {tested} random channels");
     // |z| > 4 has probability 6e-5 for a normal; allow a few for the heavier tails of small K.
     assert!(
         outliers <= tested / 200,
-        "{outliers} of {tested} channels beyond 4 sigma"
+        "{star:?}: {outliers} of {tested} channels beyond 4 sigma"
     );
 }
