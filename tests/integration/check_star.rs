@@ -24,7 +24,7 @@ const YEAR: &str = "2023-24";
 fn classes() -> &'static Path {
     static CLASSES: OnceLock<PathBuf> = OnceLock::new();
     CLASSES.get_or_init(|| {
-        let d = std::env::temp_dir().join(format!("whitted-tick1star-{}", std::process::id()));
+        let d = process_dir("tick1star");
         let course = whitted_core::course::Course::from_name(YEAR).expect("course");
         let src = d.join("src");
         let classes = d.join("classes");

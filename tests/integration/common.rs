@@ -287,10 +287,17 @@ pub fn java_program_with(course: Option<&str>, flags: &str, bugs: &[&str]) -> St
     )
 }
 
+/// A folder of this test process's named for `tag`, for what the process's tests share (the
+/// classes compiled once): under cargo's own scratch folder in `target/`, not `/tmp`, so
+/// that what a run leaves goes with `cargo clean` rather than piling up in the system's.
+pub fn process_dir(tag: &str) -> PathBuf {
+    Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("whitted-{tag}-{}", std::process::id()))
+}
+
 /// `javac -d DIR SOURCE` for a Java program under `tests/java/`, into a fresh class
 /// directory of this process named for `tag`; the directory.
 pub fn javac(source: &str, tag: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("whitted-{tag}-{}", std::process::id()));
+    let dir = process_dir(tag);
     let javac = Command::new("javac")
         .arg("-d")
         .arg(&dir)
