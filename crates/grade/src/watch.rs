@@ -53,7 +53,10 @@ impl Step {
 /// Told of each step of each student's grading: the student's id, then the step. Called from
 /// the grading threads, so it must be quick (a store into memory or a small file).
 #[derive(Clone)]
-pub struct Watch(pub Arc<dyn Fn(&str, Step) + Send + Sync>);
+pub struct Watch(pub Arc<Teller>);
+
+/// What a watch calls: the student's id, then the step.
+pub type Teller = dyn Fn(&str, Step) + Send + Sync;
 
 impl Watch {
     pub(crate) fn tell(&self, student: &str, step: Step) {
