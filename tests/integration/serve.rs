@@ -610,6 +610,13 @@ fn in_chromium_a_student_uploads_and_reads_the_result_and_the_staff_see_the_clas
          return !!s && /Queued|Running/.test(s.textContent) })()",
         60,
     );
+    // The case running, named live with its place in the suite, without a reload.
+    wait_page(
+        &browser,
+        "(() => { const s = document.getElementById('state'); \
+         return !!s && /Running: (running|checking) case [1-7] of 7: \\S+\\.xml -b \\d/.test(s.textContent) })()",
+        120,
+    );
     wait_page(
         &browser,
         "document.body.innerText.includes('5 of 5 cases pass')",
