@@ -7,13 +7,14 @@
 //!
 //! # What it may depend on
 //! whitted-core, whitted-io, whitted-check, whitted-grade (the sandboxed run and the class
-//! files), whitted-view (the server's limits, the Host check, the token), hyper, tokio,
+//! files), whitted-view (the accept loop and its limits, the Host check), hyper, tokio,
 //! rusqlite, maud, multer. Never clap.
 //!
 //! The parts: `route.rs` parses every request into a closed set; `answer.rs` answers it
 //! against the database (`store.rs`, SQLite in WAL mode), deciding who may see what;
-//! `server.rs` is the thin hyper adapter with the viewer's limits; `worker.rs` runs the
-//! queued attempts; `data.rs` keeps the uploads.
+//! `server.rs` is the thin hyper adapter on the viewer's accept loop; `worker.rs` runs the
+//! queued attempts, a project as a process of its own (`job.rs`, which counts its CPU time in
+//! `cpu.rs`) or, with `--slurm`, as a Slurm job (`slurm.rs`); `data.rs` keeps the uploads.
 
 mod answer;
 mod cpu;
