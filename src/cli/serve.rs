@@ -30,7 +30,8 @@ pub struct ServiceArgs {
     #[arg(long, value_name = "FILE")]
     pub roster: Option<PathBuf>,
 
-    /// Workers of each kind: image checks, and program runs in the sandbox
+    /// Workers of each kind: image checks, and program runs in the sandbox (with --slurm: the
+    /// Slurm jobs in flight at once)
     #[arg(short, long, value_name = "N", default_value_t = 1,
           value_parser = clap::value_parser!(u16).range(1..=64))]
     pub jobs: u16,
@@ -55,6 +56,11 @@ pub struct ServiceArgs {
     /// Seconds each case of a student's program may take
     #[arg(long, value_name = "SECONDS", default_value_t = 60)]
     pub timeout: u64,
+
+    /// Run the projects as Slurm jobs (sbatch) instead of on this machine; the binary and
+    /// --data must be on a filesystem the nodes see at the same paths
+    #[arg(long)]
+    pub slurm: bool,
 }
 
 #[derive(Debug, Clone, Subcommand)]
@@ -67,6 +73,16 @@ pub enum ServeAction {
     Reissue(LinkArgs),
     /// Copy the database consistently, while it serves (SQLite's backup)
     Backup(BackupArgs),
+    /// Run one project attempt from its folder (what the service starts, here or as a Slurm job)
+    #[command(hide = true)]
+    RunAttempt(RunAttemptArgs),
+}
+
+#[derive(Debug, Clone, Args)]
+pub struct RunAttemptArgs {
+    /// The attempt's folder, with its job.json
+    #[arg(value_name = "DIR")]
+    pub dir: PathBuf,
 }
 
 #[derive(Debug, Clone, Args)]

@@ -43,6 +43,7 @@ pub fn run(args: &GradeArgs) -> Result<()> {
         show_hidden: args.show_hidden,
         part: args.part,
         quiet: args.quiet,
+        watch: None,
     };
     if args.list {
         let lines: Vec<String> = whitted_grade::list(&options)?

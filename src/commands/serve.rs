@@ -15,6 +15,7 @@ pub fn run(args: &ServiceArgs) -> Result<()> {
             stdout::print_line(&whitted_serve::links(&a.data.data)?)
         }
         Some(ServeAction::Backup(a)) => whitted_serve::backup(&a.data.data, &a.file),
+        Some(ServeAction::RunAttempt(a)) => whitted_serve::run_attempt(&a.dir),
         None => whitted_serve::serve(&whitted_serve::Config {
             course: Course::from(args.course),
             listen: args.listen,
@@ -26,6 +27,7 @@ pub fn run(args: &ServiceArgs) -> Result<()> {
             trusted_proxy: args.trusted_proxy,
             staff: args.staff.clone(),
             seconds: args.timeout,
+            slurm: args.slurm,
         }),
     }
 }

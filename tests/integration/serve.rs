@@ -140,16 +140,29 @@ impl Service {
 
     /// Waits until `attempt` (its page's path) is done; its status JSON.
     pub fn wait_done(&self, attempt: &str, within: Duration) -> serde_json::Value {
+        self.watch_done(attempt, within).pop().expect("a status")
+    }
+
+    /// Every status JSON of `attempt` seen until it is done (polled every 100 ms), the last
+    /// one done.
+    pub fn watch_done(&self, attempt: &str, within: Duration) -> Vec<serde_json::Value> {
         let started = Instant::now();
+        let mut seen = Vec::new();
         loop {
             let status = self.get(&format!("{attempt}/status"));
             assert_eq!(status.status, 200, "{}", status.text());
             let value: serde_json::Value = serde_json::from_slice(&status.body).expect("json");
-            if value["status"] == "done" {
-                return value;
+            let done = value["status"] == "done";
+            seen.push(value);
+            if done {
+                return seen;
             }
-            assert!(started.elapsed() < within, "{attempt} not done: {value}");
-            std::thread::sleep(Duration::from_millis(300));
+            assert!(
+                started.elapsed() < within,
+                "{attempt} not done: {:?}",
+                seen.last()
+            );
+            std::thread::sleep(Duration::from_millis(100));
         }
     }
 
@@ -269,6 +282,18 @@ pub fn project_files() -> Vec<(String, Vec<u8>)> {
         .iter()
         .map(|n| (n.to_string(), std::fs::read(dir.join(n)).expect("source")))
         .collect()
+}
+
+/// Whether the tests run as root.
+fn is_root() -> bool {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find_map(|l| l.strip_prefix("Uid:"))
+                .map(|u| u.split_whitespace().next() == Some("0"))
+        })
+        .unwrap_or(false)
 }
 
 /// The attempt path a 303 after an upload points to.
@@ -419,9 +444,48 @@ fn a_project_runs_in_the_sandbox_and_the_staff_export_it_as_grade_writes() {
     let second = service.upload(a, &service.csrf(a), &as_refs);
     assert_eq!(second.status, 429, "{}", second.text());
     assert!(second.text().contains("still queued or running"));
-    let done = service.wait_done(&attempt, Duration::from_secs(300));
+    let seen = service.watch_done(&attempt, Duration::from_secs(300));
+    let done = seen.last().expect("done");
     assert_eq!(done["passed"], true, "{done}");
-    assert!(service.get(&attempt).text().contains("5 of 5 cases pass"));
+    // While it ran, the status named the case running, k of n, from the year's suite.
+    let suite: Vec<String> =
+        whitted_check::check::suite::cases_of(whitted_core::course::Course::Y2016)
+            .iter()
+            .map(|c| c.name())
+            .collect();
+    let running: Vec<&serde_json::Value> = seen
+        .iter()
+        .filter(|v| v["step"]["step"] == "running")
+        .collect();
+    assert!(!running.is_empty(), "no running case seen: {seen:?}");
+    for v in &running {
+        let step = &v["step"];
+        let case = step["case"].as_str().expect("a case name");
+        assert!(
+            suite.iter().any(|c| c == case),
+            "{case} is not a case of {suite:?}"
+        );
+        let (k, n) = (step["index"].as_u64(), step["of"].as_u64());
+        assert_eq!(n, Some(suite.len() as u64), "{step}");
+        assert!(
+            k.is_some_and(|k| (1..=suite.len() as u64).contains(&k)),
+            "{step}"
+        );
+    }
+    // Its CPU time: every process its run started, sandboxed JVMs included (at least the
+    // JVMs' start, 7 of them), where a counting cgroup can be made (as root on cgroup v1).
+    let countable = Path::new("/sys/fs/cgroup/cpuacct").is_dir() && is_root();
+    match done["cpu_seconds"].as_f64() {
+        Some(cpu) => assert!(cpu > 1.0 && cpu < 600.0, "{done}"),
+        None => assert!(!countable, "not measured although it can be: {done}"),
+    }
+    let page = service.get(&attempt).text();
+    assert!(page.contains("5 of 5 cases pass"));
+    if countable {
+        assert!(page.contains("s of CPU"), "{page}");
+        let class = service.get(&staff).text();
+        assert!(class.contains("own CPU time"), "{class}");
+    }
     let worksheet = service.get(&format!("{staff}/export/moodle.csv"));
     assert_eq!(worksheet.status, 200);
     let text = worksheet.text();
@@ -545,6 +609,13 @@ fn in_chromium_a_student_uploads_and_reads_the_result_and_the_staff_see_the_clas
         "(() => { const s = document.getElementById('state'); \
          return !!s && /Queued|Running/.test(s.textContent) })()",
         60,
+    );
+    // The case running, named live with its place in the suite, without a reload.
+    wait_page(
+        &browser,
+        "(() => { const s = document.getElementById('state'); \
+         return !!s && /Running: (running|checking) case [1-7] of 7: \\S+\\.xml -b \\d/.test(s.textContent) })()",
+        120,
     );
     wait_page(
         &browser,

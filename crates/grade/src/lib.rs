@@ -45,6 +45,7 @@ mod source_tree;
 mod status;
 mod student;
 mod warm_javac;
+mod watch;
 mod work_area;
 
 use std::path::{Path, PathBuf};
@@ -53,6 +54,7 @@ use std::sync::Mutex;
 
 pub use policy::{Grading, Policy};
 pub use sandbox::Limits;
+pub use watch::{Step, Watch};
 
 use html::SharedImages;
 use intake::Submission;
@@ -110,6 +112,8 @@ pub struct Options {
     /// then left to the run that aggregates.
     pub part: Option<(usize, usize)>,
     pub quiet: bool,
+    /// Told of each student's steps as they happen (`whitted serve`'s live page).
+    pub watch: Option<Watch>,
 }
 
 /// What a run did, for the closing lines.
@@ -159,6 +163,7 @@ pub fn run(options: &Options) -> Result<Summary> {
         show_hidden: options.show_hidden,
         students_dir,
         quiet: options.quiet,
+        watch: options.watch.clone(),
     };
     let (policy, students_dir) = (&setup.policy, &setup.students_dir);
     let mine: Vec<&Submission> = submissions

@@ -19,8 +19,9 @@ use super::skeleton::Skeleton;
 use super::source_tree::write_sources;
 use super::status::StudentStatus;
 use super::warm_javac::{Warm, WarmJavac};
+use super::watch::Step;
 use whitted_check::check::image_cache::ImageCache;
-use whitted_check::check::program::{run_suite_with, Launch, LimitHit, SuiteRun};
+use whitted_check::check::program::{run_suite_with, Launch, LimitHit, Stage, SuiteRun};
 use whitted_check::check::suite::SuiteCase;
 use whitted_core::course::Course;
 use whitted_core::error::{Error, Result};
@@ -53,6 +54,8 @@ pub struct Setup {
     pub students_dir: PathBuf,
     /// No progress bar.
     pub quiet: bool,
+    /// Told of each student's steps.
+    pub watch: Option<super::watch::Watch>,
 }
 
 /// How far a student got.
@@ -87,6 +90,12 @@ pub fn grade(
             })
         }
     };
+    let tell = |step| {
+        if let Some(watch) = &setup.watch {
+            watch.tell(&submission.id, step);
+        }
+    };
+    tell(super::watch::Step::Compiling);
     let work = setup
         .work
         .join(super::work_area::STUDENTS)
@@ -143,6 +152,7 @@ pub fn grade(
         main: main.clone(),
         slot,
         runs: Mutex::default(),
+        student: &submission.id,
     };
     let run = run_suite_with(
         &launch,
@@ -293,6 +303,8 @@ struct SandboxedJava<'a> {
     slot: usize,
     /// Each running case's guard (its cgroup, its filter), by its folder (removed when dropped).
     runs: Mutex<HashMap<PathBuf, RunGuard>>,
+    /// The student's id, which the setup's watch is told with each step.
+    student: &'a str,
 }
 
 impl Launch for SandboxedJava<'_> {
@@ -331,6 +343,12 @@ impl Launch for SandboxedJava<'_> {
 
     fn scratch(&self) -> PathBuf {
         self.setup.work.join(super::work_area::CASES)
+    }
+
+    fn stage(&self, stage: Stage<'_>) {
+        if let Some(watch) = &self.setup.watch {
+            watch.tell(self.student, Step::of(stage, self.setup.show_hidden));
+        }
     }
 
     fn ended(&self, dir: &Path) -> Option<LimitHit> {

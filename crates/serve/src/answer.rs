@@ -128,6 +128,7 @@ fn student_page(
                 return Ok(Reply::refusal(404, NOT_FOUND));
             };
             Ok(attempt_reply(
+                app,
                 store,
                 &base,
                 &base,
@@ -156,6 +157,7 @@ fn page_kind(page: &StudentPage) -> Part {
 }
 
 fn attempt_reply(
+    app: &App,
     store: &Store,
     base: &str,
     back: &str,
@@ -170,7 +172,7 @@ fn attempt_reply(
         .unwrap_or_default();
     Ok(match part {
         Part::Page => Reply::html(200, pages::attempt(base, back, attempt, reports.len())),
-        Part::Status => Reply::json(&status_json(store, attempt)?),
+        Part::Status => Reply::json(&status_json(app, store, attempt)?),
         Part::Report => {
             let n: usize = form_urlencoded::parse(query.as_bytes())
                 .find(|(k, _)| k == "n")
@@ -184,8 +186,10 @@ fn attempt_reply(
     })
 }
 
-/// What the attempt page polls: the state, the queue position, what runs and for how long.
-fn status_json(store: &Store, attempt: &Attempt) -> Result<serde_json::Value> {
+/// What the attempt page polls: the state, the queue position, what runs and for how long;
+/// for a project, the step its run is at (compiling, case k of n and its name, checking) and,
+/// with `--slurm`, its job; once done, the CPU time its run took.
+fn status_json(app: &App, store: &Store, attempt: &Attempt) -> Result<serde_json::Value> {
     let position = match attempt.status {
         Status::Queued => store.position(attempt)?,
         _ => 0,
@@ -194,14 +198,32 @@ fn status_json(store: &Store, attempt: &Attempt) -> Result<serde_json::Value> {
         super::store::Kind::Images => "checking the images",
         super::store::Kind::Project => "compiling and running the course's scenes in the sandbox",
     };
+    let step = match (attempt.status, attempt.kind) {
+        (Status::Running, super::store::Kind::Project) => {
+            super::job::progress(&app.data.upload(&attempt.folder))
+        }
+        _ => None,
+    };
+    let job = attempt.job.as_ref().map(|id| {
+        let state = app
+            .job_states
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .get(id)
+            .cloned();
+        json!({ "id": id, "state": state })
+    });
     Ok(json!({
         "status": attempt.status.name(),
         "position": position,
         "what": what,
+        "step": step,
+        "job": job,
         "seconds": attempt
             .started
             .map_or(0, |s| (attempt.finished.unwrap_or_else(now) - s).max(0)),
         "passed": attempt.outcome.as_ref().map(|o| o.passed),
+        "cpu_seconds": attempt.cpu,
     }))
 }
 
@@ -235,7 +257,7 @@ fn staff_page(
                 _ => Part::Page,
             };
             let back = format!("{base}/student/{}", attempt.student);
-            attempt_reply(store, base, &back, &attempt, part, query)
+            attempt_reply(app, store, base, &back, &attempt, part, query)
         }
         StaffPage::Export(which) => export::reply(app, store, *which),
     }

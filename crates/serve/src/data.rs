@@ -28,6 +28,9 @@ pub struct Data {
 impl Data {
     pub fn open(dir: &Path) -> Result<Data> {
         fs::create_dir_all(dir).map_err(|e| Error::io(dir, "cannot create", e))?;
+        // Absolute: a project's run (a process of its own, or a Slurm job on a node) is
+        // given its folder by this path.
+        let dir = &std::path::absolute(dir).map_err(|e| Error::io(dir, "cannot resolve", e))?;
         fs::set_permissions(dir, fs::Permissions::from_mode(0o700))
             .map_err(|e| Error::io(dir, "cannot make private", e))?;
         for sub in [UPLOADS, INCOMING] {

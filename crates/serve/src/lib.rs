@@ -7,19 +7,22 @@
 //!
 //! # What it may depend on
 //! whitted-core, whitted-io, whitted-check, whitted-grade (the sandboxed run and the class
-//! files), whitted-view (the server's limits, the Host check, the token), hyper, tokio,
+//! files), whitted-view (the accept loop and its limits, the Host check), hyper, tokio,
 //! rusqlite, maud, multer. Never clap.
 //!
 //! The parts: `route.rs` parses every request into a closed set; `answer.rs` answers it
 //! against the database (`store.rs`, SQLite in WAL mode), deciding who may see what;
-//! `server.rs` is the thin hyper adapter with the viewer's limits; `worker.rs` runs the
-//! queued attempts; `data.rs` keeps the uploads.
+//! `server.rs` is the thin hyper adapter on the viewer's accept loop; `worker.rs` runs the
+//! queued attempts, a project as a process of its own (`job.rs`, which counts its CPU time in
+//! `cpu.rs`) or, with `--slurm`, as a Slurm job (`slurm.rs`); `data.rs` keeps the uploads.
 
 mod answer;
+mod cpu;
 mod data;
 mod db;
 mod export;
 mod images;
+mod job;
 mod pages;
 mod project;
 mod reply;
@@ -27,6 +30,7 @@ mod roster;
 mod route;
 mod secret;
 mod server;
+mod slurm;
 mod staff_view;
 mod store;
 mod upload;
@@ -62,6 +66,8 @@ pub struct Config {
     pub staff: Vec<String>,
     /// Seconds each case of a program may take.
     pub seconds: u64,
+    /// Projects run as Slurm jobs (`jobs` of them in Slurm at once), not on local workers.
+    pub slurm: bool,
 }
 
 /// The user header's trust: its name, the one address it is taken from, and the staff.
@@ -81,6 +87,10 @@ pub struct App {
     pub hosts: Vec<String>,
     pub proxy: Option<ProxyTrust>,
     pub bell: worker::Bell,
+    /// Whether projects go to Slurm.
+    pub slurm: bool,
+    /// The service's jobs in Slurm's queue at the last look, with their states.
+    pub job_states: std::sync::Mutex<std::collections::HashMap<String, String>>,
 }
 
 /// Serves until a signal stops the process.
@@ -100,6 +110,9 @@ pub fn serve(config: &Config) -> Result<()> {
             ))
         }
     };
+    if config.slurm {
+        slurm::check()?;
+    }
     let data = data::Data::open(&config.data)?;
     let mut store = store::Store::open(&data.database())?;
     if let Some(path) = &config.roster {
@@ -107,7 +120,9 @@ pub fn serve(config: &Config) -> Result<()> {
         let members = roster::parse(&path.display().to_string(), &text)?;
         store.add_roster(&members)?;
     }
-    let requeued = store.requeue_running()?;
+    let (orphans, requeued) = store.requeue_running(config.slurm)?;
+    // Jobs sent to Slurm by a start with --slurm: their attempts run here now.
+    slurm::cancel(&orphans);
     let known = store
         .all_attempts()?
         .into_iter()
@@ -142,8 +157,13 @@ pub fn serve(config: &Config) -> Result<()> {
         hosts,
         proxy,
         bell: worker::Bell::default(),
+        slurm: config.slurm,
+        job_states: Default::default(),
     });
     worker::start(app.clone(), config.jobs)?;
+    if config.slurm {
+        slurm::start(app.clone(), config.jobs)?;
+    }
     let out = format!(
         "whitted serve: {} for {students} students on http://{local} (data in {}{})\n\
          staff page: {base}/staff/{staff_secret}\n\
@@ -157,7 +177,21 @@ pub fn serve(config: &Config) -> Result<()> {
         config.data.display(),
     );
     whitted_io::output::stdout::print_line(&out)?;
-    server::run(listener, app)
+    let served = server::run(listener, app.clone());
+    if app.slurm {
+        match slurm::shutdown(&app) {
+            Ok(0) => {}
+            Ok(n) => eprintln!("whitted serve: {n} Slurm jobs not started were cancelled"),
+            Err(e) => eprintln!("whitted serve: {e}"),
+        }
+    }
+    served
+}
+
+/// `whitted serve run-attempt DIR`: runs the project attempt whose folder is `dir` (as the
+/// service's workers and its Slurm jobs start it), writing its progress and its outcome there.
+pub fn run_attempt(dir: &Path) -> Result<()> {
+    job::run(dir)
 }
 
 /// The `host[:port]` of a URL, as a Host header gives it.

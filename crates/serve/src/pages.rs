@@ -74,7 +74,7 @@ fn attempts_table(base: &str, attempts: &[Attempt]) -> Markup {
     html! {
         @if attempts.is_empty() { p.muted { "No attempt yet." } } @else {
             table {
-                tr { th { "#" } th { "When" } th { "What" } th { "Files" } th { "Result" } }
+                tr { th { "#" } th { "When" } th { "What" } th { "Files" } th { "Result" } th { "CPU" } }
                 @for a in attempts {
                     tr {
                         td { a href=(format!("{base}/attempt/{}", a.id)) { (a.id) } }
@@ -82,6 +82,7 @@ fn attempts_table(base: &str, attempts: &[Attempt]) -> Markup {
                         td { (a.kind.name()) }
                         td { (a.files.replace('\n', ", ")) }
                         td { (result_cell(a)) }
+                        td { @if let Some(cpu) = a.cpu { (format!("{cpu:.1} s")) } }
                     }
                 }
             }
@@ -134,6 +135,7 @@ pub fn attempt(base: &str, back: &str, attempt: &Attempt, reports: usize) -> Str
             p.muted { "Received " (when(attempt.received)) "."
                 @if let Some(f) = attempt.finished { " Finished " (when(f)) "." }
                 @if attempt.runs > 1 { " Run " (attempt.runs) " times (the service restarted during a run)." }
+                @if let Some(cpu) = attempt.cpu { (format!(" Its run took {cpu:.1} s of CPU.")) }
                 " Files: " (attempt.files.replace('\n', ", ")) }
             @match &attempt.outcome {
                 None => p #state .pending { (attempt.status.name()) "…" },
@@ -163,6 +165,19 @@ pub fn class(base: &str, view: &ClassView, tick: &str) -> String {
                 a href=(format!("{base}/export/moodle.csv")) { "Moodle worksheet" } ", "
                 a href=(format!("{base}/export/feedback.zip")) { "feedback zip" } ", "
                 a href=(format!("{base}/export/class.csv")) { "class.csv" } "." }
+            h2 { "Programs" }
+            p { (view.programs.queued) " queued, " (view.programs.running) " running, "
+                (view.programs.done) " done"
+                @if view.programs.done > 0 {
+                    ", " (view.programs.wall) " s of wall time in all"
+                    @if view.programs.measured > 0 {
+                        "; the programs' own CPU time (compiler, JVMs, checks) "
+                        (format!("{:.0}", view.programs.cpu)) " s over " (view.programs.measured)
+                        " runs, " (format!("{:.1}", view.programs.cpu / view.programs.measured as f64))
+                        " s each"
+                    }
+                }
+                "." }
             h2 { "Mistakes, ranked" }
             @if view.mistakes.is_empty() { p.muted { "None diagnosed yet." } } @else {
                 table {

@@ -12,7 +12,7 @@ use super::store::{Outcome, Student};
 use whitted_check::check::pass_rule::{Allowance, PassRule};
 use whitted_core::course::Course;
 use whitted_core::error::{Error, Result};
-use whitted_grade::{Grading, Limits, Options, Rerun};
+use whitted_grade::{Grading, Limits, Options, Rerun, Watch};
 
 /// The folder of an attempt's sources, and of its grade output.
 pub const SOURCES: &str = "src";
@@ -39,7 +39,8 @@ impl Run {
 
 /// Grades the sources in `attempt/src` for `student`; the outcome, or why it could not run
 /// (no JDK, no bubblewrap: the service's own trouble, said as such).
-pub fn run(attempt: &Path, student: &Student, how: Run) -> Result<Outcome> {
+/// `watch` is told of each step as it happens.
+pub fn run(attempt: &Path, student: &Student, how: Run, watch: Option<Watch>) -> Result<Outcome> {
     let submissions = tempfile::Builder::new()
         .prefix("whitted-serve-")
         .tempdir()
@@ -72,6 +73,7 @@ pub fn run(attempt: &Path, student: &Student, how: Run) -> Result<Outcome> {
         show_hidden: false,
         part: None,
         quiet: true,
+        watch,
     };
     whitted_grade::run(&options)?;
     outcome(&graded_student(&outdir)?)

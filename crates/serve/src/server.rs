@@ -1,20 +1,18 @@
-//! The thin adapter between hyper and the service, with the viewer's limits (whitted-view:
-//! request head size and time, connections at once, a connection's lifetime, the Host check)
-//! and its reply body that hands hyper a chunk at a time. A GET has no body (413 if it
+//! The thin adapter between hyper and the service, on the viewer's accept loop and limits
+//! (whitted-view's `serve_connections`: request head size and time, connections at once, a
+//! connection's lifetime), with its Host check and its reply body that hands hyper a chunk at
+//! a time. A GET has no body (413 if it
 //! announces one); an upload's body is refused whole before a byte is read when it announces
 //! more than `MAX_BODY`, and is read through multer with the same limits otherwise, only after
 //! the link was checked: a revoked or wrong link costs the server nothing.
 
-use std::convert::Infallible;
 use std::sync::Arc;
-use std::time::Duration;
 
 use futures_util::StreamExt;
 use http_body_util::BodyStream;
 use hyper::body::Incoming as Body;
 use hyper::header::{HeaderValue, CONTENT_LENGTH, CONTENT_TYPE, HOST, TRANSFER_ENCODING};
 use hyper::{Request, Response};
-use hyper_util::rt::{TokioIo, TokioTimer};
 
 use super::answer::{self, Caller};
 use super::images::stored_name;
@@ -25,12 +23,9 @@ use super::store::{Kind, Student};
 use super::upload::{self, Submission, MAX_BODY, MAX_FILE, MAX_FILES};
 use super::{db, pages, App};
 use whitted_core::error::{Error, Result};
-use whitted_core::interrupt;
 use whitted_view::held_body::HeldBody;
-use whitted_view::{check_host, CONNECTION_TIME, HEAD_TIMEOUT, MAX_CONNECTIONS, MAX_HEAD};
+use whitted_view::{check_host, serve_connections, Limits};
 
-/// How often the accept loop looks for Ctrl-C.
-const POLL: Duration = Duration::from_millis(100);
 /// Threads that answer from the database.
 const BLOCKING: usize = 8;
 /// Uploads a student may make in `RATE_WINDOW` seconds.
@@ -38,53 +33,15 @@ pub const RATE: i64 = 6;
 pub const RATE_WINDOW: i64 = 60;
 
 pub fn run(listener: std::net::TcpListener, app: Arc<App>) -> Result<()> {
-    let runtime = tokio::runtime::Builder::new_current_thread()
-        .enable_io()
-        .enable_time()
-        .max_blocking_threads(BLOCKING)
-        .build()
-        .map_err(|e| Error::Environment(format!("cannot start the server's runtime: {e}")))?;
-    runtime.block_on(async move {
-        listener
-            .set_nonblocking(true)
-            .map_err(|e| Error::Environment(format!("cannot listen: {e}")))?;
-        let listener = tokio::net::TcpListener::from_std(listener)
-            .map_err(|e| Error::Environment(format!("cannot listen: {e}")))?;
-        let permits = Arc::new(tokio::sync::Semaphore::new(MAX_CONNECTIONS));
-        loop {
-            interrupt::check()?;
-            let accepted = match tokio::time::timeout(POLL, listener.accept()).await {
-                Err(_) => continue,
-                Ok(accepted) => accepted,
-            };
-            let Ok((stream, peer)) = accepted else {
-                tokio::time::sleep(POLL).await;
-                continue;
-            };
-            let Ok(permit) = permits.clone().try_acquire_owned() else {
-                drop(stream);
-                continue;
-            };
-            let app = app.clone();
-            tokio::spawn(async move {
-                let _permit = permit;
-                let service = hyper::service::service_fn(move |request: Request<Body>| {
-                    let app = app.clone();
-                    async move {
-                        let head = request.method() == hyper::Method::HEAD;
-                        let reply = handle(app, request, peer.ip()).await;
-                        Ok::<_, Infallible>(response(reply, head))
-                    }
-                });
-                let connection = hyper::server::conn::http1::Builder::new()
-                    .timer(TokioTimer::new())
-                    .header_read_timeout(HEAD_TIMEOUT)
-                    .max_buf_size(MAX_HEAD)
-                    .serve_connection(TokioIo::new(stream), service);
-                let _ = tokio::time::timeout(CONNECTION_TIME, connection).await;
-            });
+    let service = move |request: Request<Body>, peer: std::net::IpAddr| {
+        let app = app.clone();
+        async move {
+            let head = request.method() == hyper::Method::HEAD;
+            let reply = handle(app, request, peer).await;
+            response(reply, head)
         }
-    })
+    };
+    serve_connections(listener, Limits::with_threads(BLOCKING), || Ok(()), service)
 }
 
 async fn handle(app: Arc<App>, request: Request<Body>, peer: std::net::IpAddr) -> Reply {

@@ -4,7 +4,7 @@
 
 use std::collections::BTreeMap;
 
-use super::store::{Attempt, Student};
+use super::store::{Attempt, Kind, Status, Student};
 
 pub struct Row {
     pub student: Student,
@@ -25,8 +25,43 @@ pub struct Ranked {
     pub seconds: i64,
 }
 
+/// The projects' runs across the class: what the queue holds and what the runs cost.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Programs {
+    pub queued: usize,
+    pub running: usize,
+    pub done: usize,
+    /// Of the done, those whose CPU time was measured, and its total (seconds).
+    pub measured: usize,
+    pub cpu: f64,
+    /// The done runs' wall time, added up (seconds, from start to finish).
+    pub wall: i64,
+}
+
+impl Programs {
+    fn of(attempts: &[Attempt]) -> Programs {
+        let mut p = Programs::default();
+        for a in attempts.iter().filter(|a| a.kind == Kind::Project) {
+            match a.status {
+                Status::Queued => p.queued += 1,
+                Status::Running => p.running += 1,
+                Status::Done => {
+                    p.done += 1;
+                    p.wall += a.finished.zip(a.started).map_or(0, |(f, s)| (f - s).max(0));
+                    if let Some(cpu) = a.cpu {
+                        p.measured += 1;
+                        p.cpu += cpu;
+                    }
+                }
+            }
+        }
+        p
+    }
+}
+
 pub struct ClassView {
     pub rows: Vec<Row>,
+    pub programs: Programs,
     pub mistakes: Vec<Ranked>,
     /// Attempts received per hour (the hour's first second), oldest first.
     pub per_hour: Vec<(i64, usize)>,
@@ -72,6 +107,7 @@ impl ClassView {
             .sort_by(|a, b| (b.students, b.seconds, &a.id).cmp(&(a.students, a.seconds, &b.id)));
         ClassView {
             rows,
+            programs: Programs::of(attempts),
             mistakes,
             per_hour: per_hour.into_iter().collect(),
         }
@@ -133,7 +169,7 @@ fn held(attempts: &[&Attempt], now: i64) -> BTreeMap<String, (i64, bool)> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::store::{Kind, Outcome, Status};
+    use crate::store::Outcome;
 
     fn attempt(id: i64, student: i64, at: i64, mistake: Option<&str>) -> Attempt {
         Attempt {
@@ -147,6 +183,8 @@ mod tests {
             started: None,
             finished: None,
             runs: 1,
+            cpu: None,
+            job: None,
             outcome: Some(Outcome {
                 passed: mistake.is_none(),
                 verdict: String::new(),

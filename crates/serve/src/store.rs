@@ -61,6 +61,15 @@ CREATE TABLE IF NOT EXISTS results (
 );
 ";
 
+/// Columns added after the first schema, each to a database that lacks it: (table, column,
+/// its declaration). A database of an earlier version is brought up at its first open.
+const ADDED: [(&str, &str, &str); 2] = [
+    // The CPU seconds of everything a project's run started (NULL: not measurable there).
+    ("results", "cpu", "REAL"),
+    // The Slurm job a project's run was sent to (`--slurm`), while it is in flight.
+    ("attempts", "job", "TEXT"),
+];
+
 /// What an attempt holds: images checked in process, or a project run in the sandbox.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Kind {
@@ -154,6 +163,10 @@ pub struct Attempt {
     pub finished: Option<i64>,
     pub runs: i64,
     pub outcome: Option<Outcome>,
+    /// The CPU seconds of all the run started, when it was measured (projects).
+    pub cpu: Option<f64>,
+    /// The Slurm job running it (`--slurm`).
+    pub job: Option<String>,
 }
 
 /// Seconds since 1970.
@@ -174,7 +187,7 @@ pub struct Store {
 
 const ATTEMPT_COLUMNS: &str = "a.id, a.student, a.kind, a.folder, a.files, a.status, \
      a.received, a.started, a.finished, a.runs, r.passed, r.verdict, r.mistake, r.finding, \
-     r.progress, r.report";
+     r.progress, r.report, r.cpu, a.job";
 
 fn attempt_row(row: &rusqlite::Row) -> rusqlite::Result<Attempt> {
     let passed: Option<bool> = row.get(10)?;
@@ -201,6 +214,8 @@ fn attempt_row(row: &rusqlite::Row) -> rusqlite::Result<Attempt> {
         finished: row.get(8)?,
         runs: row.get(9)?,
         outcome,
+        cpu: row.get(16)?,
+        job: row.get(17)?,
     })
 }
 
@@ -239,6 +254,23 @@ impl Store {
         conn.execute_batch("PRAGMA synchronous=NORMAL; PRAGMA foreign_keys=ON;")
             .map_err(db_error)?;
         conn.execute_batch(SCHEMA).map_err(db_error)?;
+        for (table, column, declaration) in ADDED {
+            let has: bool = conn
+                .query_row(
+                    &format!(
+                        "SELECT count(*) > 0 FROM pragma_table_info('{table}') WHERE name = ?1"
+                    ),
+                    [column],
+                    |r| r.get(0),
+                )
+                .map_err(db_error)?;
+            if !has {
+                conn.execute_batch(&format!(
+                    "ALTER TABLE {table} ADD COLUMN {column} {declaration}"
+                ))
+                .map_err(db_error)?;
+            }
+        }
         Ok(Store { conn })
     }
 
@@ -399,12 +431,13 @@ impl Store {
         }
     }
 
-    /// Records `outcome` for `attempt`, and marks it done, in one transaction.
-    pub fn finish(&mut self, attempt: i64, outcome: &Outcome) -> Result<()> {
+    /// Records `outcome` for `attempt` (with the CPU seconds its run took, when measured), and
+    /// marks it done, in one transaction.
+    pub fn finish(&mut self, attempt: i64, outcome: &Outcome, cpu: Option<f64>) -> Result<()> {
         let tx = self.conn.transaction().map_err(db_error)?;
         tx.execute(
-            "INSERT INTO results(attempt, passed, verdict, mistake, finding, progress, report) \
-             VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7)",
+            "INSERT INTO results(attempt, passed, verdict, mistake, finding, progress, report, \
+             cpu) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8)",
             params![
                 attempt,
                 outcome.passed,
@@ -412,12 +445,13 @@ impl Store {
                 outcome.mistake,
                 outcome.finding,
                 outcome.progress,
-                outcome.report
+                outcome.report,
+                cpu
             ],
         )
         .map_err(db_error)?;
         tx.execute(
-            "UPDATE attempts SET status = 'done', finished = ?2 WHERE id = ?1",
+            "UPDATE attempts SET status = 'done', finished = ?2, job = NULL WHERE id = ?1",
             params![attempt, now()],
         )
         .map_err(db_error)?;
@@ -425,13 +459,58 @@ impl Store {
     }
 
     /// After a restart: the attempts that were running when the service stopped are queued
-    /// again (their run left nothing in the database). Returns how many.
-    pub fn requeue_running(&self) -> Result<usize> {
+    /// again (their run left nothing in the database), except, with `keep_jobs`, those in
+    /// flight on Slurm, whose jobs go on without the service. Returns the requeued attempts'
+    /// Slurm jobs (to cancel: a run of the attempt here would race them) and how many.
+    pub fn requeue_running(&self, keep_jobs: bool) -> Result<(Vec<String>, usize)> {
+        let jobs: Vec<String> = match keep_jobs {
+            true => Vec::new(),
+            false => self.jobs_in_flight()?.into_iter().map(|(_, j)| j).collect(),
+        };
+        let n = self
+            .conn
+            .execute(
+                "UPDATE attempts SET status = 'queued', started = NULL, job = NULL \
+                 WHERE status = 'running' AND (?1 = 0 OR job IS NULL)",
+                [keep_jobs],
+            )
+            .map_err(db_error)?;
+        Ok((jobs, n))
+    }
+
+    /// The attempts running as Slurm jobs: (attempt, job).
+    pub fn jobs_in_flight(&self) -> Result<Vec<(i64, String)>> {
+        let mut statement = self
+            .conn
+            .prepare("SELECT id, job FROM attempts WHERE status = 'running' AND job IS NOT NULL")
+            .map_err(db_error)?;
+        let rows = statement
+            .query_map([], |r| Ok((r.get(0)?, r.get(1)?)))
+            .map_err(db_error)?
+            .collect::<rusqlite::Result<Vec<_>>>();
+        rows.map_err(db_error)
+    }
+
+    /// Records the Slurm job `attempt` was sent to.
+    pub fn set_job(&self, attempt: i64, job: &str) -> Result<()> {
         self.conn
             .execute(
-                "UPDATE attempts SET status = 'queued', started = NULL WHERE status = 'running'",
-                [],
+                "UPDATE attempts SET job = ?2 WHERE id = ?1",
+                params![attempt, job],
             )
+            .map(drop)
+            .map_err(db_error)
+    }
+
+    /// Queues `attempt` again (its job was cancelled before it ran, or died without a result).
+    pub fn requeue(&self, attempt: i64) -> Result<()> {
+        self.conn
+            .execute(
+                "UPDATE attempts SET status = 'queued', started = NULL, job = NULL \
+                 WHERE id = ?1 AND status = 'running'",
+                [attempt],
+            )
+            .map(drop)
             .map_err(db_error)
     }
 
@@ -577,17 +656,18 @@ mod tests {
             (first, Status::Running, 1)
         );
         // The service dies here; on restart the run is queued again, and runs once more.
-        assert_eq!(store.requeue_running().expect("requeue"), 1);
+        assert_eq!(store.requeue_running(false).expect("requeue").1, 1);
         let again = store.claim(Kind::Project).expect("c").expect("one");
         assert_eq!((again.id, again.runs), (first, 2));
-        store.finish(first, &outcome()).expect("finish");
+        store.finish(first, &outcome(), Some(6.5)).expect("finish");
         assert!(
-            store.finish(first, &outcome()).is_err(),
+            store.finish(first, &outcome(), None).is_err(),
             "never two results"
         );
         let done = store.attempt(first).expect("a").expect("a");
         assert_eq!(done.status, Status::Done);
         assert_eq!(done.outcome, Some(outcome()));
+        assert_eq!(done.cpu, Some(6.5));
         assert_eq!(store.recent(number, 0).expect("recent"), (2, true));
         let copy = dir.path().join("copy.sqlite");
         store.backup(&copy).expect("backup");

@@ -22,6 +22,7 @@
 
 mod admission;
 mod api;
+mod connections;
 mod content;
 pub mod held_body;
 mod metric;
@@ -40,10 +41,12 @@ use std::time::{Duration, Instant};
 use whitted_core::error::{Error, Result};
 
 pub use api::{Snapshot, State};
+pub use connections::{
+    serve_connections, Limits, CONNECTION_TIME, HEAD_TIMEOUT, MAX_CONNECTIONS, MAX_HEAD,
+};
 pub use content::{Content, Source};
 /// The connection limits and the Host check, which `whitted serve` shares.
 pub use request::check_host;
-pub use server::{CONNECTION_TIME, HEAD_TIMEOUT, MAX_CONNECTIONS, MAX_HEAD};
 
 /// A reply: status, content type, body.
 pub type Reply = (u16, &'static str, Vec<u8>);

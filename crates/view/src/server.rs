@@ -1,14 +1,8 @@
-//! The thin adapter between hyper and the viewer's pure request -> reply functions. hyper 1
-//! (HTTP/1 only) on a single-threaded tokio runtime: each connection is a task, so a client
-//! that stalls costs one task, not the server. The limits:
-//! - request line and headers: at most `MAX_HEAD` bytes (hyper answers 431 past them), read
-//!   within `HEAD_TIMEOUT`;
+//! The thin adapter between hyper and the viewer's pure request -> reply functions, on the
+//! accept loop and limits every whitted server shares (`connections.rs`: the request head's
+//! size and time, connections at once, a connection's lifetime). Besides:
 //! - no body is read or buffered, ever: a request that announces one gets 413 (hyper then
 //!   closes the connection rather than read what was announced);
-//! - a connection lives at most `CONNECTION_TIME`, whatever it does (a client that never
-//!   reads a layer is cut off then);
-//! - at most `MAX_CONNECTIONS` at once; others are closed at once, and a failed accept (out
-//!   of descriptors) is waited out, never a panic;
 //! - each reply is computed on one of `WORKERS` blocking threads, so that a slow one (a 4K
 //!   layer's statistics) does not hold up the accept loop; heavy replies take turns and
 //!   unsent replies share a memory budget (`admission.rs`), so that the cheap routes never
@@ -20,95 +14,43 @@
 //!   503; a failed first load stops the server sooner), so that a client asking at once gets
 //!   the answer it would have got later.
 
-use std::convert::Infallible;
 use std::sync::Arc;
 use std::time::Duration;
 
 use hyper::body::Incoming as Body;
 use hyper::header::{HeaderValue, CONTENT_LENGTH, HOST, TRANSFER_ENCODING};
 use hyper::{Request, Response};
-use hyper_util::rt::{TokioIo, TokioTimer};
 
 use super::admission::{Admission, WORKERS};
+use super::connections::{serve_connections, Limits};
 use super::held_body::HeldBody;
 use super::request::{parse, ApiRequest, Incoming};
 use super::{api, text, Reply, Served, State};
-use whitted_core::error::{Error, Result};
-use whitted_core::interrupt;
+use whitted_core::error::Result;
 
-/// The request line and headers' bytes at most.
-pub const MAX_HEAD: usize = 16 * 1024;
-/// How long the request line and headers may take to arrive.
-pub const HEAD_TIMEOUT: Duration = Duration::from_secs(10);
-/// How long a connection may live, whatever it does.
-pub const CONNECTION_TIME: Duration = Duration::from_secs(120);
-/// Connections served at once.
-pub const MAX_CONNECTIONS: usize = 64;
 const OPEN_TIMEOUT: Duration = Duration::from_secs(60);
-/// How often the accept loop looks for Ctrl-C.
-const POLL: Duration = Duration::from_millis(100);
 
 /// Serves `served` on `listener` until a signal stops the process, or the first load fails.
 pub fn run(listener: std::net::TcpListener, served: Arc<Served>) -> Result<()> {
-    let runtime = tokio::runtime::Builder::new_current_thread()
-        .enable_io()
-        .enable_time()
-        .max_blocking_threads(WORKERS)
-        .build()
-        .map_err(|e| Error::io("127.0.0.1", "cannot start the viewer's runtime", e))?;
-    runtime.block_on(async move {
-        listener
-            .set_nonblocking(true)
-            .map_err(|e| Error::io("127.0.0.1", "cannot listen", e))?;
-        let listener = tokio::net::TcpListener::from_std(listener)
-            .map_err(|e| Error::io("127.0.0.1", "cannot listen", e))?;
-        let permits = Arc::new(tokio::sync::Semaphore::new(MAX_CONNECTIONS));
-        let admission = Arc::new(Admission::new());
-        loop {
-            interrupt::check()?;
-            if let Some(failure) = served.take_failure() {
-                return Err(failure);
-            }
-            let accepted = match tokio::time::timeout(POLL, listener.accept()).await {
-                Err(_) => continue,
-                Ok(accepted) => accepted,
+    let admission = Arc::new(Admission::new());
+    let watched = served.clone();
+    let stop = move || match watched.take_failure() {
+        Some(failure) => Err(failure),
+        None => Ok(()),
+    };
+    let service = move |request: Request<Body>, _peer| {
+        let served = served.clone();
+        let admission = admission.clone();
+        async move {
+            let head = request.method() == hyper::Method::HEAD;
+            let response = match checked(&served, &request) {
+                Ok(api_request) => answer(served, &admission, api_request).await,
+                Err(refusal) => (refusal, None, None),
             };
-            let Ok((stream, _)) = accepted else {
-                // Out of descriptors, or a connection reset before it was taken: wait and go
-                // on serving the others.
-                tokio::time::sleep(POLL).await;
-                continue;
-            };
-            let Ok(permit) = permits.clone().try_acquire_owned() else {
-                drop(stream);
-                continue;
-            };
-            let served = served.clone();
-            let admission = admission.clone();
-            tokio::spawn(async move {
-                let _permit = permit;
-                let service = hyper::service::service_fn(move |request: Request<Body>| {
-                    let served = served.clone();
-                    let admission = admission.clone();
-                    async move {
-                        let head = request.method() == hyper::Method::HEAD;
-                        let response = match checked(&served, &request) {
-                            Ok(api_request) => answer(served, &admission, api_request).await,
-                            Err(refusal) => (refusal, None, None),
-                        };
-                        Ok::<_, Infallible>(self::response(response, head))
-                    }
-                });
-                let connection = hyper::server::conn::http1::Builder::new()
-                    .timer(TokioTimer::new())
-                    .header_read_timeout(HEAD_TIMEOUT)
-                    .max_buf_size(MAX_HEAD)
-                    .serve_connection(TokioIo::new(stream), service);
-                // A client that misbehaves or goes away ends its own connection only.
-                let _ = tokio::time::timeout(CONNECTION_TIME, connection).await;
-            });
+            self::response(response, head)
         }
-    })
+    };
+    serve_connections(listener, Limits::with_threads(WORKERS), stop, service)
 }
 
 /// The reply to a checked request, the version of the files it was computed from, and its

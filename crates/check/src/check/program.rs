@@ -170,6 +170,26 @@ pub trait Launch: Sync {
     fn scratch(&self) -> PathBuf {
         std::env::temp_dir()
     }
+    /// Told of each step of the suite's run as it begins, for a launcher whose caller shows
+    /// progress (`whitted serve`'s live attempt page); nothing by default.
+    fn stage(&self, _stage: Stage<'_>) {}
+}
+
+/// A step of a suite's run, as its launcher is told of it.
+#[derive(Debug, Clone, Copy)]
+pub enum Stage<'a> {
+    /// Case `index` (from 0) of `of` starts running (a rerun counts its own cases).
+    Running {
+        case: &'a SuiteCase,
+        index: usize,
+        of: usize,
+    },
+    /// The image of case `case`, the `index`th (from 0) of the `of` images written, is checked.
+    Checking {
+        case: &'a SuiteCase,
+        index: usize,
+        of: usize,
+    },
 }
 
 /// A limit of a launcher's that a run hit, which only the launcher can see.
@@ -270,6 +290,11 @@ pub fn run_suite_with(
     let sizes: Vec<(u32, u32)> = images.iter().map(|m| (m.width, m.height)).collect();
     for (k, ((i, scene), image)) in scenes.iter().zip(images).enumerate() {
         let case = &suite[*i];
+        launch.stage(Stage::Checking {
+            case,
+            index: k,
+            of: count,
+        });
         // The cases of this scene at this image's size: rendered whole together.
         let bounce_family = (0..count)
             .filter(|&j| keys[j] == keys[k] && sizes[j] == sizes[k])
@@ -491,6 +516,11 @@ pub(crate) fn run_programs(
             interrupt::check()?;
         }
         while running.len() < AT_ONCE && next < suite.len() {
+            launch.stage(Stage::Running {
+                case: &suite[next],
+                index: next,
+                of: suite.len(),
+            });
             match start(launch, &suite[next], next) {
                 Ok(r) => running.push(r),
                 Err(e) => {
