@@ -28,6 +28,7 @@ pub mod score;
 pub mod star_draw;
 pub mod star_option;
 pub mod star_reference;
+pub mod star_reference_file;
 pub mod star_run;
 pub mod student_png;
 pub mod suite;

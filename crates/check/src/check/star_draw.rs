@@ -21,9 +21,8 @@ use whitted_core::course::Course;
 use whitted_core::error::{Error, Result};
 use whitted_core::frame::{Frame, FrameSpec};
 use whitted_core::scene::{self, Scene};
-use whitted_core::star::{
-    expectation, DepthOfField, LightSampling, NoiseFloor, SoftShadows, Star, StarFrame,
-};
+use crate::check::star_reference::{ReferenceCache, ReferenceKey};
+use whitted_core::star::{DepthOfField, LightSampling, NoiseFloor, SoftShadows, Star, StarFrame};
 use whitted_io::output::png::bytes_with;
 
 /// The mean z^2 above which an image is no draw of a distribution. Measured at 160x120 on
@@ -305,7 +304,9 @@ fn score(
         standard_error: FLOOR,
         ..NoiseFloor::default()
     };
-    let expected = expectation(&star_frame, floor, SEED)?;
+    // Kept in memory and on disk: the next image of the scene costs the statistic only.
+    let key = ReferenceKey::of_frame(&star_frame, floor, SEED);
+    let expected = ReferenceCache::shared().get_or_compute(key, &star_frame, floor, SEED)?;
     let pixels = (image.width * image.height) as usize;
     if expected.beauty.len() != pixels || expected.variance.len() != pixels {
         return Err(Error::Usage(
