@@ -152,7 +152,12 @@ pub fn encode(key: &str, image: &StarImage) -> Vec<u8> {
     out.extend_from_slice(key.as_bytes());
     put_u64(&mut out, u64::from(image.width));
     put_u64(&mut out, u64::from(image.height));
-    for layer in [&image.beauty, &image.variance, &image.standard_error, &image.normal] {
+    for layer in [
+        &image.beauty,
+        &image.variance,
+        &image.standard_error,
+        &image.normal,
+    ] {
         put_vectors(&mut out, layer);
     }
     put_u64(&mut out, image.visible.len() as u64);
@@ -208,9 +213,14 @@ pub fn decode(bytes: &[u8], key: &str) -> Option<StarImage> {
     let sized_or_empty = |len: usize| len == pixels || len == 0;
     let whole = r.0.is_empty()
         && visible.len() == lights
-        && [beauty.len(), variance.len(), standard_error.len(), paths.len()]
-            .into_iter()
-            .all(sized)
+        && [
+            beauty.len(),
+            variance.len(),
+            standard_error.len(),
+            paths.len(),
+        ]
+        .into_iter()
+        .all(sized)
         && visible.iter().all(|v| sized(v.len()))
         && [normal.len(), circle_of_confusion.len(), bump_height.len()]
             .into_iter()
@@ -302,7 +312,11 @@ mod tests {
     use super::*;
 
     fn image() -> StarImage {
-        let v = |k: f64| (0..6).map(|i| DVec3::new(k, f64::from(i), 0.1 * k)).collect();
+        let v = |k: f64| {
+            (0..6)
+                .map(|i| DVec3::new(k, f64::from(i), 0.1 * k))
+                .collect()
+        };
         StarImage {
             width: 3,
             height: 2,
