@@ -105,13 +105,15 @@ fn ran(run: &SuiteRun, shown: &Shown, feedback: &str) -> String {
     out += "<h2>The cases</h2>\n<table><tr><th>case</th><th>result</th><th>counts</th></tr>\n";
     for (i, case) in run.cases.iter().enumerate() {
         let class = if case.passed() { "pass" } else { "fail" };
-        let counts = match shown.policy.counts(i) {
-            true => "graded",
-            false => "informs only",
+        let counts = match (&case.status, shown.policy.counts(i)) {
+            (RunStatus::Star(_), _) => "judged by its option",
+            (_, true) => "graded",
+            (_, false) => "informs only",
         };
         let what = match &case.status {
             _ if shown.withheld(case) => super::result::verdict(case),
             RunStatus::Ok(r) => words::verdict(r),
+            RunStatus::Star(s) => format!("{}: {}", s.option.what(), s.verdict.line()),
             other => other.name().to_string(),
         };
         out += &format!(

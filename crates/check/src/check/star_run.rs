@@ -188,10 +188,16 @@ fn handout_map(option: StarOption) -> Result<BumpMap> {
         .ok_or_else(|| bad("empty".into()))
 }
 
-/// Runs the Tick 1* program `launch` starts (shown as `program`) on each option's handout
-/// scene of `course`, once, giving each `asked` seconds (at least `LONG_TIMEOUT` at a year's
-/// own size); one option out of time does not stop the other.
-pub fn run(launch: &dyn Launch, program: &str, course: Course, asked: u64) -> Result<SuiteRun> {
+/// Runs the Tick 1* program `launch` starts (shown as `program`, recognised by `seen`) on
+/// each option's handout scene of `course`, once, giving each `asked` seconds (at least
+/// `LONG_TIMEOUT` at a year's own size); one option out of time does not stop the other.
+pub fn run(
+    launch: &dyn Launch,
+    program: &str,
+    course: Course,
+    asked: u64,
+    seen: StarSeen,
+) -> Result<SuiteRun> {
     let cases = star_option::cases(course);
     let timeout = star_option::timeout(course, asked);
     let (finished, _) = run_programs(launch, &cases, Duration::from_secs(timeout), false)?;
@@ -227,7 +233,7 @@ pub fn run(launch: &dyn Launch, program: &str, course: Course, asked: u64) -> Re
     }
     let mut findings = Findings::of_star(course);
     findings.tick1_star = Some(Tick1Star {
-        seen: StarSeen::Package,
+        seen,
         timeout,
         stopped: false,
         plan: Some(star_option::plan(course, asked)),
