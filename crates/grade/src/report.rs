@@ -97,7 +97,11 @@ pub fn page(
 fn ran(run: &SuiteRun, shown: &Shown, feedback: &str) -> String {
     let findings = &run.findings;
     let mut out = String::new();
-    let progress = findings.progress.sentence();
+    // A Tick 1* run's options' scenes say nothing of the Tick 1 stages: what was run instead.
+    let progress = match findings.tick1_star.as_ref().filter(|t| t.plan.is_some()) {
+        Some(star) => star.sentence(),
+        None => findings.progress.sentence(),
+    };
     if !feedback.contains(&progress) {
         out += &format!("<p>{}</p>\n", escape(&progress));
     }
