@@ -28,9 +28,10 @@ pub struct CheckArgs {
 
     /// Check a Tick 1* image: `bump` finds the parametrisation a bump-mapped image follows
     /// and names what is wrong against it [default: `bump` when the scene has a
-    /// <bumpy-sphere>]; `distributed` says whether the image is one draw of the course's
-    /// soft shadows and depth of field on distributed.xml, or of which variant (needs
-    /// --course)
+    /// <bumpy-sphere>; without -i, the handout's bump.xml, judged as --program judges it];
+    /// `distributed` says whether the image is one draw of the course's soft shadows and
+    /// depth of field on distributed.xml, or of which variant (needs --course). An image of
+    /// the Tick 1 renderer is that option not done
     #[arg(long, value_name = "OPTION", value_enum, conflicts_with = "program")]
     pub star: Option<StarCheck>,
 

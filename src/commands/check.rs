@@ -39,7 +39,8 @@ pub fn run(args: &CheckArgs) -> Result<bool> {
     }
     match (&args.program, &args.image) {
         (Some(program), _) => run_program(args, program),
-        (None, Some(image)) if args.star == Some(StarCheck::Distributed) => star::run(args, image),
+        // The handout's scenes, embedded: `--star distributed`, and `--star bump` without -i.
+        (None, Some(image)) if star::handout_option(args).is_some() => star::run(args, image),
         (None, Some(dir)) if project::is_project_arg(dir) => project::run(args, dir),
         (None, Some(image)) if args.view => view(args, image),
         (None, Some(image)) => run_image(args, image),

@@ -368,8 +368,8 @@ fn zip_folder(dir: &Path, zip: &Path) {
     writer.finish().expect("finish");
 }
 
-/// A Tick 1* program too slow for the timeout (hundreds of rays a pixel) is stopped at its first
-/// case out of time: the rest are not run and say why, never a row of timeouts.
+/// A Tick 1* program too slow for the timeout (hundreds of rays a pixel) runs the handout's two
+/// scenes, not the suite: two timeouts at most, never a row of them, and said to be Tick 1*.
 #[test]
 fn a_slow_tick1_star_project_is_one_timeout_and_said_to_be_tick1_star() {
     let dir = tempfile::tempdir().expect("tempdir");
@@ -416,13 +416,8 @@ fn a_slow_tick1_star_project_is_one_timeout_and_said_to_be_tick1_star() {
         .iter()
         .map(|c| c["status"].as_str().expect("status"))
         .collect();
-    // The cases that were running together (two at a time) may both run out.
-    let timeouts = statuses.iter().filter(|s| **s == "timeout").count();
-    assert!((1..=2).contains(&timeouts), "{statuses:?}");
-    assert!(
-        statuses.iter().filter(|s| **s == "not-run").count() >= 4,
-        "{statuses:?}"
-    );
+    // Its package says Tick 1*: the options' two scenes ran (together), not the suite.
+    assert_eq!(statuses, ["timeout", "timeout"]);
     let report =
         std::fs::read_to_string(dir.path().join("out/students/gh012/report.html")).expect("report");
     assert!(report.contains("a Tick 1* program"), "{report}");

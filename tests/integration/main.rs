@@ -36,6 +36,7 @@ mod scenes;
 mod serve;
 mod serve_crash;
 mod serve_hostile;
+mod star_programs;
 mod tick1star;
 mod tonemap;
 mod view;

@@ -25,9 +25,12 @@ pub mod report;
 pub mod reproduce;
 pub mod result;
 pub mod score;
+pub mod star_both;
 pub mod star_draw;
+pub mod star_not_done;
 pub mod star_option;
 pub mod star_reference;
+pub mod star_reference_file;
 pub mod star_run;
 pub mod student_png;
 pub mod suite;
@@ -91,6 +94,8 @@ pub struct Findings {
     pub outside: Option<Outside>,
     /// A Tick 1* bump-mapped image: the parametrisation and mistake it follows.
     pub bump: Option<bump::BumpFinding>,
+    /// A Tick 1* handout scene's image that is the Tick 1 render: that option not done.
+    pub star_not_done: Option<star_option::StarOption>,
 }
 
 impl Findings {
@@ -149,6 +154,7 @@ impl Findings {
             tick1_star: None,
             outside: None,
             bump: None,
+            star_not_done: None,
         }
     }
 }
@@ -220,6 +226,7 @@ pub fn find(cases: &[Case], all_pass: bool, course: Course) -> Result<Findings> 
         tick1_star: None,
         outside: None,
         bump: None,
+        star_not_done: None,
     };
     if findings.weak() {
         let fit = match fitted {
@@ -315,6 +322,7 @@ impl Fitted {
             tick1_star: None,
             outside: None,
             bump: None,
+            star_not_done: None,
         };
         self.tell(&mut findings, cases);
         findings.progress = Stages::of(&evidence(&findings, all_pass), course);
@@ -406,6 +414,29 @@ pub fn check_bump_image(
     student: Rgb8,
     course: Course,
 ) -> Result<(CaseReport, Findings)> {
+    // The Tick 1 render (a smooth sphere): option 1 not done, which is no mistake.
+    if star_not_done::is_tick1_render(scene, &student, bounces, course)? {
+        let reference = bump::render_bump(
+            scene,
+            &whitted_core::star::Star::default(),
+            whitted_core::star::BumpMethod::default(),
+            (student.width, student.height),
+            bounces,
+            course,
+        )?;
+        let report = CaseReport {
+            scene_name: scene_name.to_string(),
+            bounces,
+            difference: difference(&student, &reference, rule),
+            diagnosis: Vec::new(),
+            hidden_mistakes: Mistakes::NONE,
+            student,
+            reference,
+        };
+        let mut findings = Findings::nothing(1, Evidence::AllCorrect, course);
+        findings.star_not_done = Some(star_option::StarOption::Bump);
+        return Ok((report, findings));
+    }
     let (finding, reference) = bump::check_bump(scene, star, &student, bounces, course)?;
     let report = CaseReport {
         scene_name: scene_name.to_string(),

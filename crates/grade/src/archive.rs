@@ -12,6 +12,11 @@ use whitted_core::course::Course;
 /// Every file a submission of some year gives, by name.
 pub const WANTED: [&str; 3] = ["Plane.java", "Renderer.java", "Sphere.java"];
 
+/// Files a later year's submission may give besides: Tick 1*'s option 1 (`BumpySphere.java`),
+/// taken when it is there (by its exact name) in a Tick 1* submission and compiled over the
+/// skeleton's stub.
+pub const OPTIONAL: [&str; 1] = ["BumpySphere.java"];
+
 /// The files a submission of `course` gives (docs/courses.md, "The student's program"):
 /// `Sphere.java` too from 2017-18, when students write the sphere's intersection.
 pub fn submitted(course: Course) -> &'static [&'static str] {
@@ -25,7 +30,7 @@ pub fn submitted(course: Course) -> &'static [&'static str] {
 /// browser's second download (`Renderer (1).java`), another case (`renderer.java`) or an
 /// editor's extension (`Renderer.java.txt`), which a student means as the file.
 pub fn wanted(name: &str) -> Option<(&'static str, bool)> {
-    if let Some(exact) = WANTED.iter().find(|w| **w == name) {
+    if let Some(exact) = WANTED.iter().chain(&OPTIONAL).find(|w| **w == name) {
         return Some((exact, true));
     }
     let lower = name.to_ascii_lowercase();

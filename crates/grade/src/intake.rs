@@ -313,7 +313,16 @@ fn choose(
         true => "gfx/tick2/",
         false => "tick1/",
     };
-    for &wanted in archive::submitted(course) {
+    // Tick 1*'s optional file, when the year has it (its skeleton ships the stub it replaces).
+    let optional: &[&'static str] = match course.is_default() {
+        true => &[],
+        false => &archive::OPTIONAL,
+    };
+    let files = archive::submitted(course)
+        .iter()
+        .map(|w| (*w, true))
+        .chain(optional.iter().map(|w| (*w, false)));
+    for (wanted, required) in files {
         let mut copies: Vec<&archive::Found> = holdings
             .found
             .iter()
@@ -330,6 +339,9 @@ fn choose(
             )
         });
         let Some(first) = copies.first() else {
+            if !required {
+                continue;
+            }
             return Err(Refusal {
                 status: StudentStatus::NoFiles,
                 message: format!("no {wanted} in the submission"),
@@ -369,6 +381,21 @@ fn choose(
             })?
         }
     };
+    // A BumpySphere.java is Tick 1*'s only in a Tick 1* submission; elsewhere it is the
+    // skeleton's stub a whole project carries (2023-24's as shipped does not compile).
+    let theirs: Vec<(&str, &[u8])> = chosen.iter().map(|(n, b)| (*n, b.as_slice())).collect();
+    if whitted_check::check::tick1_star::in_sources(package.as_deref(), &theirs).is_none() {
+        let before = chosen.len();
+        chosen.retain(|(name, _)| !optional.contains(name));
+        if chosen.len() < before {
+            notes.push(
+                "BumpySphere.java: not graded (only a Tick 1* submission's is: a tick1star \
+                 package, or a Renderer with SHADOW_RAY_COUNT or DOF_RAY_COUNT); the \
+                 skeleton's is used"
+                    .into(),
+            );
+        }
+    }
     Ok(Files {
         sources: chosen,
         package,

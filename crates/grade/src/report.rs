@@ -97,7 +97,11 @@ pub fn page(
 fn ran(run: &SuiteRun, shown: &Shown, feedback: &str) -> String {
     let findings = &run.findings;
     let mut out = String::new();
-    let progress = findings.progress.sentence();
+    // A Tick 1* run's options' scenes say nothing of the Tick 1 stages: what was run instead.
+    let progress = match findings.tick1_star.as_ref().filter(|t| t.plan.is_some()) {
+        Some(star) => star.sentence(),
+        None => findings.progress.sentence(),
+    };
     if !feedback.contains(&progress) {
         out += &format!("<p>{}</p>\n", escape(&progress));
     }
@@ -105,13 +109,15 @@ fn ran(run: &SuiteRun, shown: &Shown, feedback: &str) -> String {
     out += "<h2>The cases</h2>\n<table><tr><th>case</th><th>result</th><th>counts</th></tr>\n";
     for (i, case) in run.cases.iter().enumerate() {
         let class = if case.passed() { "pass" } else { "fail" };
-        let counts = match shown.policy.counts(i) {
-            true => "graded",
-            false => "informs only",
+        let counts = match (&case.status, shown.policy.counts(i)) {
+            (RunStatus::Star(_), _) => "judged by its option",
+            (_, true) => "graded",
+            (_, false) => "informs only",
         };
         let what = match &case.status {
             _ if shown.withheld(case) => super::result::verdict(case),
             RunStatus::Ok(r) => words::verdict(r),
+            RunStatus::Star(s) => format!("{}: {}", s.option.what(), s.verdict.line()),
             other => other.name().to_string(),
         };
         out += &format!(

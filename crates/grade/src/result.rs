@@ -205,17 +205,17 @@ pub fn build(
             true,
         ),
         Outcome::Ran(run) => {
+            // A Tick 1* run's two options are judged, each worth the same; the suite's
+            // weights are not theirs.
+            let weight = |i: usize| match is_star(run) {
+                true => 1.0,
+                false => policy.weights.get(i).copied().unwrap_or(0.0),
+            };
             let tests: Vec<Test> = run
                 .cases
                 .iter()
                 .enumerate()
-                .map(|(i, c)| {
-                    test(
-                        c,
-                        policy.weights.get(i).copied().unwrap_or(0.0),
-                        show_hidden,
-                    )
-                })
+                .map(|(i, c)| test(c, weight(i), show_hidden))
                 .collect();
             let passes: Vec<bool> = run.cases.iter().map(|c| c.passed()).collect();
             let timed_out = run
@@ -234,11 +234,26 @@ pub fn build(
             (StudentStatus::Graded, tests, passes, feedback, timed_out)
         }
     };
-    let grade = policy.grade(&passes);
-    let passed = (0..passes.len())
-        .filter(|&i| passes[i] && policy.counts(i))
-        .count();
-    let cases = if passes.is_empty() { 0 } else { counted };
+    let star = matches!(outcome, Outcome::Ran(run) if is_star(run));
+    // Tick 1* passes or not as a whole, as a ticker judges it: one option done well is enough.
+    let (grade, passed, cases) = match star {
+        true => (
+            if passes.iter().all(|p| *p) {
+                100.0
+            } else {
+                0.0
+            },
+            passes.iter().filter(|p| **p).count(),
+            passes.len(),
+        ),
+        false => (
+            policy.grade(&passes),
+            (0..passes.len())
+                .filter(|&i| passes[i] && policy.counts(i))
+                .count(),
+            if passes.is_empty() { 0 } else { counted },
+        ),
+    };
     let mut output = feedback.clone();
     if !sandboxed {
         output += "\n(graded with --no-sandbox: the program ran unconfined)";
@@ -362,9 +377,45 @@ fn diagnosis_ids(run: &SuiteRun) -> Vec<&'static str> {
         .map_or_else(Vec::new, |d| d.mistakes.ids())
 }
 
+/// Whether `run` is a Tick 1* program's run of its options' handout scenes (`star_run.rs`),
+/// not of the suite.
+pub fn is_star(run: &SuiteRun) -> bool {
+    run.findings
+        .tick1_star
+        .as_ref()
+        .is_some_and(|t| t.plan.is_some())
+}
+
+/// A Tick 1* run's line: which options were done and how each was judged.
+fn star_feedback(run: &SuiteRun) -> String {
+    let verdict = match run.passed() {
+        true => "Tick 1* accepted",
+        false => "Tick 1* not accepted",
+    };
+    let options: Vec<String> = run
+        .cases
+        .iter()
+        .map(|c| match &c.status {
+            RunStatus::Star(s) => format!("{}: {}", s.option.what(), s.verdict.line()),
+            other => format!(
+                "{}: {}",
+                c.name,
+                other.failure_line().unwrap_or_else(|| other.name().into())
+            ),
+        })
+        .collect();
+    format!(
+        "{verdict} (judged by option, not by the Tick 1 suite). {}",
+        options.join("; ")
+    )
+}
+
 /// The one line sent back to Moodle: how many counted cases pass, and the mistake with its fix
-/// (found over every case, the diagnostic ones too).
+/// (found over every case, the diagnostic ones too); a Tick 1* run's options.
 fn feedback(run: &SuiteRun, policy: &Policy) -> String {
+    if is_star(run) {
+        return star_feedback(run);
+    }
     // A Tick 1* program stopped at its first case out of time: what it is, and what to do.
     let not_run = run.cases.iter().find_map(|c| match &c.status {
         RunStatus::NotRun(why) => Some(why),

@@ -52,7 +52,7 @@ pub const AREA_FULL: &str = ".whitted-area-full";
 
 /// Runs inside the sandbox, as its first process, where a program's writable area is capped
 /// (`Area::Capped`): it mounts the case's folder as a tmpfs of `AREA_BYTES` and `AREA_FILES`
-/// over the host's, copies the scene in, runs the program with no capability left, kills
+/// over the host's, copies the scene in (and the map a Tick 1* scene reads beside it), runs the program with no capability left, kills
 /// whatever it left running, and copies a regular `output.png` back to the host's folder,
 /// which the program never sees (its path is covered, and this shell keeps capabilities the
 /// program lacks, so the program cannot reach the shell's working directory through /proc).
@@ -64,7 +64,7 @@ const AREA_WRAPPER: &str = r#"set -u
 dir=$1; shift
 cd "$dir" || exit 125
 mount -t tmpfs -o "size=$WHITTED_AREA_BYTES,nr_inodes=$WHITTED_AREA_FILES,mode=0777" case "$dir" || exit 125
-for f in ./*.xml; do [ -f "$f" ] || continue; cp -- "$f" "$dir/" || exit 125; done
+for f in ./*.xml ./*.png; do [ -f "$f" ] || continue; cp -- "$f" "$dir/" || exit 125; done
 full=$WHITTED_AREA_FULL
 unset WHITTED_AREA_BYTES WHITTED_AREA_FILES WHITTED_AREA_FULL
 (cd "$dir" && exec setpriv --inh-caps=-all --ambient-caps=-all --bounding-set=-all -- "$@")

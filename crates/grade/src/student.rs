@@ -21,8 +21,9 @@ use super::status::StudentStatus;
 use super::warm_javac::{Warm, WarmJavac};
 use super::watch::Step;
 use whitted_check::check::image_cache::ImageCache;
-use whitted_check::check::program::{run_suite_with, Launch, LimitHit, Stage, SuiteRun};
+use whitted_check::check::program::{run_suite_as, Launch, LimitHit, Stage, SuiteRun};
 use whitted_check::check::suite::SuiteCase;
+use whitted_check::check::tick1_star;
 use whitted_core::course::Course;
 use whitted_core::error::{Error, Result};
 
@@ -154,13 +155,20 @@ pub fn grade(
         runs: Mutex::default(),
         student: &submission.id,
     };
-    let run = run_suite_with(
+    // A Tick 1* submission runs its options' handout scenes, not the suite (`star_run.rs`).
+    let theirs: Vec<(&str, &[u8])> = files
+        .sources
+        .iter()
+        .map(|(name, bytes)| (*name, bytes.as_slice()))
+        .collect();
+    let star = tick1_star::in_sources(package, &theirs);
+    let run = run_suite_as(
         &launch,
         &format!("java {main}"),
         &setup.suite,
-        setup.tolerance,
-        setup.limits.seconds,
+        (setup.tolerance, setup.limits.seconds),
         &setup.images,
+        star,
     )?;
     let mut run = run;
     offer_only_their_files(&mut run, setup.course);

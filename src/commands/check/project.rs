@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use super::{report_suite, Preamble};
 use crate::cli::CheckArgs;
 use whitted_check::check::image_cache::ImageCache;
-use whitted_check::check::program::{run_suite_with, Plain};
+use whitted_check::check::program::{run_suite_as, Plain};
 use whitted_check::check::suite::cases_of;
 use whitted_check::check::which_course::Chosen;
 use whitted_core::course::Course;
@@ -62,13 +62,13 @@ pub fn run(args: &CheckArgs, dir: &Path) -> Result<bool> {
             Some(dir) => Some(project.keep_classes(dir)?),
             None => None,
         };
-        let run = run_suite_with(
+        let run = run_suite_as(
             &launch,
             &project.shown_program(kept.as_deref()),
             &cases_of(course),
-            args.rule(),
-            args.timeout,
+            (args.rule(), args.timeout),
             &ImageCache::new(),
+            project.tick1_star(),
         )?;
         let mut lines = project.lines(kept.as_deref());
         // The second build runs only when a case fails: a project that passes costs its

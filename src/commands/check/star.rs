@@ -1,10 +1,12 @@
-//! `whitted check --course YEAR --star distributed IMAGE.png`: a Tick 1* option 2 image judged
-//! as a draw of the course's random process or of a variant (docs/check.md, "Tick 1*"): the
-//! same judge `--program` gives a Tick 1* program's distributed.xml image.
+//! `whitted check --course YEAR --star distributed IMAGE.png` (or `--star bump` without -i):
+//! a Tick 1* image of the handout's scene judged by its option's judge (docs/check.md,
+//! "Tick 1*"), the same `--program` gives a Tick 1* program's image: first whether it is the
+//! Tick 1 render (the option not done), then the bump map's parametrisation and mistake, or
+//! whether it is a draw of the course's random process or of a variant.
 
 use std::path::Path;
 
-use crate::cli::CheckArgs;
+use crate::cli::{CheckArgs, StarCheck};
 use whitted_check::check::star_option::StarOption;
 use whitted_check::check::star_run::{judge, StarImage};
 use whitted_check::check::student_png;
@@ -12,9 +14,21 @@ use whitted_core::course::Course;
 use whitted_core::error::{Error, Result};
 use whitted_io::output::stdout;
 
-/// Returns whether the image passes (is a draw of the course's process).
+/// The handout's option `args` asks to judge an image of: `--star distributed`, or
+/// `--star bump` with no scene given (a scene given is checked as any bump-mapped scene).
+pub fn handout_option(args: &CheckArgs) -> Option<StarOption> {
+    match (args.star, &args.input) {
+        (Some(StarCheck::Distributed), _) => Some(StarOption::Distributed),
+        (Some(StarCheck::Bump), None) => Some(StarOption::Bump),
+        _ => None,
+    }
+}
+
+/// Returns whether the image passes (its option's judge finds nothing wrong).
 pub fn run(args: &CheckArgs, image: &Path) -> Result<bool> {
-    let option = StarOption::Distributed;
+    let Some(option) = handout_option(args) else {
+        return Err(Error::Usage("--star: not a handout scene's check".into()));
+    };
     // A Tick 1* image's size says nothing of its year: 2023-24's programs render any size.
     let Some(course) = args.course.map(Course::from) else {
         return Err(Error::Usage(

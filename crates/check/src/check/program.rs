@@ -217,20 +217,36 @@ impl Launch for Plain {
 }
 
 /// Runs `program` over the suite and passes each image by `rule`; a Tick 1* program (its
-/// package `tick1star`) over its options' handout scenes instead (`star_run.rs`). `grade` and
-/// `check DIR` still run the suite and stop at its first case out of time.
+/// package `tick1star`) over its options' handout scenes instead (`star_run.rs`).
 pub fn run_suite(program: &str, rule: PassRule, timeout: u64, course: Course) -> Result<SuiteRun> {
     let plain = Plain(words(program)?);
-    if is_tick1_star(program) {
-        return star_run::run(&plain, program, course, timeout);
-    }
     let cache = ImageCache::new();
     run_suite_with(&plain, program, &cases_of(course), rule, timeout, &cache)
 }
 
+/// As [`run_suite_with`], for a program whose sources were seen (`check DIR`, `grade`): one
+/// recognised as Tick 1* by them (`tick1_star::in_sources`), or by its package, runs its
+/// options' handout scenes instead of the suite (`star_run.rs`).
+pub fn run_suite_as(
+    launch: &dyn Launch,
+    program: &str,
+    suite: &[SuiteCase],
+    (rule, timeout): (PassRule, u64),
+    cache: &Arc<ImageCache>,
+    seen: Option<StarSeen>,
+) -> Result<SuiteRun> {
+    let course = suite.first().map_or(Course::Y2016, |c| c.course);
+    match seen.or(is_tick1_star(program).then_some(StarSeen::Package)) {
+        Some(seen) => star_run::run(launch, program, course, timeout, seen),
+        None => run_suite_with(launch, program, suite, rule, timeout, cache),
+    }
+}
+
 /// Runs the program `launch` starts (shown to the user as `program`) over `suite`, and checks
-/// each image, passing it by `rule`. The suite's whole images are kept in `cache`, which a caller
-/// checking many programs over one suite (a class) shares between them.
+/// each image, passing it by `rule`; a Tick 1* program (its package `tick1star`) over its
+/// options' handout scenes instead (`star_run.rs`). The suite's whole images are kept in
+/// `cache`, which a caller checking many programs over one suite (a class) shares between
+/// them.
 pub fn run_suite_with(
     launch: &dyn Launch,
     program: &str,
@@ -239,9 +255,11 @@ pub fn run_suite_with(
     timeout: u64,
     cache: &Arc<ImageCache>,
 ) -> Result<SuiteRun> {
-    let star = is_tick1_star(program);
     let course = suite.first().map_or(Course::Y2016, |c| c.course);
-    let (finished, stopped) = run_programs(launch, suite, Duration::from_secs(timeout), star)?;
+    if is_tick1_star(program) {
+        return star_run::run(launch, program, course, timeout, StarSeen::Package);
+    }
+    let (finished, stopped) = run_programs(launch, suite, Duration::from_secs(timeout), false)?;
     let missing = {
         let tails: Vec<Option<&str>> = finished
             .iter()
@@ -252,13 +270,9 @@ pub fn run_suite_with(
             .collect();
         MissingClass::of_suite(&tails, course)
     };
-    let mut star = match (star, stopped) {
-        (true, _) => Some(StarSeen::Package),
-        (false, true) => Some(StarSeen::FirstCaseTimedOut),
-        (false, false) => None,
-    }
-    .map(|seen| Tick1Star {
-        seen,
+    // Not recognised before running, but its first case ran out of time.
+    let mut star = stopped.then_some(Tick1Star {
+        seen: StarSeen::FirstCaseTimedOut,
         timeout,
         stopped,
         plan: None,

@@ -16,14 +16,15 @@
 
 use glam::DVec3;
 
+use crate::check::star_reference::{ReferenceCache, ReferenceKey};
 use crate::check::student_png::Rgb8;
 use whitted_core::course::Course;
 use whitted_core::error::{Error, Result};
 use whitted_core::frame::{Frame, FrameSpec};
 use whitted_core::scene::{self, Scene};
 use whitted_core::star::{
-    expectation, DepthOfField, Focus, LightSampling, NoiseFloor, ShadowShare, ShadowedTerms,
-    SoftShadows, Star, StarFrame,
+    DepthOfField, Focus, LightSampling, NoiseFloor, ShadowShare, ShadowedTerms, SoftShadows, Star,
+    StarFrame,
 };
 use whitted_io::output::png::bytes_with;
 
@@ -287,12 +288,12 @@ pub fn check(scene: &Scene, image: &Rgb8, bounces: u32, course: Course) -> Resul
 }
 
 /// Every pixel's z^2, summed over its random channels, and how many it has.
-struct Score(Vec<f64>, Vec<u8>);
+pub(crate) struct Score(Vec<f64>, Vec<u8>);
 
 impl Score {
     /// The mean z^2 over the random channels of every pixel (where the process spreads a byte
     /// or more: the rest say nothing of it).
-    fn mean(&self) -> f64 {
+    pub(crate) fn mean(&self) -> f64 {
         let channels: u32 = self.1.iter().map(|&n| u32::from(n)).sum();
         self.0.iter().sum::<f64>() / f64::from(channels.max(1))
     }
@@ -338,22 +339,37 @@ fn score(
     course: Course,
     process: Process,
 ) -> Result<Score> {
+    let (star, scale) = process.star();
+    score_star(scene, &star, scale, image, bounces, course)
+}
+
+/// `image` scored against the distribution of `star` on `scene` (any Tick 1* render: a
+/// bumped scene's too), its expectation scaled by `scale`.
+pub(crate) fn score_star(
+    scene: &Scene,
+    star: &Star,
+    scale: f64,
+    image: &Rgb8,
+    bounces: u32,
+    course: Course,
+) -> Result<Score> {
     let mut spec = FrameSpec::tick(image.width, image.height, bounces, true);
     spec.course = course;
     let frame = Frame::new(scene, &spec)?;
-    let (star, scale) = process.star();
     let star_frame = StarFrame {
         scene,
         camera: *frame.camera(),
         course,
         trace: frame.trace(),
-        star: &star,
+        star,
     };
     let floor = NoiseFloor {
         standard_error: FLOOR,
         ..NoiseFloor::default()
     };
-    let expected = expectation(&star_frame, floor, SEED)?;
+    // Kept in memory and on disk: the next image of the scene costs the statistic only.
+    let key = ReferenceKey::of_frame(&star_frame, floor, SEED);
+    let expected = ReferenceCache::shared().get_or_compute(key, &star_frame, floor, SEED)?;
     let pixels = (image.width * image.height) as usize;
     if expected.beauty.len() != pixels || expected.variance.len() != pixels {
         return Err(Error::Usage(

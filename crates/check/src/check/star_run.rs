@@ -6,9 +6,11 @@
 use std::sync::Arc;
 use std::time::Duration;
 
-use crate::check::bump::{self, BumpFinding};
+use crate::check::bump::{self, BumpFinding, FOLLOWS};
 use crate::check::program::{run_programs, CaseOutcome, Launch, Ran, RunStatus, SuiteRun};
+use crate::check::star_both::{self, BumpDraw, Drawn};
 use crate::check::star_draw::{self, DrawCheck, Process};
+use crate::check::star_not_done;
 use crate::check::star_option::{self, StarOption};
 use crate::check::student_png::{self, Rgb8};
 use crate::check::tick1_star::{StarSeen, Tick1Star};
@@ -41,7 +43,15 @@ impl StarImage {
                     .iter()
                     .map(|f| serde_json::json!({"process": f.process.name(), "statistic": f.statistic}))
                     .collect::<Vec<_>>(),
-                StarVerdict::Bump(_) | StarVerdict::NotJudged(_) => Vec::new(),
+                StarVerdict::BumpDraw(b) => vec![serde_json::json!({
+                    "process": "bump-soft-dof",
+                    "parametrisation": b.parametrisation,
+                    "mistake": b.mistake.map(|m| m.name()),
+                    "statistic": b.statistic,
+                })],
+                StarVerdict::Bump(_)
+                | StarVerdict::NotDone { .. }
+                | StarVerdict::NotJudged(_) => Vec::new(),
             },
         })
     }
@@ -54,6 +64,11 @@ pub enum StarVerdict {
     Bump(BumpFinding),
     /// Option 2's image scored as a draw of the course's process and its variants.
     Draw(DrawCheck),
+    /// Option 1's image with both options on: a draw of the bumped scene (`star_both.rs`).
+    BumpDraw(BumpDraw),
+    /// The option's scene rendered by the Tick 1 renderer: the option not done
+    /// (`star_not_done.rs`); `neither`: the other option's image was too.
+    NotDone { option: StarOption, neither: bool },
     /// No judge of this option's images is built into this whitted: why, in words.
     NotJudged(&'static str),
 }
@@ -72,6 +87,11 @@ impl StarVerdict {
                 Some(_) => "variant-draw",
                 None => "not-a-draw",
             },
+            StarVerdict::BumpDraw(b) => match b.passes() {
+                true => "bump-draw",
+                false => "bump-draw-mistake",
+            },
+            StarVerdict::NotDone { .. } => "option-not-done",
             StarVerdict::NotJudged(_) => "not-judged",
         }
     }
@@ -81,6 +101,9 @@ impl StarVerdict {
         match self {
             StarVerdict::Bump(b) => b.passes(),
             StarVerdict::Draw(d) => d.drawn_from() == Some(Process::Course),
+            StarVerdict::BumpDraw(b) => b.passes(),
+            // One option is enough; neither is not.
+            StarVerdict::NotDone { neither, .. } => !neither,
             StarVerdict::NotJudged(_) => true,
         }
     }
@@ -90,22 +113,33 @@ impl StarVerdict {
         match self {
             StarVerdict::Bump(b) => b.sentence(),
             StarVerdict::Draw(d) => d.line(),
+            StarVerdict::BumpDraw(b) => b.sentence(),
+            StarVerdict::NotDone { option, neither } => star_not_done::sentence(*option, *neither),
             StarVerdict::NotJudged(why) => format!("not judged: {why}"),
         }
     }
 }
 
-/// The judge of `option`'s image, rendered under `course` at `bounces`.
+/// The judge of `option`'s image, rendered under `course` at `bounces`: first whether it is
+/// the Tick 1 render (the option not done), then its option's judge; a bump image that no
+/// deterministic render reproduces is judged as a draw with both options on.
 pub fn judge(
     option: StarOption,
     image: &Rgb8,
     bounces: u32,
     course: Course,
 ) -> Result<StarVerdict> {
+    let (scene, _, bumps) =
+        scene::input::parse_with_bumps(option.file(), option.xml().as_bytes(), course)?;
+    let not_done = StarVerdict::NotDone {
+        option,
+        neither: false,
+    };
+    if star_not_done::is_tick1_render(&scene, image, bounces, course)? {
+        return Ok(not_done);
+    }
     Ok(match option {
         StarOption::Bump => {
-            let (scene, _, bumps) =
-                scene::input::parse_with_bumps(option.file(), option.xml().as_bytes(), course)?;
             let map = Arc::new(handout_map(option)?);
             let star = Star {
                 bumps: bumps
@@ -117,10 +151,21 @@ pub fn judge(
                     .collect(),
                 ..Star::default()
             };
-            StarVerdict::Bump(bump::check_bump(&scene, &star, image, bounces, course)?.0)
+            let (finding, _) = bump::check_bump(&scene, &star, image, bounces, course)?;
+            // Reproduced, rightly or by a catalogued mistake: deterministic, no draw.
+            if finding.matched >= FOLLOWS {
+                return Ok(StarVerdict::Bump(finding));
+            }
+            if star_not_done::is_flat_sphere(&scene, image, bounces, course)? {
+                return Ok(not_done);
+            }
+            match star_both::check(&scene, &star, image, bounces, course)? {
+                Some(Drawn::Bumped(draw)) => StarVerdict::BumpDraw(draw),
+                Some(Drawn::Smooth(_)) => not_done,
+                None => StarVerdict::Bump(finding),
+            }
         }
         StarOption::Distributed => {
-            let scene = star_draw::distributed_scene(course)?;
             StarVerdict::Draw(star_draw::check(&scene, image, bounces, course)?)
         }
     })
@@ -143,10 +188,16 @@ fn handout_map(option: StarOption) -> Result<BumpMap> {
         .ok_or_else(|| bad("empty".into()))
 }
 
-/// Runs the Tick 1* program `launch` starts (shown as `program`) on each option's handout
-/// scene of `course`, once, giving each `asked` seconds (at least `LONG_TIMEOUT` at a year's
-/// own size); one option out of time does not stop the other.
-pub fn run(launch: &dyn Launch, program: &str, course: Course, asked: u64) -> Result<SuiteRun> {
+/// Runs the Tick 1* program `launch` starts (shown as `program`, recognised by `seen`) on
+/// each option's handout scene of `course`, once, giving each `asked` seconds (at least
+/// `LONG_TIMEOUT` at a year's own size); one option out of time does not stop the other.
+pub fn run(
+    launch: &dyn Launch,
+    program: &str,
+    course: Course,
+    asked: u64,
+    seen: StarSeen,
+) -> Result<SuiteRun> {
     let cases = star_option::cases(course);
     let timeout = star_option::timeout(course, asked);
     let (finished, _) = run_programs(launch, &cases, Duration::from_secs(timeout), false)?;
@@ -169,9 +220,20 @@ pub fn run(launch: &dyn Launch, program: &str, course: Course, asked: u64) -> Re
             said_above: false,
         });
     }
+    // Neither option done: each image is the Tick 1 render, and that is no Tick 1*.
+    let not_done = |o: &CaseOutcome| matches!(&o.status, RunStatus::Star(s) if matches!(s.verdict, StarVerdict::NotDone { .. }));
+    if outcomes.iter().all(not_done) {
+        for outcome in &mut outcomes {
+            if let RunStatus::Star(s) = &mut outcome.status {
+                if let StarVerdict::NotDone { neither, .. } = &mut s.verdict {
+                    *neither = true;
+                }
+            }
+        }
+    }
     let mut findings = Findings::of_star(course);
     findings.tick1_star = Some(Tick1Star {
-        seen: StarSeen::Package,
+        seen,
         timeout,
         stopped: false,
         plan: Some(star_option::plan(course, asked)),

@@ -40,6 +40,11 @@ pub fn opening(findings: &Findings) -> Vec<String> {
     lines.extend(findings.tick1_star.as_ref().map(|star| star.sentence()));
     lines.extend(findings.missing_class.as_ref().map(|m| m.sentence()));
     lines.extend(findings.bump.as_ref().map(|b| b.sentence()));
+    lines.extend(
+        findings
+            .star_not_done
+            .map(|o| crate::check::star_not_done::sentence(o, false)),
+    );
     if let Some(noise) = findings.not_reproducible {
         lines.push(noise.sentence());
         return lines;

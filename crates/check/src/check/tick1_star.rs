@@ -8,6 +8,8 @@
 pub enum StarSeen {
     /// Its main class is in a `tick1star` package, as the handout has students copy it.
     Package,
+    /// Its `Renderer.java` declares `SHADOW_RAY_COUNT` or `DOF_RAY_COUNT` (option 2's rays).
+    RayCounts,
     /// Run twice on one case, it wrote two different images (`noise.rs`).
     TwoRunsDiffer,
     /// Its first case, the suite's quickest, ran out of time.
@@ -19,8 +21,21 @@ impl StarSeen {
     pub fn name(self) -> &'static str {
         match self {
             StarSeen::Package => "package",
+            StarSeen::RayCounts => "ray-counts",
             StarSeen::TwoRunsDiffer => "two-runs-differ",
             StarSeen::FirstCaseTimedOut => "first-case-timed-out",
+        }
+    }
+}
+
+impl StarSeen {
+    /// How it was recognised, in the report's words.
+    pub fn why(self) -> &'static str {
+        match self {
+            StarSeen::Package => "its package is tick1star",
+            StarSeen::RayCounts => "its Renderer has SHADOW_RAY_COUNT or DOF_RAY_COUNT",
+            StarSeen::TwoRunsDiffer => "run twice on one case, it wrote two different images",
+            StarSeen::FirstCaseTimedOut => "its first case, the quickest, ran out of time",
         }
     }
 }
@@ -43,20 +58,39 @@ pub fn in_package(program: &str) -> bool {
     program.contains(".tick1star.")
 }
 
+/// Whether the sources of a program (file name and bytes; `package` the one they declare)
+/// are a Tick 1* submission, and by what: the `tick1star` package, or a `Renderer` that
+/// declares option 2's ray counts. A `BumpySphere.java` says nothing: every 2023-24 project
+/// holds the skeleton's stub of it, edited or not.
+pub fn in_sources(package: Option<&str>, sources: &[(&str, &[u8])]) -> Option<StarSeen> {
+    if package.is_some_and(|p| p == "tick1star" || p.ends_with(".tick1star")) {
+        return Some(StarSeen::Package);
+    }
+    let rays = |text: &[u8]| {
+        let text = String::from_utf8_lossy(text);
+        text.contains("SHADOW_RAY_COUNT") || text.contains("DOF_RAY_COUNT")
+    };
+    sources
+        .iter()
+        .any(|(name, text)| *name == "Renderer.java" && rays(text))
+        .then_some(StarSeen::RayCounts)
+}
+
 impl Tick1Star {
     /// The report's one line: what it is, why whitted thinks so, what to do.
     pub fn sentence(&self) -> String {
         if let Some(plan) = &self.plan {
             return format!(
-                "a Tick 1* program (its package is tick1star): whitted {plan}. Each image is \
+                "a Tick 1* program ({}): whitted {plan}. Each image is \
                  judged as its option's (the bump map under the parametrisations students \
-                 choose; the random image as a draw of the course's distribution), not against \
-                 the Tick 1 suite. To check your ray tracer itself, run your Tick 1 code \
-                 (package tick1)."
+                 choose; the random image as a draw of the course's distribution; an image of \
+                 the Tick 1 renderer as that option not done), not against the Tick 1 suite. \
+                 To check your ray tracer itself, run your Tick 1 code (package tick1).",
+                self.seen.why()
             );
         }
         let why = match self.seen {
-            StarSeen::Package => "its package is tick1star".to_string(),
+            StarSeen::Package | StarSeen::RayCounts => self.seen.why().to_string(),
             StarSeen::TwoRunsDiffer => {
                 "run twice on one case, it wrote two different images".to_string()
             }
@@ -124,6 +158,28 @@ mod tests {
         assert!(!in_package(
             "java -cp out uk.ac.cam.cl.gfxintro.ab1.tick1.Tick1"
         ));
+    }
+
+    #[test]
+    fn a_submission_is_tick1_star_by_its_package_or_its_ray_counts() {
+        let renderer = |text: &'static str| ("Renderer.java", text.as_bytes());
+        let plain = [renderer("class Renderer { int x; }")];
+        assert_eq!(
+            in_sources(Some("uk.ac.cam.cl.gfxintro.ab1.tick1"), &plain),
+            None
+        );
+        assert_eq!(
+            in_sources(Some("uk.ac.cam.cl.gfxintro.ab1.tick1star"), &plain),
+            Some(StarSeen::Package)
+        );
+        // Every 2023-24 project holds the skeleton's BumpySphere: it says nothing.
+        let bumpy = [("BumpySphere.java", &b"class BumpySphere {}"[..])];
+        assert_eq!(in_sources(None, &bumpy), None);
+        let rays = [renderer("static final int SHADOW_RAY_COUNT = 10;")];
+        assert_eq!(in_sources(None, &rays), Some(StarSeen::RayCounts));
+        // The constant named in another file is not the Renderer's.
+        let elsewhere = [("Plane.java", &b"// DOF_RAY_COUNT"[..])];
+        assert_eq!(in_sources(None, &elsewhere), None);
     }
 
     #[test]

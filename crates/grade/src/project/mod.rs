@@ -16,6 +16,7 @@ use std::path::{Path, PathBuf};
 
 use serde_json::{json, Value};
 use whitted_check::check::program::{RunStatus, SuiteRun};
+use whitted_check::check::tick1_star::{self, StarSeen};
 use whitted_core::course::Course;
 use whitted_core::error::Result;
 
@@ -67,6 +68,22 @@ impl Project {
             java,
             members,
         })
+    }
+
+    /// Whether the project is a Tick 1* program, and by what: its package `tick1star`, or
+    /// a Renderer with option 2's ray counts. (A `BumpySphere.java` says nothing here: the
+    /// 2023-24 skeleton ships a stub of it in every project.)
+    pub fn tick1_star(&self) -> Option<StarSeen> {
+        let renderer: Vec<(&str, Vec<u8>)> = self
+            .found
+            .sources
+            .iter()
+            .filter(|(name, _)| name == "Renderer.java")
+            .filter_map(|(name, path)| Some((name.as_str(), std::fs::read(path).ok()?)))
+            .collect();
+        let sources: Vec<(&str, &[u8])> =
+            renderer.iter().map(|(n, b)| (*n, b.as_slice())).collect();
+        tick1_star::in_sources(self.found.package.as_deref(), &sources)
     }
 
     /// The year checked against.

@@ -116,6 +116,12 @@ pub fn add_findings(object: &mut Value, findings: &Findings) {
             "passes": bump.passes(),
         });
     }
+    if let Some(option) = findings.star_not_done {
+        object["star_not_done"] = json!({
+            "option": option.name(),
+            "line": crate::check::star_not_done::sentence(option, false),
+        });
+    }
     if let Some(star) = &findings.tick1_star {
         object["tick1_star"] = json!({
             "seen": star.seen.name(),
