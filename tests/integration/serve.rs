@@ -119,7 +119,18 @@ impl Service {
 
     /// Uploads `files` (name, bytes) with `csrf` through `link`'s form.
     pub fn upload(&self, link: &str, csrf: &str, files: &[(&str, &[u8])]) -> Reply {
-        let (content_type, body) = multipart(csrf, files);
+        self.upload_as(link, csrf, files, None)
+    }
+
+    /// As `upload`, each file with the scene `scene` chosen beside it (`tick2.xml:2`).
+    pub fn upload_as(
+        &self,
+        link: &str,
+        csrf: &str,
+        files: &[(&str, &[u8])],
+        scene: Option<&str>,
+    ) -> Reply {
+        let (content_type, body) = multipart_as(csrf, files, scene);
         self.request(
             "POST",
             &format!("{link}/upload"),
@@ -233,6 +244,11 @@ pub fn raw(port: u16, request: &[u8]) -> Reply {
 
 /// A multipart form of the page's fields: `csrf`, then each file as `files`.
 pub fn multipart(csrf: &str, files: &[(&str, &[u8])]) -> (String, Vec<u8>) {
+    multipart_as(csrf, files, None)
+}
+
+/// As `multipart`, with the select `scene` after each file, as the page's rows send it.
+pub fn multipart_as(csrf: &str, files: &[(&str, &[u8])], scene: Option<&str>) -> (String, Vec<u8>) {
     let boundary = "----whittedTestBoundary7MA4YWxkTrZu0gW";
     let mut body =
         format!("--{boundary}\r\nContent-Disposition: form-data; name=\"csrf\"\r\n\r\n{csrf}\r\n")
@@ -247,6 +263,14 @@ pub fn multipart(csrf: &str, files: &[(&str, &[u8])]) -> (String, Vec<u8>) {
         );
         body.extend_from_slice(bytes);
         body.extend_from_slice(b"\r\n");
+        if let Some(scene) = scene {
+            body.extend_from_slice(
+                format!(
+                    "--{boundary}\r\nContent-Disposition: form-data; name=\"scene\"\r\n\r\n{scene}\r\n"
+                )
+                .as_bytes(),
+            );
+        }
     }
     body.extend_from_slice(format!("--{boundary}--\r\n").as_bytes());
     (format!("multipart/form-data; boundary={boundary}"), body)
@@ -316,7 +340,12 @@ fn each_student_reaches_only_their_own_work_and_the_staff_see_everyone() {
     assert_eq!(mode & 0o777, 0o700, "the data folder is private");
 
     let wrong = render(dir.path(), "1");
-    let attempt = attempt_of(&service.upload(a, &service.csrf(a), &[("tick2.png", &wrong)]));
+    let attempt = attempt_of(&service.upload_as(
+        a,
+        &service.csrf(a),
+        &[("tick2.png", &wrong)],
+        Some("tick2.xml:2"),
+    ));
     assert!(attempt.starts_with(&format!("{a}/attempt/")), "{attempt}");
     let done = service.wait_done(&attempt, Duration::from_secs(120));
     assert_eq!(done["passed"], false);
@@ -532,7 +561,7 @@ fn wait_page(browser: &crate::view::Browser, expression: &str, seconds: u64) {
 }
 
 /// Chooses `paths` in the page's file input and presses Check.
-fn choose_and_submit(browser: &crate::view::Browser, paths: &[PathBuf]) {
+fn choose_and_submit(browser: &crate::view::Browser, paths: &[PathBuf], scene: Option<&str>) {
     let input = browser.session(
         "POST",
         "/element",
@@ -548,6 +577,12 @@ fn choose_and_submit(browser: &crate::view::Browser, paths: &[PathBuf]) {
         &format!("/element/{id}/value"),
         Some(serde_json::json!({"text": text.join("\n")})),
     );
+    if let Some(scene) = scene {
+        browser.script(
+            "document.querySelector('select[name=scene]').value = arguments[0]",
+            serde_json::json!([scene]),
+        );
+    }
     browser.script(
         "document.querySelector('form button').click()",
         serde_json::json!([]),
@@ -567,7 +602,11 @@ fn in_chromium_a_student_uploads_and_reads_the_result_and_the_staff_see_the_clas
     render(dir.path(), "1");
     browser.navigate(&format!("{origin}{a}"));
     wait_page(&browser, "!!document.querySelector('input[type=file]')", 30);
-    choose_and_submit(&browser, &[dir.path().join("render-b1.png")]);
+    choose_and_submit(
+        &browser,
+        &[dir.path().join("render-b1.png")],
+        Some("tick2.xml:2"),
+    );
     wait_page(&browser, "!!document.querySelector('iframe')", 120);
     let text = page_value(&browser, "document.body.innerText").expect("text");
     let text = text.as_str().expect("a string");
@@ -603,7 +642,7 @@ fn in_chromium_a_student_uploads_and_reads_the_result_and_the_staff_see_the_clas
     }
     browser.navigate(&format!("{origin}{a}"));
     wait_page(&browser, "!!document.querySelector('input[type=file]')", 30);
-    choose_and_submit(&browser, &paths);
+    choose_and_submit(&browser, &paths, None);
     wait_page(
         &browser,
         "(() => { const s = document.getElementById('state'); \
@@ -697,5 +736,83 @@ fn the_user_header_opens_the_staff_page_only_from_the_trusted_proxy_for_the_staf
         alone.status.code(),
         Some(2),
         "the header needs the proxy's address"
+    );
+}
+
+/// The course's 2016-17 render of its specular_test.xml: another scene than tick2.xml.
+fn render_specular(dir: &Path) -> Vec<u8> {
+    let path = dir.join("specular.png");
+    let scene = crate::common::root().join("crates/check/scenes/check/specular_test.xml");
+    let out = whitted(
+        dir,
+        &[
+            "render",
+            "--course",
+            "2016-17",
+            "-i",
+            s(&scene),
+            "-o",
+            s(&path),
+        ],
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    std::fs::read(&path).expect("png")
+}
+
+#[test]
+fn each_image_is_checked_as_the_scene_it_is_and_another_scene_files_no_finding() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let service = Service::start(dir.path(), &["1201", "1202"]);
+    let (students, staff) = service.links();
+    let a = &students[0].1;
+    let page = service.get(a).text();
+    for choice in [
+        "recognise it",
+        "tick2.xml at 0 bounces",
+        "specular_test.xml at 2 bounces",
+    ] {
+        assert!(page.contains(choice), "the form offers {choice}: {page}");
+    }
+
+    // A correct render at 0 bounces, left to be recognised: it passes as what it is.
+    let b0 = render(dir.path(), "0");
+    let recognised = attempt_of(&service.upload(a, &service.csrf(a), &[("b0.png", &b0)]));
+    assert_eq!(
+        service.wait_done(&recognised, Duration::from_secs(300))["passed"],
+        true
+    );
+    // The same render said to be another scene: told so, with no mistake filed.
+    let specular = render_specular(dir.path());
+    let mislabelled = attempt_of(&service.upload_as(
+        a,
+        &service.csrf(a),
+        &[("specular.png", &specular)],
+        Some("tick2.xml:2"),
+    ));
+    assert_eq!(
+        service.wait_done(&mislabelled, Duration::from_secs(300))["passed"],
+        false
+    );
+    let text = service.get(&mislabelled).text();
+    assert!(
+        text.contains("this image is not tick2.xml at 2 bounces: choose its scene"),
+        "{text}"
+    );
+    let class = service.get(&staff).text();
+    assert!(
+        class.contains("None diagnosed yet."),
+        "no mistake ranked: {class}"
+    );
+    // A scene no year has is refused at the door.
+    let refused = service.upload_as(a, &service.csrf(a), &[("x.png", &b0)], Some("../x:9"));
+    assert_eq!(refused.status, 422);
+    assert!(
+        refused.text().contains("choose each image"),
+        "{}",
+        refused.text()
     );
 }

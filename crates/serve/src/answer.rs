@@ -119,7 +119,14 @@ fn student_page(
             let attempts = store.attempts_of(me.number)?;
             Ok(Reply::html(
                 200,
-                pages::student(&base, me, &tick, &attempts, None),
+                pages::student(
+                    &base,
+                    me,
+                    &tick,
+                    &super::scene_choice::cases(app.course),
+                    &attempts,
+                    None,
+                ),
             ))
         }
         StudentPage::Upload => Ok(Reply::refusal(405, "an upload is a POST")),

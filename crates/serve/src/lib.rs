@@ -28,6 +28,7 @@ mod project;
 mod reply;
 mod roster;
 mod route;
+mod scene_choice;
 mod secret;
 mod server;
 mod slurm;

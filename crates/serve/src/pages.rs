@@ -2,9 +2,14 @@
 //! script (the one script is `app.js`, which the Content-Security-Policy allows alone).
 
 use maud::{html, Markup, DOCTYPE};
+use whitted_check::check::suite::SuiteCase;
 
+use super::scene_choice;
 use super::staff_view::ClassView;
 use super::store::{Attempt, Status, Student};
+
+/// The upload form's rows: a file input and the select of its scene each.
+const ROWS: usize = 4;
 
 pub const SCRIPT: &str = include_str!("assets/app.js");
 pub const STYLE: &str = include_str!("assets/style.css");
@@ -95,6 +100,7 @@ pub fn student(
     base: &str,
     student: &Student,
     tick: &str,
+    scenes: &[SuiteCase],
     attempts: &[Attempt],
     message: Option<&str>,
 ) -> String {
@@ -110,11 +116,25 @@ pub fn student(
             @if let Some(m) = message { p.refusal { (m) } }
             form method="post" action=(format!("{base}/upload")) enctype="multipart/form-data" {
                 input type="hidden" name="csrf" value=(student.csrf);
-                p { "Upload the PNGs your program wrote for the course's scenes (checked at \
-                     once), or your project: its " code { ".java" } " files or a zip of it \
-                     (compiled and run on the course's scenes in a sandbox, in turn)." }
-                input type="file" name="files" multiple accept=".png,.java,.zip";
-                " " button type="submit" { "Check" }
+                p { "Upload the PNGs your program wrote for the course's scenes, saying which \
+                     scene and bounces each is (checked at once), or your project: its "
+                     code { ".java" } " files or a zip of it (compiled and run on the course's \
+                     scenes in a sandbox, in turn)." }
+                @for row in 0..ROWS {
+                    p.file {
+                        input type="file" name="files" multiple[row == 0] accept=".png,.java,.zip";
+                        " is "
+                        select name="scene" aria-label="which scene this image is" {
+                            option value=(scene_choice::RECOGNISE) { "recognise it" }
+                            @for case in scenes {
+                                option value=(scene_choice::value(case)) {
+                                    (scene_choice::label(&case.file, case.bounces))
+                                }
+                            }
+                        }
+                    }
+                }
+                button type="submit" { "Check" }
             }
             h2 { "Your attempts" }
             (attempts_table(base, attempts))
