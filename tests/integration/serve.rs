@@ -37,7 +37,7 @@ impl Service {
         Service::run(dir, &[])
     }
 
-    fn run(dir: &Path, extra: &[&str]) -> Service {
+    pub fn run(dir: &Path, extra: &[&str]) -> Service {
         let data = dir.join("data");
         let mut child = Command::new(env!("CARGO_BIN_EXE_whitted"))
             .args([
@@ -814,5 +814,56 @@ fn each_image_is_checked_as_the_scene_it_is_and_another_scene_files_no_finding()
         refused.text().contains("choose each image"),
         "{}",
         refused.text()
+    );
+}
+
+#[test]
+fn a_participants_export_keeps_its_names_and_no_worksheet_is_made_up() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let roster = dir.path().join("participants.csv");
+    std::fs::write(
+        &roster,
+        "First name,Last name,ID number,Email address\nCarol,Davis,cd456,cd456@example.ac.uk\n",
+    )
+    .expect("roster");
+    let service = Service::run(dir.path(), &["--roster", s(&roster)]);
+    let (students, staff) = service.links();
+    let a = &students[0].1;
+    let files = project_files();
+    let refs: Vec<(&str, &[u8])> = files
+        .iter()
+        .map(|(n, b)| (n.as_str(), b.as_slice()))
+        .collect();
+    let attempt = attempt_of(&service.upload(a, &service.csrf(a), &refs));
+    assert_eq!(
+        service.wait_done(&attempt, Duration::from_secs(300))["passed"],
+        true
+    );
+    let page = service.get(&staff).text();
+    assert!(page.contains("only the grading worksheet"), "{page}");
+    let worksheet = service.get(&format!("{staff}/export/moodle.csv"));
+    assert_eq!(worksheet.status, 409);
+    assert!(
+        worksheet.text().contains("not Moodle participant numbers"),
+        "{}",
+        worksheet.text()
+    );
+    assert!(!worksheet.text().contains("Participant cd456"));
+    let class = service.get(&format!("{staff}/export/class.csv")).text();
+    assert!(
+        class
+            .lines()
+            .nth(1)
+            .is_some_and(|l| l.starts_with("cd456,Carol Davis,")),
+        "{class}"
+    );
+    let zip = service.get(&format!("{staff}/export/feedback.zip"));
+    let archive = zip::ZipArchive::new(std::io::Cursor::new(zip.body)).expect("a zip");
+    let names: Vec<&str> = archive.file_names().collect();
+    assert!(
+        names
+            .iter()
+            .any(|n| n.starts_with("Carol Davis_cd456_assignsubmission_file_/")),
+        "{names:?}"
     );
 }

@@ -185,6 +185,10 @@ pub fn class(base: &str, view: &ClassView, tick: &str) -> String {
                 a href=(format!("{base}/export/moodle.csv")) { "Moodle worksheet" } ", "
                 a href=(format!("{base}/export/feedback.zip")) { "feedback zip" } ", "
                 a href=(format!("{base}/export/class.csv")) { "class.csv" } "." }
+            p.muted { "Moodle's worksheet import matches its own participant numbers, which \
+                only the grading worksheet Moodle downloads carries: serve with it as the \
+                roster to export a worksheet (a participants export has none, and the \
+                worksheet is then refused)." }
             h2 { "Programs" }
             p { (view.programs.queued) " queued, " (view.programs.running) " running, "
                 (view.programs.done) " done"
