@@ -510,6 +510,14 @@ fn a_project_runs_in_the_sandbox_and_the_staff_export_it_as_grade_writes() {
     }
     let page = service.get(&attempt).text();
     assert!(page.contains("5 of 5 cases pass"));
+    // Its progress in the handout's order, as check prints it, not alphabetically.
+    let at = |stage: &str| page.find(&format!("{stage} done")).expect(stage);
+    assert!(
+        at("planes") < at("lights")
+            && at("lights") < at("shadows")
+            && at("shadows") < at("reflection"),
+        "{page}"
+    );
     if countable {
         assert!(page.contains("s of CPU"), "{page}");
         let class = service.get(&staff).text();
@@ -866,4 +874,66 @@ fn a_participants_export_keeps_its_names_and_no_worksheet_is_made_up() {
             .any(|n| n.starts_with("Carol Davis_cd456_assignsubmission_file_/")),
         "{names:?}"
     );
+}
+
+#[test]
+fn each_image_of_an_attempt_is_shown_and_attempts_are_numbered_per_student() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let service = Service::start(dir.path(), &["1201", "1202"]);
+    let (students, staff) = service.links();
+    let (a, b) = (&students[0].1, &students[1].1);
+    let (right, wrong) = (render(dir.path(), "2"), render(dir.path(), "1"));
+    let tick2 = Some("tick2.xml:2");
+    let first = attempt_of(&service.upload_as(a, &service.csrf(a), &[("a.png", &right)], tick2));
+    service.wait_done(&first, Duration::from_secs(120));
+    let one = attempt_of(&service.upload_as(b, &service.csrf(b), &[("b.png", &right)], tick2));
+    service.wait_done(&one, Duration::from_secs(120));
+    let three = attempt_of(&service.upload_as(
+        b,
+        &service.csrf(b),
+        &[
+            ("good.png", &right),
+            ("wrong.png", &wrong),
+            ("again.png", &right),
+        ],
+        tick2,
+    ));
+    assert_eq!(
+        service.wait_done(&three, Duration::from_secs(300))["passed"],
+        false
+    );
+    let page = service.get(&three).text();
+    assert!(
+        page.contains("<title>Attempt 2</title>"),
+        "b's second: {page}"
+    );
+    assert!(page.contains("Attempt 2: images"), "{page}");
+    assert!(
+        page.contains("2 of 3 images pass (good.png, again.png); not wrong.png"),
+        "{page}"
+    );
+    for name in [
+        "good.png: identical",
+        "wrong.png: differs",
+        "again.png: identical",
+    ] {
+        assert!(page.contains(name), "each image's own text: {name}: {page}");
+    }
+    assert!(page.contains("bounces-minus-one"), "{page}");
+    assert!(
+        !page.contains("--verbose") && !page.contains("FILE.html"),
+        "no command-line hints on the web: {page}"
+    );
+    let mine = service.get(b).text();
+    assert!(
+        mine.contains(&format!("{three}\">2</a>")) && mine.contains(&format!("{one}\">1</a>")),
+        "{mine}"
+    );
+    let class = service.get(&staff).text();
+    assert!(class.contains("Everyone has started."), "{class}");
+    assert!(
+        class.contains("<td>bounces-minus-one: one bounce fewer than --bounces</td>"),
+        "the finding, not the heading: {class}"
+    );
+    assert!(!class.contains("(embedded), 640x480"), "{class}");
 }

@@ -178,7 +178,17 @@ fn attempt_reply(
         .and_then(|o| serde_json::from_str(&o.report).ok())
         .unwrap_or_default();
     Ok(match part {
-        Part::Page => Reply::html(200, pages::attempt(base, back, attempt, reports.len())),
+        Part::Page => {
+            let ordinal = store
+                .attempts_of(attempt.student)?
+                .iter()
+                .filter(|a| a.id <= attempt.id)
+                .count();
+            Reply::html(
+                200,
+                pages::attempt(base, back, attempt, ordinal, reports.len()),
+            )
+        }
         Part::Status => Reply::json(&status_json(app, store, attempt)?),
         Part::Report => {
             let n: usize = form_urlencoded::parse(query.as_bytes())

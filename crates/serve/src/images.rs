@@ -113,34 +113,55 @@ fn beyond(result: &CheckResult) -> usize {
 }
 
 fn outcome(checked: &[(String, Checked)]) -> Outcome {
-    let passed = checked
-        .iter()
-        .all(|(_, c)| matches!(c, Checked::Result(r) if r.passed()));
-    let passes = checked
-        .iter()
-        .filter(|(_, c)| matches!(c, Checked::Result(r) if r.passed()))
-        .count();
-    // What the student reads first: the first image that fails, else the first.
-    let shown = checked
-        .iter()
-        .find(|(_, c)| !matches!(c, Checked::Result(r) if r.passed()))
-        .or(checked.first());
-    let (mistake, finding, progress) = match shown {
+    let passes = |c: &Checked| matches!(c, Checked::Result(r) if r.passed());
+    let passed = checked.iter().all(|(_, c)| passes(c));
+    // The mistake and progress the attempt is known by: the first image that fails, else the
+    // first.
+    let shown = checked.iter().find(|(_, c)| !passes(c)).or(checked.first());
+    let (mistake, progress) = match shown {
         Some((_, Checked::Result(result))) => {
             let value = json(result);
-            (
-                top_mistake(&value),
-                text(result, Detail::Screen),
-                progress_of(&value),
-            )
+            (top_mistake(&value), progress_of(&value))
         }
-        Some((name, Checked::Refused(why))) => (None, format!("{name}: {why}"), String::new()),
-        None => (None, "no image".into(), String::new()),
+        _ => (None, String::new()),
+    };
+    // Every image's text, each under its name and verdict.
+    let finding = match checked {
+        [] => "no image".to_string(),
+        [(name, c)] => one_text(name, c),
+        _ => checked
+            .iter()
+            .map(|(name, c)| format!("{name}: {}\n{}", image_verdict(c), one_text(name, c)))
+            .collect::<Vec<_>>()
+            .join("\n\n"),
     };
     let verdict = match checked {
-        [(name, Checked::Result(r))] => format!("{name}: {}", verdict_of(&json(r))),
-        [(name, Checked::Refused(_))] => format!("{name}: cannot be checked"),
-        _ => format!("{passes} of {} images pass", checked.len()),
+        [(name, c)] => format!("{name}: {}", image_verdict(c)),
+        _ => {
+            let names = |pass: bool| {
+                checked
+                    .iter()
+                    .filter(|(_, c)| passes(c) == pass)
+                    .map(|(n, _)| n.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            };
+            let count = checked.iter().filter(|(_, c)| passes(c)).count();
+            match (count, checked.len() - count) {
+                (_, 0) => format!("all {count} images pass"),
+                (0, _) => format!(
+                    "none of the {} images pass: {}",
+                    checked.len(),
+                    names(false)
+                ),
+                _ => format!(
+                    "{count} of {} images pass ({}); not {}",
+                    checked.len(),
+                    names(true),
+                    names(false)
+                ),
+            }
+        }
     };
     let reports: Vec<String> = checked
         .iter()
@@ -157,6 +178,32 @@ fn outcome(checked: &[(String, Checked)]) -> Outcome {
         progress,
         report: serde_json::to_string(&reports).unwrap_or_default(),
     }
+}
+
+/// One image's verdict in words.
+fn image_verdict(checked: &Checked) -> String {
+    match checked {
+        Checked::Result(r) => verdict_of(&json(r)),
+        Checked::Refused(_) => "cannot be checked".into(),
+    }
+}
+
+/// One image's text, as the page shows it.
+fn one_text(name: &str, checked: &Checked) -> String {
+    match checked {
+        Checked::Result(r) => for_the_web(&text(r, Detail::Screen)),
+        Checked::Refused(why) => format!("{name}: {why}"),
+    }
+}
+
+/// The check's text without its hints to the command line (`--verbose adds ...; --report
+/// FILE.html shows the images`): on the web the report is shown below, and there is no
+/// command to add options to.
+pub fn for_the_web(text: &str) -> String {
+    text.lines()
+        .filter(|l| !l.trim_start().trim_start_matches('(').starts_with("--"))
+        .collect::<Vec<_>>()
+        .join("\n")
 }
 
 /// The report of an image that could not be checked: the one sentence why, escaped.
@@ -195,4 +242,16 @@ fn progress_of(value: &Value) -> String {
         .find(|l| l.starts_with("progress"))
         .unwrap_or("")
         .to_string()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_web_text_has_no_command_line_hints() {
+        let text = "diagnosis\n  fix: x\n--verbose adds the commands; --report FILE.html shows \
+                    the images\n(--suite-dir DIR writes the scenes)";
+        assert_eq!(for_the_web(text), "diagnosis\n  fix: x");
+    }
 }
