@@ -937,3 +937,46 @@ fn each_image_of_an_attempt_is_shown_and_attempts_are_numbered_per_student() {
     );
     assert!(!class.contains("(embedded), 640x480"), "{class}");
 }
+
+#[test]
+fn a_wrong_roster_leaves_nothing_behind_and_revoke_says_what_it_did() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = whitted(
+        dir.path(),
+        &[
+            "serve",
+            "--course",
+            "2016-17",
+            "--listen",
+            "127.0.0.1:0",
+            "--roster",
+            "missing.csv",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("missing.csv") && stderr.lines().count() == 1,
+        "{stderr}"
+    );
+    assert!(
+        !dir.path().join("whitted-serve").exists(),
+        "no data folder made"
+    );
+
+    let service = Service::start(dir.path(), &["1201"]);
+    let out = whitted(
+        dir.path(),
+        &["serve", "revoke", "1201", "--data", s(&service.data)],
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let said = String::from_utf8_lossy(&out.stdout);
+    assert!(said.starts_with("revoked 1201's link"), "{said}");
+    assert!(said.contains("whitted serve reissue --data"), "{said}");
+    let (students, _) = service.links();
+    assert_eq!(students[0].1, "", "the link is gone: {students:?}");
+}
