@@ -38,12 +38,17 @@ impl Service {
     }
 
     pub fn run(dir: &Path, extra: &[&str]) -> Service {
+        Service::run_course(dir, "2016-17", extra)
+    }
+
+    /// As `run`, serving `course`.
+    pub fn run_course(dir: &Path, course: &str, extra: &[&str]) -> Service {
         let data = dir.join("data");
         let mut child = Command::new(env!("CARGO_BIN_EXE_whitted"))
             .args([
                 "serve",
                 "--course",
-                "2016-17",
+                course,
                 "--listen",
                 "127.0.0.1:0",
                 "--data",
@@ -979,4 +984,49 @@ fn a_wrong_roster_leaves_nothing_behind_and_revoke_says_what_it_did() {
     assert!(said.contains("whitted serve reissue --data"), "{said}");
     let (students, _) = service.links();
     assert_eq!(students[0].1, "", "the link is gone: {students:?}");
+}
+
+#[test]
+fn a_tick1_star_screenshot_is_judged_as_check_star_judges_it_when_the_student_says_so() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let roster = dir.path().join("roster.txt");
+    std::fs::write(&roster, "1201\n").expect("roster");
+    let service = Service::run_course(dir.path(), "2020-21", &["--roster", s(&roster)]);
+    let (students, _) = service.links();
+    let a = &students[0].1;
+    let page = service.get(a).text();
+    assert!(page.contains("bump.xml (Tick 1*)"), "{page}");
+    let path = dir.path().join("bump.png");
+    let scene = crate::common::root().join("scenes/courses/tick1star/bump.xml");
+    let out = whitted(
+        dir.path(),
+        &[
+            "render",
+            "--course",
+            "2020-21",
+            "-i",
+            s(&scene),
+            "-o",
+            s(&path),
+        ],
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let png = std::fs::read(&path).expect("png");
+    let value = page
+        .split("value=\"")
+        .map(|v| v.split('"').next().unwrap_or(""))
+        .find(|v| v.starts_with("bump.xml:"))
+        .expect("the bump choice")
+        .to_string();
+    let attempt =
+        attempt_of(&service.upload_as(a, &service.csrf(a), &[("bump.png", &png)], Some(&value)));
+    let done = service.wait_done(&attempt, Duration::from_secs(300));
+    let text = service.get(&attempt).text();
+    assert_eq!(done["passed"], true, "{text}");
+    assert!(text.contains("bump.png: bump-correct"), "{text}");
+    assert!(text.contains("option 1, bump mapping"), "{text}");
 }

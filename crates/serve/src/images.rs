@@ -13,6 +13,9 @@ use whitted_check::check::print::html;
 use whitted_check::check::print::json::json;
 use whitted_check::check::print::text::{text, Detail};
 use whitted_check::check::result::CheckResult;
+use whitted_check::check::star_option::StarOption;
+use whitted_check::check::star_run::{judge, StarVerdict};
+use whitted_check::check::suite::{Role, SuiteCase};
 use whitted_check::check::which_course;
 use whitted_check::check::{check_image, student_png};
 use whitted_core::course::Course;
@@ -25,9 +28,11 @@ const RULE: PassRule = PassRule {
     allowance: Allowance::NONE,
 };
 
-/// One image's check: its result, or why it could not be checked (a PNG bomb, not a PNG).
+/// One image's check: its result, a Tick 1* screenshot's verdict, or why it could not be
+/// checked (a PNG bomb, not a PNG, plainly another scene).
 enum Checked {
     Result(Box<CheckResult>),
+    Star(StarOption, StarVerdict),
     Refused(String),
 }
 
@@ -41,7 +46,7 @@ pub fn check(dir: &Path, names: &[String], course: Course) -> Outcome {
             let path = dir.join(stored_name(i));
             let choice = scene_choice::read(dir, i, course);
             let checked = match one(&path, name, &choice, course) {
-                Ok(result) => Checked::Result(Box::new(result)),
+                Ok(checked) => checked,
                 Err(e) => {
                     Checked::Refused(e.to_string().replace(&path.display().to_string(), name))
                 }
@@ -59,11 +64,24 @@ pub fn stored_name(i: usize) -> String {
 
 /// One image checked against each candidate case of `choice`: the first it passes, else the
 /// one it is closest to; refused when it is plainly none of them (never a finding then).
-fn one(path: &Path, name: &str, choice: &Choice, course: Course) -> Result<CheckResult> {
+fn one(path: &Path, name: &str, choice: &Choice, course: Course) -> Result<Checked> {
     let student = student_png::read(path)?;
+    let candidates = scene_choice::candidates(choice, course);
+    if let [SuiteCase {
+        role: Role::Star(option),
+        bounces,
+        ..
+    }] = candidates.as_slice()
+    {
+        // As `check --star`: a Tick 1* image is judged by its option's own check.
+        return Ok(Checked::Star(
+            *option,
+            judge(*option, &student, *bounces, course)?,
+        ));
+    }
     let chosen = which_course::for_image(Some(course), (student.width, student.height), None)?;
     let mut best: Option<CheckResult> = None;
-    for case in scene_choice::candidates(choice, course) {
+    for case in candidates {
         let input = scene::input::input_of(
             Some(Path::new(&*case.file)),
             Some(case.xml.as_bytes().to_vec()),
@@ -79,7 +97,7 @@ fn one(path: &Path, name: &str, choice: &Choice, course: Course) -> Result<Check
         )?;
         let result = CheckResult::of_image(name, None, report, findings, &chosen);
         if result.passed() {
-            return Ok(result);
+            return Ok(Checked::Result(Box::new(result)));
         }
         if best.as_ref().is_none_or(|b| beyond(&result) < beyond(b)) {
             best = Some(result);
@@ -92,7 +110,7 @@ fn one(path: &Path, name: &str, choice: &Choice, course: Course) -> Result<Check
     };
     let total = (student.width as usize) * (student.height as usize);
     match scene_choice::plainly_another(beyond(&best), total) {
-        false => Ok(best),
+        false => Ok(Checked::Result(Box::new(best))),
         true => Err(Error::Usage(match choice {
             Choice::Case { file, bounces } => format!(
                 "this image is not {}: choose its scene",
@@ -113,7 +131,11 @@ fn beyond(result: &CheckResult) -> usize {
 }
 
 fn outcome(checked: &[(String, Checked)]) -> Outcome {
-    let passes = |c: &Checked| matches!(c, Checked::Result(r) if r.passed());
+    let passes = |c: &Checked| match c {
+        Checked::Result(r) => r.passed(),
+        Checked::Star(_, v) => v.passes(),
+        Checked::Refused(_) => false,
+    };
     let passed = checked.iter().all(|(_, c)| passes(c));
     // The mistake and progress the attempt is known by: the first image that fails, else the
     // first.
@@ -167,7 +189,10 @@ fn outcome(checked: &[(String, Checked)]) -> Outcome {
         .iter()
         .map(|(name, c)| match c {
             Checked::Result(r) => html::page(r),
-            Checked::Refused(why) => refused_page(name, why),
+            Checked::Star(option, v) => plain_page(name, &star_line(*option, v)),
+            Checked::Refused(why) => {
+                plain_page(name, &format!("This image cannot be checked: {why}"))
+            }
         })
         .collect();
     Outcome {
@@ -184,6 +209,7 @@ fn outcome(checked: &[(String, Checked)]) -> Outcome {
 fn image_verdict(checked: &Checked) -> String {
     match checked {
         Checked::Result(r) => verdict_of(&json(r)),
+        Checked::Star(_, v) => v.name().into(),
         Checked::Refused(_) => "cannot be checked".into(),
     }
 }
@@ -192,6 +218,7 @@ fn image_verdict(checked: &Checked) -> String {
 fn one_text(name: &str, checked: &Checked) -> String {
     match checked {
         Checked::Result(r) => for_the_web(&text(r, Detail::Screen)),
+        Checked::Star(option, v) => star_line(*option, v),
         Checked::Refused(why) => format!("{name}: {why}"),
     }
 }
@@ -206,14 +233,20 @@ pub fn for_the_web(text: &str) -> String {
         .join("\n")
 }
 
-/// The report of an image that could not be checked: the one sentence why, escaped.
-fn refused_page(name: &str, why: &str) -> String {
+/// The report of an image that has only a sentence (it could not be checked; a Tick 1*
+/// verdict), escaped.
+fn plain_page(name: &str, sentence: &str) -> String {
     maud::html! {
         (maud::DOCTYPE)
         html lang="en" { head { meta charset="utf-8"; title { (name) } }
-            body { h1 { (name) } p { "This image cannot be checked: " (why) } } }
+            body { h1 { (name) } p { (sentence) } } }
     }
     .into_string()
+}
+
+/// A Tick 1* verdict in words, as `check --star` prints it.
+fn star_line(option: StarOption, verdict: &StarVerdict) -> String {
+    format!("{}: {}", option.what(), verdict.line())
 }
 
 /// The top candidate's first catalogue entry, when the check names one.

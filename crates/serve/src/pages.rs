@@ -129,7 +129,7 @@ pub fn student(
                             option value=(scene_choice::RECOGNISE) { "recognise it" }
                             @for case in scenes {
                                 option value=(scene_choice::value(case)) {
-                                    (scene_choice::label(&case.file, case.bounces))
+                                    (scene_choice::case_label(case))
                                 }
                             }
                         }

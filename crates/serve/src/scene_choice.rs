@@ -6,6 +6,7 @@
 
 use std::path::Path;
 
+use whitted_check::check::star_option;
 use whitted_check::check::suite::{cases_of, Role, SuiteCase};
 use whitted_core::course::Course;
 
@@ -22,12 +23,25 @@ pub enum Choice {
 pub const RECOGNISE: &str = "recognise";
 
 /// The course's own image cases of `course` (test1.xml at 0, 1 and 2 bounces, test2.xml...),
-/// in the order the suite runs them: the choices the form offers.
+/// in the order the suite runs them, then the later years' Tick 1* handout scenes (bump.xml,
+/// distributed.xml), judged as `check --star` judges them: the choices the form offers.
 pub fn cases(course: Course) -> Vec<SuiteCase> {
-    cases_of(course)
+    let mut cases: Vec<SuiteCase> = cases_of(course)
         .into_iter()
         .filter(|c| c.role == Role::Course)
-        .collect()
+        .collect();
+    if !course.is_default() {
+        cases.extend(star_option::cases(course));
+    }
+    cases
+}
+
+/// The words for a case in the form: `test1.xml at 2 bounces`, `bump.xml (Tick 1*)`.
+pub fn case_label(case: &SuiteCase) -> String {
+    match case.role {
+        Role::Star(_) => format!("{} (Tick 1*)", case.file),
+        _ => label(&case.file, case.bounces),
+    }
 }
 
 /// The form value of a case: `test1.xml:2`.
@@ -75,7 +89,8 @@ pub fn candidates(choice: &Choice, course: Course) -> Vec<SuiteCase> {
     cases(course)
         .into_iter()
         .filter(|c| match choice {
-            Choice::Recognise => true,
+            // A Tick 1* screenshot is only judged as one when the student says it is one.
+            Choice::Recognise => c.role == Role::Course,
             Choice::Case { file, bounces } => c.file == file.as_str() && c.bounces == *bounces,
         })
         .collect()
@@ -96,9 +111,11 @@ mod tests {
     fn the_choices_are_the_years_own_scenes_and_round_trip() {
         let offered: Vec<String> = cases(Course::Y2023).iter().map(value).collect();
         assert_eq!(
-            offered,
+            offered[..4],
             ["test1.xml:0", "test1.xml:1", "test1.xml:2", "test2.xml:2"]
         );
+        assert!(offered[4..].iter().any(|v| v.starts_with("bump.xml:")));
+        assert_eq!(candidates(&Choice::Recognise, Course::Y2023).len(), 4);
         assert_eq!(
             parse("test2.xml:2", Course::Y2023),
             Some(Choice::Case {
