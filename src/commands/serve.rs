@@ -9,7 +9,16 @@ use whitted_io::output::stdout;
 pub fn run(args: &ServiceArgs) -> Result<()> {
     match &args.action {
         Some(ServeAction::Links(a)) => stdout::print_line(&whitted_serve::links(&a.data)?),
-        Some(ServeAction::Revoke(a)) => whitted_serve::set_link(&a.data.data, &a.id, false),
+        Some(ServeAction::Revoke(a)) => {
+            whitted_serve::set_link(&a.data.data, &a.id, false)?;
+            stdout::print_line(&format!(
+                "revoked {}'s link: it now opens a page telling them to ask the course staff; \
+                 `whitted serve reissue --data {} {}` gives them a new one",
+                a.id,
+                a.data.data.display(),
+                a.id
+            ))
+        }
         Some(ServeAction::Reissue(a)) => {
             whitted_serve::set_link(&a.data.data, &a.id, true)?;
             stdout::print_line(&whitted_serve::links(&a.data.data)?)

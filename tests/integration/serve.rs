@@ -37,13 +37,18 @@ impl Service {
         Service::run(dir, &[])
     }
 
-    fn run(dir: &Path, extra: &[&str]) -> Service {
+    pub fn run(dir: &Path, extra: &[&str]) -> Service {
+        Service::run_course(dir, "2016-17", extra)
+    }
+
+    /// As `run`, serving `course`.
+    pub fn run_course(dir: &Path, course: &str, extra: &[&str]) -> Service {
         let data = dir.join("data");
         let mut child = Command::new(env!("CARGO_BIN_EXE_whitted"))
             .args([
                 "serve",
                 "--course",
-                "2016-17",
+                course,
                 "--listen",
                 "127.0.0.1:0",
                 "--data",
@@ -119,7 +124,18 @@ impl Service {
 
     /// Uploads `files` (name, bytes) with `csrf` through `link`'s form.
     pub fn upload(&self, link: &str, csrf: &str, files: &[(&str, &[u8])]) -> Reply {
-        let (content_type, body) = multipart(csrf, files);
+        self.upload_as(link, csrf, files, None)
+    }
+
+    /// As `upload`, each file with the scene `scene` chosen beside it (`tick2.xml:2`).
+    pub fn upload_as(
+        &self,
+        link: &str,
+        csrf: &str,
+        files: &[(&str, &[u8])],
+        scene: Option<&str>,
+    ) -> Reply {
+        let (content_type, body) = multipart_as(csrf, files, scene);
         self.request(
             "POST",
             &format!("{link}/upload"),
@@ -233,6 +249,11 @@ pub fn raw(port: u16, request: &[u8]) -> Reply {
 
 /// A multipart form of the page's fields: `csrf`, then each file as `files`.
 pub fn multipart(csrf: &str, files: &[(&str, &[u8])]) -> (String, Vec<u8>) {
+    multipart_as(csrf, files, None)
+}
+
+/// As `multipart`, with the select `scene` after each file, as the page's rows send it.
+pub fn multipart_as(csrf: &str, files: &[(&str, &[u8])], scene: Option<&str>) -> (String, Vec<u8>) {
     let boundary = "----whittedTestBoundary7MA4YWxkTrZu0gW";
     let mut body =
         format!("--{boundary}\r\nContent-Disposition: form-data; name=\"csrf\"\r\n\r\n{csrf}\r\n")
@@ -247,6 +268,14 @@ pub fn multipart(csrf: &str, files: &[(&str, &[u8])]) -> (String, Vec<u8>) {
         );
         body.extend_from_slice(bytes);
         body.extend_from_slice(b"\r\n");
+        if let Some(scene) = scene {
+            body.extend_from_slice(
+                format!(
+                    "--{boundary}\r\nContent-Disposition: form-data; name=\"scene\"\r\n\r\n{scene}\r\n"
+                )
+                .as_bytes(),
+            );
+        }
     }
     body.extend_from_slice(format!("--{boundary}--\r\n").as_bytes());
     (format!("multipart/form-data; boundary={boundary}"), body)
@@ -316,7 +345,12 @@ fn each_student_reaches_only_their_own_work_and_the_staff_see_everyone() {
     assert_eq!(mode & 0o777, 0o700, "the data folder is private");
 
     let wrong = render(dir.path(), "1");
-    let attempt = attempt_of(&service.upload(a, &service.csrf(a), &[("tick2.png", &wrong)]));
+    let attempt = attempt_of(&service.upload_as(
+        a,
+        &service.csrf(a),
+        &[("tick2.png", &wrong)],
+        Some("tick2.xml:2"),
+    ));
     assert!(attempt.starts_with(&format!("{a}/attempt/")), "{attempt}");
     let done = service.wait_done(&attempt, Duration::from_secs(120));
     assert_eq!(done["passed"], false);
@@ -481,6 +515,14 @@ fn a_project_runs_in_the_sandbox_and_the_staff_export_it_as_grade_writes() {
     }
     let page = service.get(&attempt).text();
     assert!(page.contains("5 of 5 cases pass"));
+    // Its progress in the handout's order, as check prints it, not alphabetically.
+    let at = |stage: &str| page.find(&format!("{stage} done")).expect(stage);
+    assert!(
+        at("planes") < at("lights")
+            && at("lights") < at("shadows")
+            && at("shadows") < at("reflection"),
+        "{page}"
+    );
     if countable {
         assert!(page.contains("s of CPU"), "{page}");
         let class = service.get(&staff).text();
@@ -532,7 +574,7 @@ fn wait_page(browser: &crate::view::Browser, expression: &str, seconds: u64) {
 }
 
 /// Chooses `paths` in the page's file input and presses Check.
-fn choose_and_submit(browser: &crate::view::Browser, paths: &[PathBuf]) {
+fn choose_and_submit(browser: &crate::view::Browser, paths: &[PathBuf], scene: Option<&str>) {
     let input = browser.session(
         "POST",
         "/element",
@@ -548,6 +590,12 @@ fn choose_and_submit(browser: &crate::view::Browser, paths: &[PathBuf]) {
         &format!("/element/{id}/value"),
         Some(serde_json::json!({"text": text.join("\n")})),
     );
+    if let Some(scene) = scene {
+        browser.script(
+            "document.querySelector('select[name=scene]').value = arguments[0]",
+            serde_json::json!([scene]),
+        );
+    }
     browser.script(
         "document.querySelector('form button').click()",
         serde_json::json!([]),
@@ -567,7 +615,11 @@ fn in_chromium_a_student_uploads_and_reads_the_result_and_the_staff_see_the_clas
     render(dir.path(), "1");
     browser.navigate(&format!("{origin}{a}"));
     wait_page(&browser, "!!document.querySelector('input[type=file]')", 30);
-    choose_and_submit(&browser, &[dir.path().join("render-b1.png")]);
+    choose_and_submit(
+        &browser,
+        &[dir.path().join("render-b1.png")],
+        Some("tick2.xml:2"),
+    );
     wait_page(&browser, "!!document.querySelector('iframe')", 120);
     let text = page_value(&browser, "document.body.innerText").expect("text");
     let text = text.as_str().expect("a string");
@@ -603,7 +655,7 @@ fn in_chromium_a_student_uploads_and_reads_the_result_and_the_staff_see_the_clas
     }
     browser.navigate(&format!("{origin}{a}"));
     wait_page(&browser, "!!document.querySelector('input[type=file]')", 30);
-    choose_and_submit(&browser, &paths);
+    choose_and_submit(&browser, &paths, None);
     wait_page(
         &browser,
         "(() => { const s = document.getElementById('state'); \
@@ -698,4 +750,283 @@ fn the_user_header_opens_the_staff_page_only_from_the_trusted_proxy_for_the_staf
         Some(2),
         "the header needs the proxy's address"
     );
+}
+
+/// The course's 2016-17 render of its specular_test.xml: another scene than tick2.xml.
+fn render_specular(dir: &Path) -> Vec<u8> {
+    let path = dir.join("specular.png");
+    let scene = crate::common::root().join("crates/check/scenes/check/specular_test.xml");
+    let out = whitted(
+        dir,
+        &[
+            "render",
+            "--course",
+            "2016-17",
+            "-i",
+            s(&scene),
+            "-o",
+            s(&path),
+        ],
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    std::fs::read(&path).expect("png")
+}
+
+#[test]
+fn each_image_is_checked_as_the_scene_it_is_and_another_scene_files_no_finding() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let service = Service::start(dir.path(), &["1201", "1202"]);
+    let (students, staff) = service.links();
+    let a = &students[0].1;
+    let page = service.get(a).text();
+    for choice in [
+        "recognise it",
+        "tick2.xml at 0 bounces",
+        "specular_test.xml at 2 bounces",
+    ] {
+        assert!(page.contains(choice), "the form offers {choice}: {page}");
+    }
+
+    // A correct render at 0 bounces, left to be recognised: it passes as what it is.
+    let b0 = render(dir.path(), "0");
+    let recognised = attempt_of(&service.upload(a, &service.csrf(a), &[("b0.png", &b0)]));
+    assert_eq!(
+        service.wait_done(&recognised, Duration::from_secs(300))["passed"],
+        true
+    );
+    // The same render said to be another scene: told so, with no mistake filed.
+    let specular = render_specular(dir.path());
+    let mislabelled = attempt_of(&service.upload_as(
+        a,
+        &service.csrf(a),
+        &[("specular.png", &specular)],
+        Some("tick2.xml:2"),
+    ));
+    assert_eq!(
+        service.wait_done(&mislabelled, Duration::from_secs(300))["passed"],
+        false
+    );
+    let text = service.get(&mislabelled).text();
+    assert!(
+        text.contains("this image is not tick2.xml at 2 bounces: choose its scene"),
+        "{text}"
+    );
+    let class = service.get(&staff).text();
+    assert!(
+        class.contains("None diagnosed yet."),
+        "no mistake ranked: {class}"
+    );
+    // A scene no year has is refused at the door.
+    let refused = service.upload_as(a, &service.csrf(a), &[("x.png", &b0)], Some("../x:9"));
+    assert_eq!(refused.status, 422);
+    assert!(
+        refused.text().contains("choose each image"),
+        "{}",
+        refused.text()
+    );
+}
+
+#[test]
+fn a_participants_export_keeps_its_names_and_no_worksheet_is_made_up() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let roster = dir.path().join("participants.csv");
+    std::fs::write(
+        &roster,
+        "First name,Last name,ID number,Email address\nCarol,Davis,cd456,cd456@example.ac.uk\n",
+    )
+    .expect("roster");
+    let service = Service::run(dir.path(), &["--roster", s(&roster)]);
+    let (students, staff) = service.links();
+    let a = &students[0].1;
+    let files = project_files();
+    let refs: Vec<(&str, &[u8])> = files
+        .iter()
+        .map(|(n, b)| (n.as_str(), b.as_slice()))
+        .collect();
+    let attempt = attempt_of(&service.upload(a, &service.csrf(a), &refs));
+    assert_eq!(
+        service.wait_done(&attempt, Duration::from_secs(300))["passed"],
+        true
+    );
+    let page = service.get(&staff).text();
+    assert!(page.contains("only the grading worksheet"), "{page}");
+    let worksheet = service.get(&format!("{staff}/export/moodle.csv"));
+    assert_eq!(worksheet.status, 409);
+    assert!(
+        worksheet.text().contains("not Moodle participant numbers"),
+        "{}",
+        worksheet.text()
+    );
+    assert!(!worksheet.text().contains("Participant cd456"));
+    let class = service.get(&format!("{staff}/export/class.csv")).text();
+    assert!(
+        class
+            .lines()
+            .nth(1)
+            .is_some_and(|l| l.starts_with("cd456,Carol Davis,")),
+        "{class}"
+    );
+    let zip = service.get(&format!("{staff}/export/feedback.zip"));
+    let archive = zip::ZipArchive::new(std::io::Cursor::new(zip.body)).expect("a zip");
+    let names: Vec<&str> = archive.file_names().collect();
+    assert!(
+        names
+            .iter()
+            .any(|n| n.starts_with("Carol Davis_cd456_assignsubmission_file_/")),
+        "{names:?}"
+    );
+}
+
+#[test]
+fn each_image_of_an_attempt_is_shown_and_attempts_are_numbered_per_student() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let service = Service::start(dir.path(), &["1201", "1202"]);
+    let (students, staff) = service.links();
+    let (a, b) = (&students[0].1, &students[1].1);
+    let (right, wrong) = (render(dir.path(), "2"), render(dir.path(), "1"));
+    let tick2 = Some("tick2.xml:2");
+    let first = attempt_of(&service.upload_as(a, &service.csrf(a), &[("a.png", &right)], tick2));
+    service.wait_done(&first, Duration::from_secs(120));
+    let one = attempt_of(&service.upload_as(b, &service.csrf(b), &[("b.png", &right)], tick2));
+    service.wait_done(&one, Duration::from_secs(120));
+    let three = attempt_of(&service.upload_as(
+        b,
+        &service.csrf(b),
+        &[
+            ("good.png", &right),
+            ("wrong.png", &wrong),
+            ("again.png", &right),
+        ],
+        tick2,
+    ));
+    assert_eq!(
+        service.wait_done(&three, Duration::from_secs(300))["passed"],
+        false
+    );
+    let page = service.get(&three).text();
+    assert!(
+        page.contains("<title>Attempt 2</title>"),
+        "b's second: {page}"
+    );
+    assert!(page.contains("Attempt 2: images"), "{page}");
+    assert!(
+        page.contains("2 of 3 images pass (good.png, again.png); not wrong.png"),
+        "{page}"
+    );
+    for name in [
+        "good.png: identical",
+        "wrong.png: differs",
+        "again.png: identical",
+    ] {
+        assert!(page.contains(name), "each image's own text: {name}: {page}");
+    }
+    assert!(page.contains("bounces-minus-one"), "{page}");
+    assert!(
+        !page.contains("--verbose") && !page.contains("FILE.html"),
+        "no command-line hints on the web: {page}"
+    );
+    let mine = service.get(b).text();
+    assert!(
+        mine.contains(&format!("{three}\">2</a>")) && mine.contains(&format!("{one}\">1</a>")),
+        "{mine}"
+    );
+    let class = service.get(&staff).text();
+    assert!(class.contains("Everyone has started."), "{class}");
+    assert!(
+        class.contains("<td>bounces-minus-one: one bounce fewer than --bounces</td>"),
+        "the finding, not the heading: {class}"
+    );
+    assert!(!class.contains("(embedded), 640x480"), "{class}");
+}
+
+#[test]
+fn a_wrong_roster_leaves_nothing_behind_and_revoke_says_what_it_did() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = whitted(
+        dir.path(),
+        &[
+            "serve",
+            "--course",
+            "2016-17",
+            "--listen",
+            "127.0.0.1:0",
+            "--roster",
+            "missing.csv",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("missing.csv") && stderr.lines().count() == 1,
+        "{stderr}"
+    );
+    assert!(
+        !dir.path().join("whitted-serve").exists(),
+        "no data folder made"
+    );
+
+    let service = Service::start(dir.path(), &["1201"]);
+    let out = whitted(
+        dir.path(),
+        &["serve", "revoke", "1201", "--data", s(&service.data)],
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let said = String::from_utf8_lossy(&out.stdout);
+    assert!(said.starts_with("revoked 1201's link"), "{said}");
+    assert!(said.contains("whitted serve reissue --data"), "{said}");
+    let (students, _) = service.links();
+    assert_eq!(students[0].1, "", "the link is gone: {students:?}");
+}
+
+#[test]
+fn a_tick1_star_screenshot_is_judged_as_check_star_judges_it_when_the_student_says_so() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let roster = dir.path().join("roster.txt");
+    std::fs::write(&roster, "1201\n").expect("roster");
+    let service = Service::run_course(dir.path(), "2020-21", &["--roster", s(&roster)]);
+    let (students, _) = service.links();
+    let a = &students[0].1;
+    let page = service.get(a).text();
+    assert!(page.contains("bump.xml (Tick 1*)"), "{page}");
+    let path = dir.path().join("bump.png");
+    let scene = crate::common::root().join("scenes/courses/tick1star/bump.xml");
+    let out = whitted(
+        dir.path(),
+        &[
+            "render",
+            "--course",
+            "2020-21",
+            "-i",
+            s(&scene),
+            "-o",
+            s(&path),
+        ],
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let png = std::fs::read(&path).expect("png");
+    let value = page
+        .split("value=\"")
+        .map(|v| v.split('"').next().unwrap_or(""))
+        .find(|v| v.starts_with("bump.xml:"))
+        .expect("the bump choice")
+        .to_string();
+    let attempt =
+        attempt_of(&service.upload_as(a, &service.csrf(a), &[("bump.png", &png)], Some(&value)));
+    let done = service.wait_done(&attempt, Duration::from_secs(300));
+    let text = service.get(&attempt).text();
+    assert_eq!(done["passed"], true, "{text}");
+    assert!(text.contains("bump.png: bump-correct"), "{text}");
+    assert!(text.contains("option 1, bump mapping"), "{text}");
 }

@@ -119,7 +119,14 @@ fn student_page(
             let attempts = store.attempts_of(me.number)?;
             Ok(Reply::html(
                 200,
-                pages::student(&base, me, &tick, &attempts, None),
+                pages::student(
+                    &base,
+                    me,
+                    &tick,
+                    &super::scene_choice::cases(app.course),
+                    &attempts,
+                    None,
+                ),
             ))
         }
         StudentPage::Upload => Ok(Reply::refusal(405, "an upload is a POST")),
@@ -171,7 +178,17 @@ fn attempt_reply(
         .and_then(|o| serde_json::from_str(&o.report).ok())
         .unwrap_or_default();
     Ok(match part {
-        Part::Page => Reply::html(200, pages::attempt(base, back, attempt, reports.len())),
+        Part::Page => {
+            let ordinal = store
+                .attempts_of(attempt.student)?
+                .iter()
+                .filter(|a| a.id <= attempt.id)
+                .count();
+            Reply::html(
+                200,
+                pages::attempt(base, back, attempt, ordinal, reports.len()),
+            )
+        }
         Part::Status => Reply::json(&status_json(app, store, attempt)?),
         Part::Report => {
             let n: usize = form_urlencoded::parse(query.as_bytes())

@@ -28,6 +28,7 @@ mod project;
 mod reply;
 mod roster;
 mod route;
+mod scene_choice;
 mod secret;
 mod server;
 mod slurm;
@@ -113,12 +114,20 @@ pub fn serve(config: &Config) -> Result<()> {
     if config.slurm {
         slurm::check()?;
     }
+    // The roster is read and checked before the data folder is made: a wrong --roster leaves
+    // nothing behind.
+    let members = match &config.roster {
+        Some(path) => {
+            let text =
+                std::fs::read_to_string(path).map_err(|e| Error::io(path, "cannot read", e))?;
+            Some(roster::parse(&path.display().to_string(), &text)?)
+        }
+        None => None,
+    };
     let data = data::Data::open(&config.data)?;
     let mut store = store::Store::open(&data.database())?;
-    if let Some(path) = &config.roster {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, "cannot read", e))?;
-        let members = roster::parse(&path.display().to_string(), &text)?;
-        store.add_roster(&members)?;
+    if let Some(members) = &members {
+        store.add_roster(members)?;
     }
     let (orphans, requeued) = store.requeue_running(config.slurm)?;
     // Jobs sent to Slurm by a start with --slurm: their attempts run here now.

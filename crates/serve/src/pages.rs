@@ -2,9 +2,14 @@
 //! script (the one script is `app.js`, which the Content-Security-Policy allows alone).
 
 use maud::{html, Markup, DOCTYPE};
+use whitted_check::check::suite::SuiteCase;
 
+use super::scene_choice;
 use super::staff_view::ClassView;
 use super::store::{Attempt, Status, Student};
+
+/// The upload form's rows: a file input and the select of its scene each.
+const ROWS: usize = 4;
 
 pub const SCRIPT: &str = include_str!("assets/app.js");
 pub const STYLE: &str = include_str!("assets/style.css");
@@ -69,15 +74,16 @@ fn result_cell(attempt: &Attempt) -> Markup {
     }
 }
 
-/// A list of attempts, each linking to its page under `base`.
+/// A student's attempts, newest first, each linking to its page under `base` and numbered
+/// among that student's own (their 2nd is "2", however many the class made before it).
 fn attempts_table(base: &str, attempts: &[Attempt]) -> Markup {
     html! {
         @if attempts.is_empty() { p.muted { "No attempt yet." } } @else {
             table {
                 tr { th { "#" } th { "When" } th { "What" } th { "Files" } th { "Result" } th { "CPU" } }
-                @for a in attempts {
+                @for (i, a) in attempts.iter().enumerate() {
                     tr {
-                        td { a href=(format!("{base}/attempt/{}", a.id)) { (a.id) } }
+                        td { a href=(format!("{base}/attempt/{}", a.id)) { (attempts.len() - i) } }
                         td { (when(a.received)) }
                         td { (a.kind.name()) }
                         td { (a.files.replace('\n', ", ")) }
@@ -95,6 +101,7 @@ pub fn student(
     base: &str,
     student: &Student,
     tick: &str,
+    scenes: &[SuiteCase],
     attempts: &[Attempt],
     message: Option<&str>,
 ) -> String {
@@ -110,11 +117,25 @@ pub fn student(
             @if let Some(m) = message { p.refusal { (m) } }
             form method="post" action=(format!("{base}/upload")) enctype="multipart/form-data" {
                 input type="hidden" name="csrf" value=(student.csrf);
-                p { "Upload the PNGs your program wrote for the course's scenes (checked at \
-                     once), or your project: its " code { ".java" } " files or a zip of it \
-                     (compiled and run on the course's scenes in a sandbox, in turn)." }
-                input type="file" name="files" multiple accept=".png,.java,.zip";
-                " " button type="submit" { "Check" }
+                p { "Upload the PNGs your program wrote for the course's scenes, saying which \
+                     scene and bounces each is (checked at once), or your project: its "
+                     code { ".java" } " files or a zip of it (compiled and run on the course's \
+                     scenes in a sandbox, in turn)." }
+                @for row in 0..ROWS {
+                    p.file {
+                        input type="file" name="files" multiple[row == 0] accept=".png,.java,.zip";
+                        " is "
+                        select name="scene" aria-label="which scene this image is" {
+                            option value=(scene_choice::RECOGNISE) { "recognise it" }
+                            @for case in scenes {
+                                option value=(scene_choice::value(case)) {
+                                    (scene_choice::case_label(case))
+                                }
+                            }
+                        }
+                    }
+                }
+                button type="submit" { "Check" }
             }
             h2 { "Your attempts" }
             (attempts_table(base, attempts))
@@ -123,15 +144,22 @@ pub fn student(
 }
 
 /// An attempt's page: its state, live while it waits or runs, then its finding and report.
-pub fn attempt(base: &str, back: &str, attempt: &Attempt, reports: usize) -> String {
+/// `ordinal` is the attempt's number among its student's own.
+pub fn attempt(
+    base: &str,
+    back: &str,
+    attempt: &Attempt,
+    ordinal: usize,
+    reports: usize,
+) -> String {
     let status_url = format!("{base}/attempt/{}/status", attempt.id);
     let live = attempt.status != Status::Done;
     layout(
-        &format!("Attempt {}", attempt.id),
+        &format!("Attempt {ordinal}"),
         live.then_some(status_url.as_str()),
         html! {
             p { a href=(back) { "← back" } }
-            h1 { "Attempt " (attempt.id) ": " (attempt.kind.name()) }
+            h1 { "Attempt " (ordinal) ": " (attempt.kind.name()) }
             p.muted { "Received " (when(attempt.received)) "."
                 @if let Some(f) = attempt.finished { " Finished " (when(f)) "." }
                 @if attempt.runs > 1 { " Run " (attempt.runs) " times (the service restarted during a run)." }
@@ -165,6 +193,10 @@ pub fn class(base: &str, view: &ClassView, tick: &str) -> String {
                 a href=(format!("{base}/export/moodle.csv")) { "Moodle worksheet" } ", "
                 a href=(format!("{base}/export/feedback.zip")) { "feedback zip" } ", "
                 a href=(format!("{base}/export/class.csv")) { "class.csv" } "." }
+            p.muted { "Moodle's worksheet import matches its own participant numbers, which \
+                only the grading worksheet Moodle downloads carries: serve with it as the \
+                roster to export a worksheet (a participants export has none, and the \
+                worksheet is then refused)." }
             h2 { "Programs" }
             p { (view.programs.queued) " queued, " (view.programs.running) " running, "
                 (view.programs.done) " done"
@@ -202,18 +234,38 @@ pub fn class(base: &str, view: &ClassView, tick: &str) -> String {
                         td { (row.student.name) }
                         td { (row.attempts) }
                         td { @if let Some(a) = &row.latest { (result_cell(a)) } @else { span.muted { "not started" } } }
-                        td { @if let Some(o) = row.latest.as_ref().and_then(|a| a.outcome.as_ref()) { (first_line(&o.finding)) } }
+                        td { @if let Some(o) = row.latest.as_ref().and_then(|a| a.outcome.as_ref()) { (headline(&o.finding)) } }
                     }
                 }
             }
             h2 { "Not started" }
-            p { @for (i, row) in view.not_started().enumerate() { @if i > 0 { ", " } (row.student.id) } }
+            @if view.not_started().next().is_none() { p.muted { "Everyone has started." } } @else {
+                p { @for (i, row) in view.not_started().enumerate() { @if i > 0 { ", " } (row.student.id) } }
+            }
         },
     )
 }
 
-fn first_line(text: &str) -> &str {
-    text.lines().find(|l| !l.trim().is_empty()).unwrap_or("")
+/// The finding in a line, for the staff's table: the best diagnosis (`bounces-minus-one: one
+/// bounce fewer than --bounces`), else how the image differs, else the first line (a refusal,
+/// a project's feedback); never the check's heading of scene, size and rule.
+pub fn headline(text: &str) -> &str {
+    let lines: Vec<&str> = text
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect();
+    if let Some(i) = lines.iter().position(|l| l.starts_with("diagnosis")) {
+        if let Some(best) = lines.get(i + 1) {
+            return best.strip_prefix("1. ").unwrap_or(best);
+        }
+    }
+    lines
+        .iter()
+        .find(|l| l.contains("pixels differ"))
+        .or(lines.first())
+        .copied()
+        .unwrap_or("")
 }
 
 /// One student's history, for the staff.
@@ -234,6 +286,25 @@ pub fn history(base: &str, student: &Student, attempts: &[Attempt]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_staff_read_the_finding_not_the_heading() {
+        let finding = "tick2.xml (embedded), 640x480, 2 bounces: differs (tolerance: 2)\n\
+            progress: planes done\n90160 of 307200 pixels differ\ndiagnosis, best first:\n  \
+            1. bounces-minus-one: one bounce fewer than --bounces\n     where: Renderer.trace";
+        assert_eq!(
+            headline(finding),
+            "bounces-minus-one: one bounce fewer than --bounces"
+        );
+        assert_eq!(
+            headline("a 640x480: differs\n5 of 9 pixels differ (5 by more)"),
+            "5 of 9 pixels differ (5 by more)"
+        );
+        assert_eq!(
+            headline("x.png: this image is not tick2.xml"),
+            "x.png: this image is not tick2.xml"
+        );
+    }
 
     #[test]
     fn dates_and_escaping() {

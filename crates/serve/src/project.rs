@@ -10,6 +10,7 @@ use serde_json::Value;
 
 use super::store::{Outcome, Student};
 use whitted_check::check::pass_rule::{Allowance, PassRule};
+use whitted_check::mistakes::Stage;
 use whitted_core::course::Course;
 use whitted_core::error::{Error, Result};
 use whitted_grade::{Grading, Limits, Options, Rerun, Watch};
@@ -76,7 +77,7 @@ pub fn run(attempt: &Path, student: &Student, how: Run, watch: Option<Watch>) ->
         watch,
     };
     whitted_grade::run(&options)?;
-    outcome(&graded_student(&outdir)?)
+    outcome(&graded_student(&outdir)?, how.course)
 }
 
 /// The folder Moodle's "Download all submissions" gives the student, which grade reads the
@@ -111,6 +112,25 @@ fn copy_sources(from: &Path, to: &Path) -> Result<()> {
     Ok(())
 }
 
+/// The progress line in the handout's order of its stages (spheres, planes or shading...,
+/// as `check` prints it), not the alphabetical order of the result's keys.
+fn progress_line(stages: &serde_json::Map<String, Value>, course: Course) -> String {
+    let order = Stage::of(course);
+    let rank = |key: &str| {
+        order
+            .iter()
+            .position(|s| s.key(course) == key)
+            .unwrap_or(order.len())
+    };
+    let mut keys: Vec<&String> = stages.keys().collect();
+    keys.sort_by_key(|k| rank(k));
+    let parts: Vec<String> = keys
+        .iter()
+        .map(|k| format!("{k} {}", stages[k.as_str()].as_str().unwrap_or("")))
+        .collect();
+    format!("progress: {}", parts.join("; "))
+}
+
 /// The one student's folder under `outdir/students`.
 pub fn graded_student(outdir: &Path) -> Result<PathBuf> {
     let students = outdir.join("students");
@@ -123,7 +143,7 @@ pub fn graded_student(outdir: &Path) -> Result<PathBuf> {
 }
 
 /// The outcome `result.json` and `report.html` in `dir` say.
-fn outcome(dir: &Path) -> Result<Outcome> {
+fn outcome(dir: &Path, course: Course) -> Result<Outcome> {
     let read = |name: &str| {
         let path = dir.join(name);
         std::fs::read(&path).map_err(|e| Error::io(&path, "cannot read", e))
@@ -140,19 +160,13 @@ fn outcome(dir: &Path) -> Result<Outcome> {
     };
     let progress = extra["progress"]
         .as_object()
-        .map(|stages| {
-            let parts: Vec<String> = stages
-                .iter()
-                .map(|(k, v)| format!("{k} {}", v.as_str().unwrap_or("")))
-                .collect();
-            format!("progress: {}", parts.join("; "))
-        })
+        .map(|stages| progress_line(stages, course))
         .unwrap_or_default();
     Ok(Outcome {
         passed: extra["grade"].as_f64().is_some_and(|g| g >= 100.0),
         verdict,
         mistake: extra["diagnosis"][0].as_str().map(str::to_string),
-        finding: extra["feedback"].as_str().unwrap_or("").to_string(),
+        finding: super::images::for_the_web(extra["feedback"].as_str().unwrap_or("")),
         progress,
         report: serde_json::to_string(&[report]).unwrap_or_default(),
     })
@@ -171,6 +185,20 @@ mod tests {
             secret: None,
             csrf: String::new(),
         }
+    }
+
+    #[test]
+    fn progress_follows_the_handout() {
+        let stages: serde_json::Map<String, Value> = serde_json::from_str(
+            r#"{"planes": "done", "reflection": "not written yet", "shading": "done",
+                "shadows": "done", "spheres": "done"}"#,
+        )
+        .expect("json");
+        assert_eq!(
+            progress_line(&stages, Course::Y2023),
+            "progress: spheres done; shading done; planes done; shadows done; \
+             reflection not written yet"
+        );
     }
 
     #[test]

@@ -111,7 +111,14 @@ fn refused(app: &App, me: &Student, status: u16, message: &str) -> Reply {
     let tick = whitted_grade::tick(app.course);
     Reply::html(
         status,
-        pages::student(&base, me, &tick, &attempts, Some(message)),
+        pages::student(
+            &base,
+            me,
+            &tick,
+            &super::scene_choice::cases(app.course),
+            &attempts,
+            Some(message),
+        ),
     )
 }
 
@@ -155,16 +162,19 @@ async fn upload(
         }
     });
     let constraints = multer::Constraints::new()
-        .allowed_fields(vec!["csrf", "files"])
+        .allowed_fields(vec!["csrf", "files", "scene"])
         .size_limit(
             multer::SizeLimit::new()
                 .whole_stream(MAX_BODY)
                 .per_field(MAX_FILE)
-                .for_field("csrf", 64),
+                .for_field("csrf", 64)
+                .for_field("scene", 64),
         );
     let mut multipart = multer::Multipart::with_constraints(stream, boundary, constraints);
     let mut csrf_ok = false;
     let mut files = Vec::new();
+    // The scene chosen for each file: a select follows the file input of its row.
+    let mut scenes: Vec<Option<String>> = Vec::new();
     loop {
         let field = match multipart.next_field().await {
             Ok(Some(field)) => field,
@@ -188,6 +198,12 @@ async fn upload(
                     "forbidden: the form is stale or forged; reload the page",
                 )
             }
+            Some("scene") => {
+                let value = field.text().await.unwrap_or_default();
+                for unset in scenes.iter_mut().rev().take_while(|s| s.is_none()) {
+                    *unset = Some(value.clone());
+                }
+            }
             _ => {
                 if files.len() == MAX_FILES {
                     return refused(
@@ -199,7 +215,10 @@ async fn upload(
                 }
                 let name = field.file_name().unwrap_or("").to_string();
                 match field.bytes().await {
-                    Ok(bytes) => files.push((name, bytes.to_vec())),
+                    Ok(bytes) => {
+                        files.push((name, bytes.to_vec()));
+                        scenes.push(None);
+                    }
                     Err(e) => return refused(&app, &me, status_of(&e), &upload_error(&e)),
                 }
             }
@@ -211,12 +230,31 @@ async fn upload(
             "forbidden: the form is stale or forged; reload the page",
         );
     }
+    let scenes: Vec<Option<String>> = files
+        .iter()
+        .zip(scenes)
+        .filter(|((name, _), _)| !name.is_empty())
+        .map(|(_, scene)| scene)
+        .collect();
+    let mut choices = Vec::new();
+    for scene in scenes {
+        match scene {
+            None => choices.push(None),
+            Some(v) => match super::scene_choice::parse(&v, app.course) {
+                Some(_) => choices.push(Some(v)),
+                None => return refused(&app, &me, 422, "choose each image's scene from the list"),
+            },
+        }
+    }
     let submission = match upload::classify(files) {
         Ok(s) => s,
         Err(why) => return refused(&app, &me, 422, &why),
     };
     let number = me.number;
-    let kept = blocking(&app, move |app, store| keep(app, store, number, submission)).await;
+    let kept = blocking(&app, move |app, store| {
+        keep(app, store, number, submission, &choices)
+    })
+    .await;
     match kept {
         Ok(Ok(id)) => {
             app.bell.ring();
@@ -261,6 +299,7 @@ fn keep(
     store: &mut super::store::Store,
     student: i64,
     submission: Submission,
+    choices: &[Option<String>],
 ) -> Result<std::result::Result<i64, String>> {
     let (recent, project_pending) = store.recent(student, super::store::now() - RATE_WINDOW)?;
     if recent >= RATE {
@@ -273,6 +312,9 @@ fn keep(
         Submission::Images(images) => {
             for (i, (_, bytes)) in images.iter().enumerate() {
                 receiving.write(&stored_name(i), bytes)?;
+                if let Some(Some(choice)) = choices.get(i) {
+                    receiving.write(&super::scene_choice::stored_name(i), choice.as_bytes())?;
+                }
             }
             (
                 Kind::Images,
