@@ -105,6 +105,29 @@ fn own_attempt(store: &Store, student: Option<i64>, id: i64) -> Result<Option<At
         .filter(|a| student.is_none_or(|s| a.student == s)))
 }
 
+/// The student's home page with `attempts` (and `message`, an upload's refusal), built in one
+/// place so that a refused upload shows the same page, tick and scene choices as a visit.
+pub(super) fn student_home(
+    app: &App,
+    me: &Student,
+    attempts: &[Attempt],
+    status: u16,
+    message: Option<&str>,
+) -> Reply {
+    let base = student_base(me);
+    let tick = whitted_grade::tick(app.course);
+    let cases = super::scene_choice::cases(app.course);
+    Reply::html(
+        status,
+        pages::student(&base, me, &tick, &cases, attempts, message),
+    )
+}
+
+/// The path of `me`'s pages.
+fn student_base(me: &Student) -> String {
+    format!("/s/{}-{}", me.number, me.secret.as_deref().unwrap_or(""))
+}
+
 fn student_page(
     app: &App,
     store: &Store,
@@ -112,23 +135,15 @@ fn student_page(
     page: &StudentPage,
     query: &str,
 ) -> Result<Reply> {
-    let base = format!("/s/{}-{}", me.number, me.secret.as_deref().unwrap_or(""));
-    let tick = whitted_grade::tick(app.course);
+    let base = student_base(me);
     match page {
-        StudentPage::Home => {
-            let attempts = store.attempts_of(me.number)?;
-            Ok(Reply::html(
-                200,
-                pages::student(
-                    &base,
-                    me,
-                    &tick,
-                    &super::scene_choice::cases(app.course),
-                    &attempts,
-                    None,
-                ),
-            ))
-        }
+        StudentPage::Home => Ok(student_home(
+            app,
+            me,
+            &store.attempts_of(me.number)?,
+            200,
+            None,
+        )),
         StudentPage::Upload => Ok(Reply::refusal(405, "an upload is a POST")),
         StudentPage::Attempt(id) | StudentPage::Status(id) | StudentPage::Report(id) => {
             let Some(attempt) = own_attempt(store, Some(me.number), *id)? else {

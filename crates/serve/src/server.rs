@@ -21,7 +21,7 @@ use super::reply::Reply;
 use super::route::{self, Route, StudentPage};
 use super::store::{Kind, Student};
 use super::upload::{self, Submission, MAX_BODY, MAX_FILE, MAX_FILES};
-use super::{db, pages, App};
+use super::{db, App};
 use whitted_core::error::{Error, Result};
 use whitted_view::held_body::HeldBody;
 use whitted_view::{check_host, serve_connections, Limits};
@@ -106,20 +106,8 @@ async fn blocking<T: Send + 'static>(
 
 /// A refusal of an upload, on the student's page so that they can try again.
 fn refused(app: &App, me: &Student, status: u16, message: &str) -> Reply {
-    let base = format!("/s/{}-{}", me.number, me.secret.as_deref().unwrap_or(""));
     let attempts = db::with(&app.data.database(), |s| s.attempts_of(me.number)).unwrap_or_default();
-    let tick = whitted_grade::tick(app.course);
-    Reply::html(
-        status,
-        pages::student(
-            &base,
-            me,
-            &tick,
-            &super::scene_choice::cases(app.course),
-            &attempts,
-            Some(message),
-        ),
-    )
+    answer::student_home(app, me, &attempts, status, Some(message))
 }
 
 async fn upload(
