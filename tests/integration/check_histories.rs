@@ -240,17 +240,10 @@ fn compile(dir: &Path, year: &str, commit: &Commit) -> PathBuf {
     let mut paths = Vec::new();
     for (path, text) in skeleton.chain(theirs) {
         let path = src.join(path);
-        std::fs::create_dir_all(path.parent().expect("parent")).expect("folder");
-        std::fs::write(&path, text).expect("write");
+        write_file(&path, text);
         paths.push(path);
     }
-    let javac = std::process::Command::new("javac")
-        .args(["-proc:none", "-nowarn", "-d"])
-        .arg(&classes)
-        .args(&paths)
-        .output()
-        .expect("javac");
-    assert!(javac.status.success(), "{}", stderr(&javac));
+    javac_into(&classes, &paths);
     if commit.edit == Edit::BumpySphereUncompiled {
         // The IDE compiled every class but the one with errors.
         std::fs::remove_file(classes.join(&folder).join("BumpySphere.class"))

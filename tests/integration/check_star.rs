@@ -64,13 +64,7 @@ fn classes() -> &'static Path {
                 paths.push(path);
             }
         }
-        let javac = Command::new("javac")
-            .args(["-proc:none", "-nowarn", "-d"])
-            .arg(&classes)
-            .args(&paths)
-            .output()
-            .expect("javac");
-        assert!(javac.status.success(), "{}", stderr(&javac));
+        javac_into(&classes, &paths);
         classes
     })
 }

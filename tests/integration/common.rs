@@ -307,3 +307,21 @@ pub fn javac(source: &str, tag: &str) -> PathBuf {
     assert!(javac.status.success(), "{}", stderr(&javac));
     dir
 }
+
+/// Compiles the Java sources `paths` into `classes` (annotation processing off, warnings
+/// quiet), which must succeed: the one javac call the Tick 1* program tests share.
+pub fn javac_into(classes: &Path, paths: &[PathBuf]) {
+    let out = std::process::Command::new("javac")
+        .args(["-proc:none", "-nowarn", "-d"])
+        .arg(classes)
+        .args(paths)
+        .output()
+        .expect("javac");
+    assert!(out.status.success(), "{}", stderr(&out));
+}
+
+/// Writes `bytes` to `path`, making its folder first.
+pub fn write_file(path: &Path, bytes: impl AsRef<[u8]>) {
+    std::fs::create_dir_all(path.parent().expect("parent")).expect("folder");
+    std::fs::write(path, bytes).expect("write");
+}

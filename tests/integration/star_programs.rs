@@ -92,7 +92,7 @@ fn compiled(d: &Path, package: &str, done: Done, flags: &str) -> String {
     for (path, bytes) in
         whitted_grade::clean_room_skeleton(course(), Some(package)).expect("skeleton")
     {
-        std::fs::write(src.join(path), bytes).expect("write");
+        write_file(&src.join(path), bytes);
     }
     for (name, text) in files(package, done) {
         std::fs::write(folder.join(name), text).expect("write");
@@ -102,13 +102,7 @@ fn compiled(d: &Path, package: &str, done: Done, flags: &str) -> String {
         .flatten()
         .map(|e| e.path())
         .collect();
-    let javac = Command::new("javac")
-        .args(["-proc:none", "-nowarn", "-d"])
-        .arg(&classes)
-        .args(&paths)
-        .output()
-        .expect("javac");
-    assert!(javac.status.success(), "{}", stderr(&javac));
+    javac_into(&classes, &paths);
     format!(
         "java -Djava.awt.headless=true {flags} -cp '{}' {package}.Tick1",
         s(&classes)
