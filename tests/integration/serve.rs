@@ -284,24 +284,21 @@ pub fn multipart_as(csrf: &str, files: &[(&str, &[u8])], scene: Option<&str>) ->
 /// The course's 2016-17 render at `bounces` (2 is right; 1 is the mistake bounces-minus-one).
 pub fn render(dir: &Path, bounces: &str) -> Vec<u8> {
     let path = dir.join(format!("render-b{bounces}.png"));
-    let out = whitted(
-        dir,
-        &[
-            "render",
-            "--course",
-            "2016-17",
-            "-b",
-            bounces,
-            "-o",
-            s(&path),
-        ],
-    );
+    render_png(dir, &["--course", "2016-17", "-b", bounces], &path)
+}
+
+/// `whitted render ARGS -o PATH` in `dir`, which must succeed; the PNG it wrote.
+pub fn render_png(dir: &Path, args: &[&str], path: &Path) -> Vec<u8> {
+    let mut all = vec!["render"];
+    all.extend_from_slice(args);
+    all.extend_from_slice(&["-o", s(path)]);
+    let out = whitted(dir, &all);
     assert!(
         out.status.success(),
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    std::fs::read(&path).expect("png")
+    std::fs::read(path).expect("png")
 }
 
 /// The 2016-17 test submission's two files (the course's API, written for the tests).
@@ -756,24 +753,7 @@ fn the_user_header_opens_the_staff_page_only_from_the_trusted_proxy_for_the_staf
 fn render_specular(dir: &Path) -> Vec<u8> {
     let path = dir.join("specular.png");
     let scene = crate::common::root().join("crates/check/scenes/check/specular_test.xml");
-    let out = whitted(
-        dir,
-        &[
-            "render",
-            "--course",
-            "2016-17",
-            "-i",
-            s(&scene),
-            "-o",
-            s(&path),
-        ],
-    );
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    std::fs::read(&path).expect("png")
+    render_png(dir, &["--course", "2016-17", "-i", s(&scene)], &path)
 }
 
 #[test]
@@ -998,24 +978,7 @@ fn a_tick1_star_screenshot_is_judged_as_check_star_judges_it_when_the_student_sa
     assert!(page.contains("bump.xml (Tick 1*)"), "{page}");
     let path = dir.path().join("bump.png");
     let scene = crate::common::root().join("scenes/courses/tick1star/bump.xml");
-    let out = whitted(
-        dir.path(),
-        &[
-            "render",
-            "--course",
-            "2020-21",
-            "-i",
-            s(&scene),
-            "-o",
-            s(&path),
-        ],
-    );
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let png = std::fs::read(&path).expect("png");
+    let png = render_png(dir.path(), &["--course", "2020-21", "-i", s(&scene)], &path);
     let value = page
         .split("value=\"")
         .map(|v| v.split('"').next().unwrap_or(""))
