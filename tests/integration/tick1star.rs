@@ -179,22 +179,8 @@ fn tick1star_renders_are_byte_identical_on_one_and_two_threads() {
             .map(|&threads| {
                 let (png, exr) = (format!("{k}_{threads}.png"), format!("{k}_{threads}.exr"));
                 let input = star_scene(scene_name);
-                let mut args = vec![
-                    "render",
-                    "-q",
-                    "--course",
-                    "2020-21",
-                    "--width",
-                    "48",
-                    "--height",
-                    "36",
-                    "-i",
-                    s(&input),
-                    "-o",
-                    &png,
-                    "--exr",
-                    &exr,
-                ];
+                let mut args = small_render(s(&input), &png);
+                args.extend_from_slice(&["--exr", &exr]);
                 args.extend_from_slice(extra);
                 let run = whitted_on(threads, dir.path(), &args);
                 assert!(run.status.success(), "{scene_name}: {}", stderr(&run));
@@ -339,34 +325,28 @@ fn light_sampling_surface_moves_only_the_light_s_points() {
     let input = star_scene("distributed.xml");
     let render = |sampling: &str, size: &str| -> Vec<u8> {
         let out = format!("{sampling}_{size}.png");
-        let run = whitted_on(
-            2,
-            dir.path(),
-            &[
-                "render",
-                "-q",
-                "--course",
-                "2020-21",
-                "--width",
-                "48",
-                "--height",
-                "36",
-                "-i",
-                s(&input),
-                "-o",
-                &out,
-                "--soft-shadows",
-                "--light-size",
-                size,
-                "--light-sampling",
-                sampling,
-                "--seed",
-                "3",
-            ],
-        );
+        let mut args = small_render(s(&input), &out);
+        args.extend_from_slice(&[
+            "--soft-shadows",
+            "--light-size",
+            size,
+            "--light-sampling",
+            sampling,
+            "--seed",
+            "3",
+        ]);
+        let run = whitted_on(2, dir.path(), &args);
         assert!(run.status.success(), "{sampling}: {}", stderr(&run));
         std::fs::read(dir.path().join(out)).expect("written")
     };
     assert!(render("surface", "0.4") != render("course", "0.4"));
     assert!(render("surface", "0") == render("course", "0"));
+}
+
+/// The arguments of a quiet 48×36 2020-21 render of `input` to `out`, which tests extend.
+fn small_render<'a>(input: &'a str, out: &'a str) -> Vec<&'a str> {
+    vec![
+        "render", "-q", "--course", "2020-21", "--width", "48", "--height", "36", "-i", input,
+        "-o", out,
+    ]
 }
