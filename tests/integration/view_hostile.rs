@@ -149,6 +149,19 @@ fn the_viewer_survives_hostile_clients() {
         .filter_map(|_| TcpStream::connect(("127.0.0.1", viewer.port)).ok())
         .collect();
     assert!(viewer.alive());
+    // One more, past the limit: answered 503 with Retry-After (a reset reads as a broken
+    // site; a 503 is retried by a page's poller), not dropped.
+    let mut past = TcpStream::connect(("127.0.0.1", viewer.port)).expect("connect");
+    past.set_read_timeout(Some(Duration::from_secs(10)))
+        .expect("timeout");
+    past.write_all(b"GET / HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n")
+        .expect("send");
+    let mut busy = Vec::new();
+    past.read_to_end(&mut busy).expect("busy reply");
+    let busy = String::from_utf8_lossy(&busy);
+    assert!(busy.starts_with("HTTP/1.1 503 "), "{busy}");
+    assert!(busy.contains("Retry-After: 2"), "{busy}");
+    assert!(busy.ends_with("try again in a moment.\r\n"), "{busy}");
     drop(many);
     drop((stalled, reader));
     std::thread::sleep(Duration::from_millis(300));

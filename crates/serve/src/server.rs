@@ -28,6 +28,11 @@ use whitted_view::{check_host, serve_connections, Limits};
 
 /// Threads that answer from the database.
 const BLOCKING: usize = 8;
+/// Connections served at once: a class, not the viewer's one user. A browser keeps a few
+/// connections open to a site, and each student's page polls its queued attempt, so the
+/// viewer's 64 turned students away (503) at about 60 waiting at once. 512, with the 256
+/// turned-away answers, stays inside a default limit of 1024 open files.
+pub const CONNECTIONS: usize = 512;
 /// Uploads a student may make in `RATE_WINDOW` seconds.
 pub const RATE: i64 = 6;
 pub const RATE_WINDOW: i64 = 60;
@@ -41,7 +46,11 @@ pub fn run(listener: std::net::TcpListener, app: Arc<App>) -> Result<()> {
             response(reply, head)
         }
     };
-    serve_connections(listener, Limits::with_threads(BLOCKING), || Ok(()), service)
+    let limits = Limits {
+        max_connections: CONNECTIONS,
+        ..Limits::with_threads(BLOCKING)
+    };
+    serve_connections(listener, limits, || Ok(()), service)
 }
 
 async fn handle(app: Arc<App>, request: Request<Body>, peer: std::net::IpAddr) -> Reply {

@@ -5,8 +5,8 @@
 //!   within `head_timeout`;
 //! - a connection lives at most `connection_time`, whatever it does (a client that never
 //!   reads is cut off then);
-//! - at most `max_connections` at once; others are closed at once, and a failed accept (out
-//!   of descriptors) is waited out, never a panic;
+//! - at most `max_connections` at once; others are answered 503 with Retry-After (busy.rs,
+//!   itself bounded), and a failed accept (out of descriptors) is waited out, never a panic;
 //! - replies are computed on at most `blocking_threads` blocking threads.
 //!
 //! What a request gets is the caller's service; what is in a body, and whether one is read at
@@ -22,6 +22,7 @@ use hyper::body::Incoming as Body;
 use hyper::{Request, Response};
 use hyper_util::rt::{TokioIo, TokioTimer};
 
+use super::busy;
 use super::held_body::HeldBody;
 use whitted_core::error::{Error, Result};
 use whitted_core::interrupt;
@@ -86,6 +87,7 @@ where
         let listener = tokio::net::TcpListener::from_std(listener)
             .map_err(|e| Error::Environment(format!("cannot listen: {e}")))?;
         let permits = Arc::new(tokio::sync::Semaphore::new(limits.max_connections));
+        let turn_away_slots = Arc::new(tokio::sync::Semaphore::new(busy::TURNED_AWAY));
         loop {
             interrupt::check()?;
             stop()?;
@@ -100,7 +102,7 @@ where
                 continue;
             };
             let Ok(permit) = permits.clone().try_acquire_owned() else {
-                drop(stream);
+                busy::turn_away(stream, &turn_away_slots);
                 continue;
             };
             let service = service.clone();

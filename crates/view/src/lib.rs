@@ -22,6 +22,7 @@
 
 mod admission;
 mod api;
+mod busy;
 mod connections;
 mod content;
 pub mod held_body;
