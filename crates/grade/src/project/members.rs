@@ -81,7 +81,37 @@ pub fn members(source: &str) -> Vec<Member> {
         }
         i += 1;
     }
+    if !out.iter().any(|m| m.kind == Kind::Constructor) {
+        if let Some(default) = implicit_constructor(&code[..open]) {
+            out.insert(0, default);
+        }
+    }
     out
+}
+
+/// Java's default constructor of a class that declares none: `Name()`, as visible as the
+/// class. The course's `Scene` declares `public Scene() {}` where a clean-room one may leave
+/// it implicit; the two are one API, so a comparison must not tell them apart.
+fn implicit_constructor(head: &str) -> Option<Member> {
+    let at = find_word(head, "class")?;
+    let name: String = head[at + "class".len()..]
+        .trim_start()
+        .chars()
+        .take_while(|c| c.is_alphanumeric() || *c == '_' || *c == '$')
+        .collect();
+    if name.is_empty() {
+        return None;
+    }
+    let visibility = match find_word(&head[..at], "public") {
+        Some(_) => Visibility::Public,
+        None => Visibility::Package,
+    };
+    Some(Member {
+        kind: Kind::Constructor,
+        name,
+        params: Vec::new(),
+        visibility,
+    })
 }
 
 /// `source` without comments (and, with `literals`, with the insides of string and character
@@ -376,6 +406,26 @@ mod tests {
             .filter(|m| m.visible())
             .map(Member::shown)
             .collect()
+    }
+
+    #[test]
+    fn a_class_without_constructors_has_java_s_default_one() {
+        let implicit = "package a; public class Scene { public void add(Sphere s) {} }";
+        let explicit =
+            "package a; public class Scene { public Scene() {} public void add(Sphere s) {} }";
+        assert_eq!(members(implicit), members(explicit));
+        assert_eq!(shown(implicit), ["Scene()", "add(Sphere)"]);
+        let hidden = members("class Helper { }");
+        assert_eq!(hidden[0].visibility, Visibility::Package);
+        assert!(members("public interface Shape { void f(); }")
+            .iter()
+            .all(|m| m.kind != Kind::Constructor));
+        let declared = members("public class Ray { public Ray(Vector3 o, Vector3 d) {} }");
+        assert_eq!(
+            declared.len(),
+            1,
+            "a declared constructor means no default one"
+        );
     }
 
     #[test]
