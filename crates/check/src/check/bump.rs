@@ -145,6 +145,21 @@ fn telling_pixels(images: &[Rgb8]) -> Vec<usize> {
         .collect()
 }
 
+/// The methods to try: each of `mistakes` (None: the handout's method) under every named
+/// parametrisation, parametrisation by parametrisation in catalogue order. The one list of
+/// candidates for the deterministic check here and the random one (`star_both.rs`).
+pub fn candidates(mistakes: &[Option<BumpMistake>]) -> Vec<BumpMethod> {
+    PARAMETRISATIONS
+        .iter()
+        .flat_map(|&parametrisation| {
+            mistakes.iter().map(move |&mistake| BumpMethod {
+                parametrisation,
+                mistake,
+            })
+        })
+        .collect()
+}
+
 /// Checks `student` against every parametrisation and mistake; also returns the correct
 /// render of the parametrisation found (the case's reference).
 pub fn check_bump(
@@ -161,17 +176,10 @@ pub fn check_bump(
         ));
     }
     let size = (student.width, student.height);
-    let candidates: Vec<BumpMethod> = PARAMETRISATIONS
-        .iter()
-        .flat_map(|&parametrisation| {
-            std::iter::once(None)
-                .chain(BumpMistake::ALL.into_iter().map(Some))
-                .map(move |mistake| BumpMethod {
-                    parametrisation,
-                    mistake,
-                })
-        })
+    let mistakes: Vec<Option<BumpMistake>> = std::iter::once(None)
+        .chain(BumpMistake::ALL.into_iter().map(Some))
         .collect();
+    let candidates = candidates(&mistakes);
     if student.bytes.len() != 3 * (student.width as usize) * (student.height as usize) {
         return Err(Error::Usage(
             "the image is not 8-bit RGB of its size".into(),
