@@ -37,6 +37,9 @@ pub fn run(args: &CheckArgs) -> Result<bool> {
             "--watch, --no-browser and --port are options of --view".into(),
         ));
     }
+    if let Some(routed) = star::routed(args) {
+        return run(&routed);
+    }
     match (&args.program, &args.image) {
         (Some(program), _) => run_program(args, program),
         // The handout's scenes, embedded: `--star distributed`, and `--star bump` without -i.
@@ -83,6 +86,16 @@ fn catalogue(course: Option<Course>) -> String {
                 ""
             )
         })
+        .collect::<Vec<_>>()
+        .into_iter()
+        // Tick 1* (bump mapping) is set from 2017-18 on.
+        .chain(
+            course
+                .is_none_or(|c| c >= Course::Y2017)
+                .then(whitted_check::check::star_fix::list)
+                .into_iter()
+                .flatten(),
+        )
         .collect::<Vec<_>>()
         .join("\n")
 }

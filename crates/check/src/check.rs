@@ -27,6 +27,7 @@ pub mod result;
 pub mod score;
 pub mod star_both;
 pub mod star_draw;
+pub mod star_fix;
 pub mod star_not_done;
 pub mod star_option;
 pub mod star_reference;

@@ -53,15 +53,20 @@ impl BumpFinding {
 
     /// The report's line.
     pub fn sentence(&self) -> String {
+        format!("bump mapping: {}", self.finding())
+    }
+
+    /// What was found, without the option's name: the line after a case that names it.
+    pub fn finding(&self) -> String {
         let share = |s: f64| format!("{:.1}%", 100.0 * s);
         match (self.mistake, self.matched >= FOLLOWS) {
             (None, true) => format!(
-                "bump mapping: the handout's method under parametrisation {} ({} of pixels match)",
+                "the handout's method under parametrisation {} ({} of pixels match)",
                 self.parametrisation,
                 share(self.matched)
             ),
             (Some(m), true) => format!(
-                "bump mapping: {} under parametrisation {}: {} ({} of pixels match it, {} the correct method)",
+                "{} under parametrisation {}: {} ({} of pixels match it, {} the correct method)",
                 m.name(),
                 self.parametrisation,
                 m.explanation(),
@@ -69,7 +74,7 @@ impl BumpFinding {
                 share(self.matched_correct)
             ),
             (best, false) => format!(
-                "bump mapping: no parametrisation or catalogued mistake reproduces the image; \
+                "no parametrisation or catalogued mistake reproduces the image; \
                  nearest: {}{} ({} of pixels match)",
                 self.parametrisation,
                 best.map_or(String::new(), |m| format!(" with {}", m.name())),
