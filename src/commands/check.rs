@@ -151,7 +151,13 @@ fn run_image(args: &CheckArgs, image: &std::path::Path) -> Result<bool> {
         out.write_png(&heat_map(&case.student, &case.reference, args.tolerance))?;
     }
     let name = image.display().to_string();
+    let another = whitted_check::check::another_scene::note(
+        &case.difference,
+        &findings,
+        args.input.is_some(),
+    );
     let mut result = CheckResult::of_image(&name, args.input.as_deref(), case, findings, &chosen);
+    result.notes.extend(another);
     result.report = args.report.as_ref().map(|p| p.display().to_string());
     if let Some(out) = report.as_mut() {
         write_report(out, &result)?;

@@ -501,3 +501,20 @@ fn a_copy_of_distributed_xml_without_star_is_checked_as_option_2() {
     assert!(text.contains("option 2 not done"), "{text}");
     assert!(!text.contains("identical"), "{text}");
 }
+
+#[test]
+fn a_bump_image_checked_with_no_scene_asks_whether_it_is_another_scene() {
+    let d = tempfile::tempdir().expect("tempdir");
+    let bump = scene("courses/tick1star/bump.xml");
+    let run = whitted(
+        d.path(),
+        &["render", "--course", YEAR, "-i", s(&bump), "-o", "bump.png"],
+    );
+    assert!(run.status.success(), "{}", stderr(&run));
+    let out = whitted(d.path(), &["check", "--course", YEAR, "bump.png"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("is this another scene? give -i SCENE") && text.contains("-i bump.xml"),
+        "{text}"
+    );
+}

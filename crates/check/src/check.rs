@@ -6,6 +6,7 @@
 //! the student is in the handout (`check::progress`). `--program` runs the student's own
 //! program over a suite of scenes and diagnoses every case at once.
 
+pub mod another_scene;
 pub mod bump;
 pub mod case;
 pub mod diagnose;
