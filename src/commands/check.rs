@@ -37,6 +37,9 @@ pub fn run(args: &CheckArgs) -> Result<bool> {
             "--watch, --no-browser and --port are options of --view".into(),
         ));
     }
+    if let Some(routed) = star::routed(args) {
+        return run(&routed);
+    }
     match (&args.program, &args.image) {
         (Some(program), _) => run_program(args, program),
         // The handout's scenes, embedded: `--star distributed`, and `--star bump` without -i.
@@ -83,6 +86,16 @@ fn catalogue(course: Option<Course>) -> String {
                 ""
             )
         })
+        .collect::<Vec<_>>()
+        .into_iter()
+        // Tick 1* (bump mapping) is set from 2017-18 on.
+        .chain(
+            course
+                .is_none_or(|c| c >= Course::Y2017)
+                .then(whitted_check::check::star_fix::list)
+                .into_iter()
+                .flatten(),
+        )
         .collect::<Vec<_>>()
         .join("\n")
 }
@@ -138,7 +151,13 @@ fn run_image(args: &CheckArgs, image: &std::path::Path) -> Result<bool> {
         out.write_png(&heat_map(&case.student, &case.reference, args.tolerance))?;
     }
     let name = image.display().to_string();
+    let another = whitted_check::check::another_scene::note(
+        &case.difference,
+        &findings,
+        args.input.is_some(),
+    );
     let mut result = CheckResult::of_image(&name, args.input.as_deref(), case, findings, &chosen);
+    result.notes.extend(another);
     result.report = args.report.as_ref().map(|p| p.display().to_string());
     if let Some(out) = report.as_mut() {
         write_report(out, &result)?;

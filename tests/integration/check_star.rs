@@ -410,3 +410,105 @@ fn the_java_bump_mapping_is_whitted_s_under_every_parametrisation() {
     );
     assert!(read_png(&inverted).data != images[0]);
 }
+
+#[test]
+fn an_inverted_relief_says_where_and_what_to_change_and_no_tick1_diagnosis() {
+    // The walkthrough's student: BumpySphere.getNormalAt with the relief's sign flipped.
+    let d = tempfile::tempdir().expect("tempdir");
+    let image = java_image(
+        d.path(),
+        "bump.xml",
+        &["-Dbump=y-zx,inverted", "-Dsoft=none", "-Ddof=none"],
+        "160x120",
+        "b.png",
+    );
+    let out = whitted(
+        d.path(),
+        &["check", "--course", YEAR, "-i", "bump.xml", s(&image)],
+    );
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    let text = String::from_utf8_lossy(&out.stdout);
+    for words in [
+        "progress: option 1 (bump mapping) with a mistake",
+        "bump-inverted under parametrisation y-zx",
+        "where: BumpySphere.getNormalAt",
+        "fix: flip the sign of the perturbation",
+    ] {
+        assert!(text.contains(words), "{words}: {text}");
+    }
+    for contradiction in ["diagnosis:", "spheres unknown", "shading unknown"] {
+        assert!(!text.contains(contradiction), "{contradiction}: {text}");
+    }
+}
+
+#[test]
+fn list_bugs_has_a_tick1_star_section_with_where_and_fix() {
+    let d = tempfile::tempdir().expect("tempdir");
+    let out = whitted(d.path(), &["check", "--list-bugs", "--course", YEAR]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("Tick 1* option 1 (bump mapping"), "{text}");
+    assert!(
+        text.contains("bump-colour-as-height") && text.contains("where: BumpySphere.getNormalAt"),
+        "{text}"
+    );
+    let old = whitted(d.path(), &["check", "--list-bugs", "--course", "2016-17"]);
+    assert!(!String::from_utf8_lossy(&old.stdout).contains("Tick 1*"));
+}
+
+#[test]
+fn a_copy_of_distributed_xml_without_star_is_checked_as_option_2() {
+    // The walkthrough's student: their own copy of the handout's scene (re-indented), a sharp
+    // Tick 1 render of it, and no --star. The Tick 1 check would call it identical.
+    let d = tempfile::tempdir().expect("tempdir");
+    let xml = std::fs::read_to_string(scene("courses/tick1star/distributed.xml"))
+        .expect("distributed.xml");
+    std::fs::write(d.path().join("mine.xml"), xml.replace("    ", "\t")).expect("writes");
+    let run = whitted(
+        d.path(),
+        &[
+            "render",
+            "--course",
+            YEAR,
+            "-i",
+            "mine.xml",
+            "-o",
+            "sharp.png",
+            "--width",
+            "160",
+            "--height",
+            "120",
+        ],
+    );
+    assert!(run.status.success(), "{}", stderr(&run));
+    let out = whitted(
+        d.path(),
+        &["check", "--course", YEAR, "-i", "mine.xml", "sharp.png"],
+    );
+    let err = stderr(&out);
+    assert!(
+        err.contains("mine.xml is the handout's distributed.xml")
+            && err.contains("checked as --star distributed"),
+        "{err}"
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("option 2 not done"), "{text}");
+    assert!(!text.contains("identical"), "{text}");
+}
+
+#[test]
+fn a_bump_image_checked_with_no_scene_asks_whether_it_is_another_scene() {
+    let d = tempfile::tempdir().expect("tempdir");
+    let bump = scene("courses/tick1star/bump.xml");
+    let run = whitted(
+        d.path(),
+        &["render", "--course", YEAR, "-i", s(&bump), "-o", "bump.png"],
+    );
+    assert!(run.status.success(), "{}", stderr(&run));
+    let out = whitted(d.path(), &["check", "--course", YEAR, "bump.png"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("is this another scene? give -i SCENE") && text.contains("-i bump.xml"),
+        "{text}"
+    );
+}

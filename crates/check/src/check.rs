@@ -6,6 +6,7 @@
 //! the student is in the handout (`check::progress`). `--program` runs the student's own
 //! program over a suite of scenes and diagnoses every case at once.
 
+pub mod another_scene;
 pub mod bump;
 pub mod case;
 pub mod diagnose;
@@ -27,6 +28,7 @@ pub mod result;
 pub mod score;
 pub mod star_both;
 pub mod star_draw;
+pub mod star_fix;
 pub mod star_not_done;
 pub mod star_option;
 pub mod star_reference;
@@ -424,21 +426,25 @@ pub fn check_bump_image(
             bounces,
             course,
         )?;
-        let report = CaseReport {
-            scene_name: scene_name.to_string(),
-            bounces,
-            difference: difference(&student, &reference, rule),
-            diagnosis: Vec::new(),
-            hidden_mistakes: Mistakes::NONE,
-            student,
-            reference,
-        };
+        let report = bump_report(scene_name, (bounces, rule), student, reference);
         let mut findings = Findings::nothing(1, Evidence::AllCorrect, course);
         findings.star_not_done = Some(star_option::StarOption::Bump);
         return Ok((report, findings));
     }
     let (finding, reference) = bump::check_bump(scene, star, &student, bounces, course)?;
-    let report = CaseReport {
+    let report = bump_report(scene_name, (bounces, rule), student, reference);
+    Ok((report, Findings::of_bump(finding, course)))
+}
+
+/// A bump image's case: judged by `rule` against `reference`, with no Tick 1 diagnosis (a
+/// bump image's finding is the bump check's, never a Tick 1 mistake).
+fn bump_report(
+    scene_name: &str,
+    (bounces, rule): (u32, PassRule),
+    student: Rgb8,
+    reference: Rgb8,
+) -> CaseReport {
+    CaseReport {
         scene_name: scene_name.to_string(),
         bounces,
         difference: difference(&student, &reference, rule),
@@ -446,8 +452,7 @@ pub fn check_bump_image(
         hidden_mistakes: Mistakes::NONE,
         student,
         reference,
-    };
-    Ok((report, Findings::of_bump(finding, course)))
+    }
 }
 
 /// Everything known about one student image of one scene.

@@ -24,6 +24,31 @@ pub fn handout_option(args: &CheckArgs) -> Option<StarOption> {
     }
 }
 
+/// `args` with `--star distributed` when `-i` names a copy of the handout's distributed.xml
+/// and no `--star` was given: its images are random, so the Tick 1 check would call a sharp
+/// render identical and a correct draw wrong. Says so on stderr. None when the scene is any
+/// other (or unreadable: the ordinary path reports that).
+pub fn routed(args: &CheckArgs) -> Option<CheckArgs> {
+    if args.star.is_some() || args.program.is_some() {
+        return None;
+    }
+    let path = args.input.as_deref()?;
+    let xml = std::fs::read(path).ok()?;
+    if StarOption::of_content(&xml)? != StarOption::Distributed {
+        return None;
+    }
+    eprintln!(
+        "note: {} is the handout's distributed.xml (Tick 1* option 2, random images): \
+         checked as --star distributed",
+        path.display()
+    );
+    Some(CheckArgs {
+        star: Some(StarCheck::Distributed),
+        input: None,
+        ..args.clone()
+    })
+}
+
 /// Returns whether the image passes (its option's judge finds nothing wrong).
 pub fn run(args: &CheckArgs, image: &Path) -> Result<bool> {
     let Some(option) = handout_option(args) else {

@@ -53,15 +53,20 @@ impl BumpFinding {
 
     /// The report's line.
     pub fn sentence(&self) -> String {
+        format!("bump mapping: {}", self.finding())
+    }
+
+    /// What was found, without the option's name: the line after a case that names it.
+    pub fn finding(&self) -> String {
         let share = |s: f64| format!("{:.1}%", 100.0 * s);
         match (self.mistake, self.matched >= FOLLOWS) {
             (None, true) => format!(
-                "bump mapping: the handout's method under parametrisation {} ({} of pixels match)",
+                "the handout's method under parametrisation {} ({} of pixels match)",
                 self.parametrisation,
                 share(self.matched)
             ),
             (Some(m), true) => format!(
-                "bump mapping: {} under parametrisation {}: {} ({} of pixels match it, {} the correct method)",
+                "{} under parametrisation {}: {} ({} of pixels match it, {} the correct method)",
                 m.name(),
                 self.parametrisation,
                 m.explanation(),
@@ -69,7 +74,7 @@ impl BumpFinding {
                 share(self.matched_correct)
             ),
             (best, false) => format!(
-                "bump mapping: no parametrisation or catalogued mistake reproduces the image; \
+                "no parametrisation or catalogued mistake reproduces the image; \
                  nearest: {}{} ({} of pixels match)",
                 self.parametrisation,
                 best.map_or(String::new(), |m| format!(" with {}", m.name())),
@@ -145,6 +150,21 @@ fn telling_pixels(images: &[Rgb8]) -> Vec<usize> {
         .collect()
 }
 
+/// The methods to try: each of `mistakes` (None: the handout's method) under every named
+/// parametrisation, parametrisation by parametrisation in catalogue order. The one list of
+/// candidates for the deterministic check here and the random one (`star_both.rs`).
+pub fn candidates(mistakes: &[Option<BumpMistake>]) -> Vec<BumpMethod> {
+    PARAMETRISATIONS
+        .iter()
+        .flat_map(|&parametrisation| {
+            mistakes.iter().map(move |&mistake| BumpMethod {
+                parametrisation,
+                mistake,
+            })
+        })
+        .collect()
+}
+
 /// Checks `student` against every parametrisation and mistake; also returns the correct
 /// render of the parametrisation found (the case's reference).
 pub fn check_bump(
@@ -161,17 +181,10 @@ pub fn check_bump(
         ));
     }
     let size = (student.width, student.height);
-    let candidates: Vec<BumpMethod> = PARAMETRISATIONS
-        .iter()
-        .flat_map(|&parametrisation| {
-            std::iter::once(None)
-                .chain(BumpMistake::ALL.into_iter().map(Some))
-                .map(move |mistake| BumpMethod {
-                    parametrisation,
-                    mistake,
-                })
-        })
+    let mistakes: Vec<Option<BumpMistake>> = std::iter::once(None)
+        .chain(BumpMistake::ALL.into_iter().map(Some))
         .collect();
+    let candidates = candidates(&mistakes);
     if student.bytes.len() != 3 * (student.width as usize) * (student.height as usize) {
         return Err(Error::Usage(
             "the image is not 8-bit RGB of its size".into(),

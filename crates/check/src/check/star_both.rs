@@ -7,6 +7,7 @@
 //! scored and the best kept; if that is no draw, each catalogued mistake under that
 //! parametrisation is scored, and the best that is a draw is named.
 
+use crate::check::bump::candidates;
 use crate::check::star_draw::{score_star, THRESHOLD};
 use crate::check::student_png::Rgb8;
 use whitted_core::course::Course;
@@ -111,11 +112,7 @@ fn bumped(
         Ok(score_star(scene, &both(star, method), 1.0, image, bounces, course)?.mean())
     };
     let mut best: Option<(f64, BumpMethod)> = None;
-    for parametrisation in PARAMETRISATIONS {
-        let method = BumpMethod {
-            parametrisation,
-            mistake: None,
-        };
+    for method in candidates(&[None]) {
         let s = score(method)?;
         if best.is_none_or(|(b, _)| s < b) {
             best = Some((s, method));

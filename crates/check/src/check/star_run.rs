@@ -111,7 +111,8 @@ impl StarVerdict {
     /// The verdict in a line.
     pub fn line(&self) -> String {
         match self {
-            StarVerdict::Bump(b) => b.sentence(),
+            // The case's line names the option already.
+            StarVerdict::Bump(b) => b.finding(),
             StarVerdict::Draw(d) => d.line(),
             StarVerdict::BumpDraw(b) => b.sentence(),
             StarVerdict::NotDone { option, neither } => star_not_done::sentence(*option, *neither),

@@ -35,6 +35,21 @@ pub fn opening(findings: &Findings) -> Vec<String> {
     if let Some(star) = findings.tick1_star.as_ref().filter(|s| s.plan.is_some()) {
         return vec![star.sentence()];
     }
+    // A Tick 1* image: the options' progress and the bump finding's what, where and fix;
+    // Tick 1's stages and diagnosis say nothing of it.
+    if let Some(progress) = super::star_fix::progress(findings) {
+        let mut lines = vec![progress];
+        if let Some(b) = &findings.bump {
+            lines.push(b.sentence());
+            lines.extend(super::star_fix::lines(b));
+        }
+        lines.extend(
+            findings
+                .star_not_done
+                .map(|o| crate::check::star_not_done::sentence(o, false)),
+        );
+        return lines;
+    }
     let mut lines = vec![findings.progress.sentence()];
     // What the program is, or why its cases died, before anything about its images.
     lines.extend(findings.tick1_star.as_ref().map(|star| star.sentence()));

@@ -167,8 +167,9 @@ pub fn page(result: &CheckResult) -> String {
         body += &paragraphs(std::slice::from_ref(why));
     }
     body += &paragraphs(&result.notes);
-    body += &paragraphs(&[result.findings.progress.sentence()]);
-    if result.any_image() && !passed {
+    let star_image = crate::check::star_fix::is_star_image(&result.findings);
+    body += &paragraphs(&summary::opening(&result.findings)[..1]);
+    if result.any_image() && !passed && !star_image {
         body += &findings_block(&result.findings);
         if result.findings.diagnosis.is_empty() {
             body += "<p>No catalogued mistake reproduces the images better than the reference does.</p>\n";

@@ -114,6 +114,8 @@ pub fn add_findings(object: &mut Value, findings: &Findings) {
             "matched_correct": bump.matched_correct,
             "candidates": bump.tried,
             "passes": bump.passes(),
+            "where": bump.mistake.map(|m| crate::check::star_fix::place_and_fix(m).0),
+            "fix": bump.mistake.map(|m| crate::check::star_fix::place_and_fix(m).1),
         });
     }
     if let Some(option) = findings.star_not_done {
