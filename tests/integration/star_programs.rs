@@ -247,6 +247,45 @@ fn a_single_image_of_the_tick1_renderer_is_the_option_not_done() {
 }
 
 #[test]
+fn the_skeleton_s_flat_bump_stub_is_option_1_not_done_with_or_without_i() {
+    // A real 2021-22 student's bump.png from the skeleton's getNormalAt (the zero vector) was
+    // "option 1 not done" (exit 0) without -i, and a made-up mistake (exit 1) with -i bump.xml.
+    let d = tempfile::tempdir().expect("tempdir");
+    compiled(d.path(), PACKAGE, Done::Neither, "");
+    let handout = root().join("crates/check/scenes/tick1star");
+    for file in ["bump.xml", "bumpmap.png"] {
+        std::fs::copy(handout.join(file), d.path().join(file)).expect("copy");
+    }
+    let run = Command::new("java")
+        .arg("-Djava.awt.headless=true")
+        .arg("-cp")
+        .arg(d.path().join("classes"))
+        .arg(format!("{PACKAGE}.Tick1"))
+        .args([
+            "-i", "bump.xml", "-o", "flat.png", "-b", "2", "-r", "160x120",
+        ])
+        .current_dir(d.path())
+        .output()
+        .expect("java");
+    assert!(run.status.success(), "{}", stderr(&run));
+    for with_input in [false, true] {
+        let mut args = vec!["check", "--course", YEAR, "--star", "bump", "flat.png"];
+        if with_input {
+            args.extend(["-i", "bump.xml"]);
+        }
+        let out = whitted(d.path(), &args);
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            text.contains("option 1 not done"),
+            "-i {with_input}: {text}{}",
+            stderr(&out)
+        );
+        assert!(!text.contains("nearest"), "-i {with_input}: {text}");
+        assert_eq!(out.status.code(), Some(0), "-i {with_input}: {text}");
+    }
+}
+
+#[test]
 fn check_dir_runs_a_tick1_star_project_s_options_not_the_suite() {
     let d = tempfile::tempdir().expect("tempdir");
     let project = d.path().join("project");

@@ -416,8 +416,11 @@ pub fn check_bump_image(
     student: Rgb8,
     course: Course,
 ) -> Result<(CaseReport, Findings)> {
-    // The Tick 1 render (a smooth sphere): option 1 not done, which is no mistake.
-    if star_not_done::is_tick1_render(scene, &student, bounces, course)? {
+    // Option 1 not done, which is no mistake: the Tick 1 render (a smooth sphere), or, when
+    // no method reproduces the image, a sphere shaded flat (the skeleton's getNormalAt
+    // returning the zero vector). The same order as a program's bump image is judged in
+    // (`star_run::judge`), so `-i bump.xml` and no `-i` agree.
+    let not_done = |student: Rgb8| -> Result<(CaseReport, Findings)> {
         let reference = bump::render_bump(
             scene,
             &whitted_core::star::Star::default(),
@@ -429,9 +432,17 @@ pub fn check_bump_image(
         let report = bump_report(scene_name, (bounces, rule), student, reference);
         let mut findings = Findings::nothing(1, Evidence::AllCorrect, course);
         findings.star_not_done = Some(star_option::StarOption::Bump);
-        return Ok((report, findings));
+        Ok((report, findings))
+    };
+    if star_not_done::is_tick1_render(scene, &student, bounces, course)? {
+        return not_done(student);
     }
     let (finding, reference) = bump::check_bump(scene, star, &student, bounces, course)?;
+    if finding.matched < bump::FOLLOWS
+        && star_not_done::is_flat_sphere(scene, &student, bounces, course)?
+    {
+        return not_done(student);
+    }
     let report = bump_report(scene_name, (bounces, rule), student, reference);
     Ok((report, Findings::of_bump(finding, course)))
 }
