@@ -307,6 +307,55 @@ fn a_focus_taken_as_a_distance_is_named_for_two_seeds() {
 }
 
 #[test]
+fn an_option_done_without_the_other_is_named_for_two_seeds() {
+    let d = tempfile::tempdir().expect("tempdir");
+    named_for_every_seed(d.path(), "-Ddof=none", "no-depth-of-field", &[501, 502]);
+    named_for_every_seed(d.path(), "-Dsoft=none", "no-soft-shadows", &[503, 504]);
+}
+
+/// At 320x240 each process is scored on a grid of every third pixel first (the pre-pass) and
+/// only the best in full: the correct program's draw and a variant's are still named, by their
+/// full statistics, while the processes far from the image keep their grid's score.
+#[test]
+fn the_pre_pass_scores_far_processes_on_a_grid_and_names_the_right_one_in_full() {
+    let d = tempfile::tempdir().expect("tempdir");
+    let stride = |star: &Value, process: &str| -> u64 {
+        star["fits"]
+            .as_array()
+            .and_then(|fits| fits.iter().find(|f| f["process"] == process))
+            .and_then(|f| f["stride"].as_u64())
+            .unwrap_or_else(|| panic!("no {process} stride in {star}"))
+    };
+    let ok = java_image(
+        d.path(),
+        "distributed.xml",
+        &["-Dseed=701"],
+        "320x240",
+        "ok.png",
+    );
+    let (star, status) = judge(d.path(), &ok);
+    assert_eq!(star["verdict"], "course-draw", "{star}");
+    assert_eq!(status, Some(0));
+    assert_eq!(stride(&star, "course"), 1, "{star}");
+    let variant = java_image(
+        d.path(),
+        "distributed.xml",
+        &["-Dseed=702", "-Ddof=aperture-full-side"],
+        "320x240",
+        "v.png",
+    );
+    let (star, status) = judge(d.path(), &variant);
+    assert_eq!(status, Some(1), "{star}");
+    assert_eq!(star["verdict"], "variant-draw", "{star}");
+    assert!(statistic(&star, "aperture-full-side") < 1.45, "{star}");
+    assert_eq!(stride(&star, "aperture-full-side"), 1, "{star}");
+    // The course's process is far from it: scored on the grid alone.
+    assert!(statistic(&star, "course") > 2.9, "{star}");
+    assert_eq!(stride(&star, "course"), 3, "{star}");
+    assert_eq!(stride(&star, "dof-not-averaged"), 3, "{star}");
+}
+
+#[test]
 fn a_bump_normal_of_a_sphere_at_the_origin_is_named_under_two_parametrisations() {
     // The student's `position.normalised()` for n: `check -i bump.xml IMAGE` names the
     // mistake and the parametrisation it was made in.

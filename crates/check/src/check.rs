@@ -31,6 +31,7 @@ pub mod star_draw;
 pub mod star_fix;
 pub mod star_not_done;
 pub mod star_option;
+pub mod star_prepass;
 pub mod star_reference;
 pub mod star_reference_file;
 pub mod star_run;

@@ -5,10 +5,12 @@
 //! with soft shadows and depth of field). The parametrisation is the student's choice, so it
 //! is found first, on the expectations: the handout's method under each parametrisation is
 //! scored and the best kept; if that is no draw, each catalogued mistake under that
-//! parametrisation is scored, and the best that is a draw is named.
+//! parametrisation is scored, and the best, if a draw, is named. Each set is scored on the
+//! pre-pass's sparse grid and only its best on every pixel (`star_prepass.rs`).
 
 use crate::check::bump::candidates;
-use crate::check::star_draw::{score_star, THRESHOLD};
+use crate::check::star_draw::THRESHOLD;
+use crate::check::star_prepass;
 use crate::check::student_png::Rgb8;
 use whitted_core::course::Course;
 use whitted_core::error::Result;
@@ -93,11 +95,28 @@ pub fn check(
         dof: Some(DepthOfField::default()),
         ..Star::default()
     };
-    let s = score_star(scene, &smooth, 1.0, image, bounces, course)?.mean();
+    let s = lowest(scene, &[smooth], image, bounces, course)?.map_or(f64::INFINITY, |(_, s)| s);
     if s <= THRESHOLD {
         return Ok(Some(Drawn::Smooth(s)));
     }
     Ok(bumped(scene, star, image, bounces, course)?.map(Drawn::Bumped))
+}
+
+/// The lowest statistic of `image` against the stars (each with soft shadows and depth of
+/// field), and its index: on the pre-pass's grid, the lowest in full (`star_prepass.rs`).
+fn lowest(
+    scene: &Scene,
+    stars: &[Star],
+    image: &Rgb8,
+    bounces: u32,
+    course: Course,
+) -> Result<Option<(usize, f64)>> {
+    let stars: Vec<(Star, f64)> = stars.iter().map(|s| (s.clone(), 1.0)).collect();
+    Ok(star_prepass::scores(scene, &stars, image, bounces, course)?
+        .iter()
+        .map(|s| s.mean())
+        .enumerate()
+        .min_by(|a, b| a.1.total_cmp(&b.1)))
 }
 
 /// The bumped scene's draws: the parametrisation first, then the mistake.
@@ -108,20 +127,12 @@ fn bumped(
     bounces: u32,
     course: Course,
 ) -> Result<Option<BumpDraw>> {
-    let score = |method: BumpMethod| -> Result<f64> {
-        Ok(score_star(scene, &both(star, method), 1.0, image, bounces, course)?.mean())
-    };
-    let mut best: Option<(f64, BumpMethod)> = None;
-    for method in candidates(&[None]) {
-        let s = score(method)?;
-        if best.is_none_or(|(b, _)| s < b) {
-            best = Some((s, method));
-        }
-    }
-    let Some((correct, method)) = best else {
+    let methods = candidates(&[None]);
+    let stars: Vec<Star> = methods.iter().map(|m| both(star, *m)).collect();
+    let Some((best, correct)) = lowest(scene, &stars, image, bounces, course)? else {
         return Ok(None);
     };
-    let mut tried = PARAMETRISATIONS.len();
+    let method = methods[best];
     let found = |mistake, statistic, tried| BumpDraw {
         parametrisation: method.parametrisation.name,
         mistake,
@@ -130,18 +141,20 @@ fn bumped(
         tried,
     };
     if correct <= THRESHOLD {
-        return Ok(Some(found(None, correct, tried)));
+        return Ok(Some(found(None, correct, PARAMETRISATIONS.len())));
     }
-    let mut draw: Option<(f64, BumpMistake)> = None;
-    for mistake in BumpMistake::ALL {
-        let s = score(BumpMethod {
-            mistake: Some(mistake),
-            ..method
-        })?;
-        tried += 1;
-        if s <= THRESHOLD && draw.is_none_or(|(b, _)| s < b) {
-            draw = Some((s, mistake));
-        }
-    }
-    Ok(draw.map(|(s, m)| found(Some(m), s, tried)))
+    let stars: Vec<Star> = BumpMistake::ALL
+        .iter()
+        .map(|m| {
+            let mistaken = BumpMethod {
+                mistake: Some(*m),
+                ..method
+            };
+            both(star, mistaken)
+        })
+        .collect();
+    let tried = PARAMETRISATIONS.len() + stars.len();
+    Ok(lowest(scene, &stars, image, bounces, course)?
+        .filter(|&(_, s)| s <= THRESHOLD)
+        .map(|(i, s)| found(Some(BumpMistake::ALL[i]), s, tried)))
 }

@@ -16,6 +16,7 @@
 
 use glam::DVec3;
 
+use crate::check::star_prepass;
 use crate::check::star_reference::{ReferenceCache, ReferenceKey};
 use crate::check::student_png::Rgb8;
 use whitted_core::course::Course;
@@ -23,8 +24,8 @@ use whitted_core::error::{Error, Result};
 use whitted_core::frame::{Frame, FrameSpec};
 use whitted_core::scene::{self, Scene};
 use whitted_core::star::{
-    DepthOfField, Focus, LightSampling, NoiseFloor, ShadowShare, ShadowedTerms, SoftShadows, Star,
-    StarFrame,
+    DepthOfField, Focus, Grid, LightSampling, NoiseFloor, ShadowShare, ShadowedTerms, SoftShadows,
+    Star, StarFrame,
 };
 use whitted_io::output::png::bytes_with;
 
@@ -83,10 +84,14 @@ pub enum Process {
     SpecularNotScaled,
     /// The focal point `DOF_FOCAL_PLANE` along the pinhole ray, not on the plane z = 3.51805.
     FocalDistance,
+    /// The course's soft shadows, and no depth of field: one pinhole ray per pixel.
+    NoDepthOfField,
+    /// The course's depth of field, and hard shadows: one shadow ray to the light's centre.
+    NoSoftShadows,
 }
 
 impl Process {
-    pub const ALL: [Process; 9] = [
+    pub const ALL: [Process; 11] = [
         Process::Course,
         Process::UniformSphere,
         Process::LightSize,
@@ -96,6 +101,8 @@ impl Process {
         Process::ShadowsNotAveraged,
         Process::SpecularNotScaled,
         Process::FocalDistance,
+        Process::NoDepthOfField,
+        Process::NoSoftShadows,
     ];
 
     /// The JSON value.
@@ -110,6 +117,8 @@ impl Process {
             Process::ShadowsNotAveraged => "shadows-not-averaged",
             Process::SpecularNotScaled => "specular-not-scaled",
             Process::FocalDistance => "focal-distance",
+            Process::NoDepthOfField => "no-depth-of-field",
+            Process::NoSoftShadows => "no-soft-shadows",
         }
     }
 
@@ -151,6 +160,17 @@ impl Process {
                  it is where the ray meets the plane z = DOF_FOCAL_PLANE, at \
                  DOF_FOCAL_PLANE / direction.z along it"
             }
+            Process::NoDepthOfField => {
+                "soft shadows, but every pixel is one pinhole ray (sharp everywhere): option 2 \
+                 is both, so average DOF_RAY_COUNT rays from random points of the aperture \
+                 through the pixel's point on the plane z = DOF_FOCAL_PLANE"
+            }
+            Process::NoSoftShadows => {
+                "depth of field, but each shadow is one ray to the light's centre (hard \
+                 edges): option 2 is both, so cast SHADOW_RAY_COUNT shadow rays to random \
+                 points of the light's sphere and scale its diffuse and specular terms by the \
+                 share that reach it"
+            }
         }
     }
 
@@ -170,10 +190,11 @@ impl Process {
             Process::ShadowsNotAveraged => soft.share = ShadowShare::Count,
             Process::SpecularNotScaled => soft.scaled = ShadowedTerms::DiffuseOnly,
             Process::FocalDistance => dof.focus = Focus::Distance,
+            Process::NoDepthOfField | Process::NoSoftShadows => {}
         }
         let star = Star {
-            soft: Some(soft),
-            dof: Some(dof),
+            soft: (self != Process::NoSoftShadows).then_some(soft),
+            dof: (self != Process::NoDepthOfField).then_some(dof),
             ..Star::default()
         };
         (star, scale)
@@ -184,8 +205,11 @@ impl Process {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Fit {
     pub process: Process,
-    /// The mean z^2 over every channel of every pixel.
+    /// The mean z^2 over every random channel of the pixels scored.
     pub statistic: f64,
+    /// The pixels scored: 1 every pixel; more, the pre-pass's grid alone (the process was too
+    /// far from the image for the rest to matter).
+    pub stride: u32,
 }
 
 impl Fit {
@@ -227,8 +251,9 @@ impl DrawCheck {
         let (x, y, w, h) = self.region;
         match self.drawn_from() {
             Some(Process::Course) => format!(
-                "one draw of the course's distribution (mean z^2 {course:.2}, at most \
-                 {THRESHOLD} passes)"
+                "scores as one draw of the course's distribution does (mean z^2 {course:.2}, at most \
+                 {THRESHOLD} passes; another estimator of the same expectation, such as \
+                 shading each light sample, scores alike)"
             ),
             Some(variant) => format!(
                 "not a draw of the course's distribution (mean z^2 {course:.2} > {THRESHOLD}), \
@@ -266,20 +291,36 @@ pub fn distributed_scene(course: Course) -> Result<Scene> {
 }
 
 /// Judges `image` as a draw of option 2 of `scene` rendered under `course` at `bounces`.
+/// Each process is scored on the pre-pass's grid first (`star_prepass.rs`): only those near
+/// the image are scored on every pixel.
 pub fn check(scene: &Scene, image: &Rgb8, bounces: u32, course: Course) -> Result<DrawCheck> {
-    let course_score = score(scene, image, bounces, course, Process::Course)?;
+    let score = |processes: &[Process]| -> Result<Vec<Fit>> {
+        let stars: Vec<(Star, f64)> = processes.iter().map(|p| p.star()).collect();
+        let scores = star_prepass::scores(scene, &stars, image, bounces, course)?;
+        Ok(processes
+            .iter()
+            .zip(&scores)
+            .map(|(process, s)| Fit {
+                process: *process,
+                statistic: s.mean(),
+                stride: s.grid.stride,
+            })
+            .collect())
+    };
+    let course_score = {
+        let (star, scale) = Process::Course.star();
+        star_prepass::scores(scene, &[(star, scale)], image, bounces, course)?
+    };
+    let course_score = course_score
+        .first()
+        .ok_or_else(|| Error::Usage("no score of the course's process".into()))?;
     let mut fits = vec![Fit {
         process: Process::Course,
         statistic: course_score.mean(),
+        stride: course_score.grid.stride,
     }];
     if !fits[0].is_draw() {
-        for process in &Process::ALL[1..] {
-            let s = score(scene, image, bounces, course, *process)?;
-            fits.push(Fit {
-                process: *process,
-                statistic: s.mean(),
-            });
-        }
+        fits.extend(score(&Process::ALL[1..])?);
     }
     Ok(DrawCheck {
         fits,
@@ -287,31 +328,48 @@ pub fn check(scene: &Scene, image: &Rgb8, bounces: u32, course: Course) -> Resul
     })
 }
 
-/// Every pixel's z^2, summed over its random channels, and how many it has.
-pub(crate) struct Score(Vec<f64>, Vec<u8>);
+/// Every scored pixel's z^2, summed over its random channels, and how many it has: of every
+/// pixel of the image, or of a pre-pass grid's.
+pub(crate) struct Score {
+    z2: Vec<f64>,
+    random: Vec<u8>,
+    /// The pixels scored; `z2[j * columns + i]` is the image's pixel (`grid.at(i)`, `grid.at(j)`).
+    pub(crate) grid: Grid,
+    columns: u32,
+}
 
 impl Score {
     /// The mean z^2 over the random channels of every pixel (where the process spreads a byte
     /// or more: the rest say nothing of it).
     pub(crate) fn mean(&self) -> f64 {
-        let channels: u32 = self.1.iter().map(|&n| u32::from(n)).sum();
-        self.0.iter().sum::<f64>() / f64::from(channels.max(1))
+        let channels: u32 = self.random.iter().map(|&n| u32::from(n)).sum();
+        self.z2.iter().sum::<f64>() / f64::from(channels.max(1))
     }
 
-    /// The tile of [`TILE`] pixels a side whose mean z^2 is highest.
+    /// The tile of [`TILE`] pixels a side (of the image, whatever the grid) whose mean z^2
+    /// over its scored pixels is highest.
     fn worst_tile(&self, width: u32, height: u32) -> (u32, u32, u32, u32) {
+        let tiles_x = width.div_ceil(TILE).max(1);
+        let tiles = (tiles_x * height.div_ceil(TILE).max(1)) as usize;
+        let (mut sum, mut count) = (vec![0.0; tiles], vec![0u32; tiles]);
+        for (k, z2) in self.z2.iter().enumerate() {
+            let (i, j) = (
+                k as u32 % self.columns.max(1),
+                k as u32 / self.columns.max(1),
+            );
+            let (x, y) = (self.grid.at(i), self.grid.at(j));
+            let t = ((y / TILE) * tiles_x + x / TILE) as usize;
+            if let (Some(s), Some(c)) = (sum.get_mut(t), count.get_mut(t)) {
+                *s += z2;
+                *c += 1;
+            }
+        }
         let mut best = (0.0, (0, 0, width.min(TILE), height.min(TILE)));
-        for ty in (0..height).step_by(TILE as usize) {
-            for tx in (0..width).step_by(TILE as usize) {
-                let (w, h) = (TILE.min(width - tx), TILE.min(height - ty));
-                let sum: f64 = (ty..ty + h)
-                    .flat_map(|y| (tx..tx + w).map(move |x| (y * width + x) as usize))
-                    .map(|i| self.0[i])
-                    .sum();
-                let mean = sum / f64::from(w * h);
-                if mean > best.0 {
-                    best = (mean, (tx, ty, w, h));
-                }
+        for (t, (s, c)) in sum.iter().zip(&count).enumerate() {
+            let (tx, ty) = ((t as u32 % tiles_x) * TILE, (t as u32 / tiles_x) * TILE);
+            let mean = s / f64::from((*c).max(1));
+            if *c > 0 && mean > best.0 {
+                best = (mean, (tx, ty, TILE.min(width - tx), TILE.min(height - ty)));
             }
         }
         best.1
@@ -331,24 +389,33 @@ const NODES: [(f64, f64); 8] = [
     (4.1445471861258945, 0.00011261453837516037),
 ];
 
-/// `image` scored against `process`'s distribution.
-fn score(
-    scene: &Scene,
-    image: &Rgb8,
-    bounces: u32,
-    course: Course,
-    process: Process,
-) -> Result<Score> {
-    let (star, scale) = process.star();
-    score_star(scene, &star, scale, image, bounces, course)
+/// What one scoring estimates: at which pixels, and to what noise floor.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Pass {
+    pub(crate) grid: Grid,
+    pub(crate) floor: NoiseFloor,
 }
 
-/// `image` scored against the distribution of `star` on `scene` (any Tick 1* render: a
-/// bumped scene's too), its expectation scaled by `scale`.
+impl Pass {
+    /// Every pixel, to the floor [`THRESHOLD`] was measured with.
+    pub(crate) fn full() -> Pass {
+        Pass {
+            grid: Grid::EVERY,
+            floor: NoiseFloor {
+                standard_error: FLOOR,
+                ..NoiseFloor::default()
+            },
+        }
+    }
+}
+
+/// `image` scored at `pass`'s pixels against the distribution of `star` on `scene` (any Tick
+/// 1* render: a bumped scene's too), its expectation scaled by `scale` and estimated to
+/// `pass`'s floor (whose error widens each pixel's spread).
 pub(crate) fn score_star(
     scene: &Scene,
     star: &Star,
-    scale: f64,
+    (scale, Pass { grid, floor }): (f64, Pass),
     image: &Rgb8,
     bounces: u32,
     course: Course,
@@ -363,14 +430,11 @@ pub(crate) fn score_star(
         trace: frame.trace(),
         star,
     };
-    let floor = NoiseFloor {
-        standard_error: FLOOR,
-        ..NoiseFloor::default()
-    };
     // Kept in memory and on disk: the next image of the scene costs the statistic only.
-    let key = ReferenceKey::of_frame(&star_frame, floor, SEED);
+    let key = ReferenceKey::of_frame(&star_frame, floor, SEED).on(grid);
     let expected = ReferenceCache::shared().get_or_compute(key, &star_frame, floor, SEED)?;
-    let pixels = (image.width * image.height) as usize;
+    let (columns, rows) = (grid.count(image.width), grid.count(image.height));
+    let pixels = (columns * rows) as usize;
     if expected.beauty.len() != pixels || expected.variance.len() != pixels {
         return Err(Error::Usage(
             "the expectation's size is not the image's".into(),
@@ -394,9 +458,11 @@ pub(crate) fn score_star(
         points.push(mean + se);
     }
     let bytes = bytes_with(course.tonemap(), &points);
-    let (score, random): (Vec<f64>, Vec<u8>) = (0..pixels)
+    let (z2, random): (Vec<f64>, Vec<u8>) = (0..pixels)
         .map(|i| {
             let at = |k: usize, c: usize| f64::from(bytes[3 * (i * per_pixel + k) + c]);
+            let (x, y) = (grid.at(i as u32 % columns), grid.at(i as u32 / columns));
+            let student = 3 * (y * image.width + x) as usize;
             (0..3)
                 .map(|c| {
                     let mean: f64 = NODES
@@ -411,7 +477,7 @@ pub(crate) fn score_star(
                         .sum();
                     let spread = (square - mean * mean).max(0.0);
                     let estimate = ((at(NODES.len() + 1, c) - at(NODES.len(), c)) / 2.0).powi(2);
-                    let y = f64::from(image.bytes[3 * i + c]);
+                    let y = f64::from(image.bytes[student + c]);
                     match spread >= RANDOM {
                         true => ((y - mean).powi(2) / (spread + estimate + BYTE_FLOOR), 1),
                         false => (0.0, 0),
@@ -420,7 +486,12 @@ pub(crate) fn score_star(
                 .fold((0.0, 0), |(z, n), (dz, dn)| (z + dz, n + dn))
         })
         .unzip();
-    Ok(Score(score, random))
+    Ok(Score {
+        z2,
+        random,
+        grid,
+        columns,
+    })
 }
 
 #[cfg(test)]
@@ -442,9 +513,24 @@ mod tests {
         let (w, h) = (40, 20);
         let mut s = vec![0.0; (w * h) as usize];
         s[(18 * w + 35) as usize] = 30.0;
-        assert_eq!(
-            Score(s, vec![3; (w * h) as usize]).worst_tile(w, h),
-            (32, 16, 8, 4)
-        );
+        let every = Score {
+            z2: s,
+            random: vec![3; (w * h) as usize],
+            grid: Grid::EVERY,
+            columns: w,
+        };
+        assert_eq!(every.worst_tile(w, h), (32, 16, 8, 4));
+        // On a grid of stride 3 (pixels 1, 4, 7, ...), the pixel (37, 19) is grid (12, 6).
+        let grid = Grid { stride: 3 };
+        let (columns, rows) = (grid.count(w), grid.count(h));
+        let mut z2 = vec![0.0; (columns * rows) as usize];
+        z2[(6 * columns + 12) as usize] = 30.0;
+        let sparse = Score {
+            z2,
+            random: vec![3; (columns * rows) as usize],
+            grid,
+            columns,
+        };
+        assert_eq!(sparse.worst_tile(w, h), (32, 16, 8, 4));
     }
 }

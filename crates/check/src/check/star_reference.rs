@@ -11,7 +11,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 use crate::check::star_reference_file as file;
 use whitted_core::error::Result;
 use whitted_core::scene::Scene;
-use whitted_core::star::{expectation, NoiseFloor, Star, StarFrame, StarImage};
+use whitted_core::star::{expectation_on, Grid, NoiseFloor, Star, StarFrame, StarImage};
 
 /// What the memory may hold, in bytes of references (a 640x480 one is about 35 MB); past it,
 /// new references are not kept in memory (they still are on disk).
@@ -33,6 +33,8 @@ pub struct ReferenceKey {
     pub floor_bits: u64,
     pub max_paths: u32,
     pub seed: u64,
+    /// The pixels estimated (`Grid`): every one, or a pre-pass's sparse grid.
+    pub grid: Grid,
 }
 
 impl ReferenceKey {
@@ -52,7 +54,13 @@ impl ReferenceKey {
             floor_bits: floor.standard_error.to_bits(),
             max_paths: floor.max_paths,
             seed,
+            grid: Grid::EVERY,
         }
+    }
+
+    /// The key of the same reference estimated at `grid`'s pixels only.
+    pub fn on(self, grid: Grid) -> Self {
+        ReferenceKey { grid, ..self }
     }
 
     /// The key of `frame`'s reference, its scene fingerprinted from the frame itself.
@@ -65,7 +73,7 @@ impl ReferenceKey {
     pub fn text(&self) -> String {
         format!(
             "scene {} size {}x{} bounces {} shadows {} course {} star {} floor {:016x} \
-             max-paths {} seed {} build {}",
+             max-paths {} seed {} grid {} build {}",
             self.scene,
             self.width,
             self.height,
@@ -76,6 +84,7 @@ impl ReferenceKey {
             self.floor_bits,
             self.max_paths,
             self.seed,
+            self.grid.stride,
             build()
         )
     }
@@ -149,7 +158,7 @@ impl ReferenceCache {
         let image = match from_disk {
             Some(image) => Arc::new(image),
             None => {
-                let image = Arc::new(expectation(frame, floor, seed)?);
+                let image = Arc::new(expectation_on(frame, floor, seed, key.grid)?);
                 if let Some(folder) = &self.folder {
                     file::store(folder, &text, &image);
                 }

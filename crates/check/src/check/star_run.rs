@@ -41,7 +41,13 @@ impl StarImage {
                 StarVerdict::Draw(d) => d
                     .fits
                     .iter()
-                    .map(|f| serde_json::json!({"process": f.process.name(), "statistic": f.statistic}))
+                    .map(|f| {
+                        serde_json::json!({
+                            "process": f.process.name(),
+                            "statistic": f.statistic,
+                            "stride": f.stride,
+                        })
+                    })
                     .collect::<Vec<_>>(),
                 StarVerdict::BumpDraw(b) => vec![serde_json::json!({
                     "process": "bump-soft-dof",

@@ -57,7 +57,8 @@ const SHADOW_POINTS: u32 = 4;
 /// that the first standard error is not a lucky one.
 const FIRST_ROUND: u32 = 32;
 
-/// A Tick 1* image, linear radiance, row by row from the top-left pixel.
+/// A Tick 1* image, linear radiance, row by row from the top-left pixel (of a `Grid`'s pixels
+/// when estimated on one: `width` and `height` are then the grid's).
 #[derive(Debug, Clone, PartialEq)]
 pub struct StarImage {
     pub width: u32,
@@ -99,7 +100,7 @@ struct PixelResult {
 /// `Math.random()` calls (per aperture ray its two coordinates, then per vertex and light its
 /// shadow rays, each radius, polar angle, azimuth) from the pixel's own stream.
 pub fn course_draw(frame: &StarFrame, seed: u64) -> Result<StarImage> {
-    render(frame, |model, accel, x, y| {
+    render(frame, Grid::EVERY, |model, accel, x, y| {
         draw_pixel(model, accel, frame, seed, (x, y), None)
     })
 }
@@ -107,9 +108,50 @@ pub fn course_draw(frame: &StarFrame, seed: u64) -> Result<StarImage> {
 /// The expectation of the course's process and the variance of one draw, per pixel,
 /// estimated with Sobol points seeded by `seed` to `floor`.
 pub fn expectation(frame: &StarFrame, floor: NoiseFloor, seed: u64) -> Result<StarImage> {
-    render(frame, |model, accel, x, y| {
+    expectation_on(frame, floor, seed, Grid::EVERY)
+}
+
+/// The expectation at the pixels of `grid` only: the image is the grid's, each of its pixels
+/// exactly the whole expectation's value there (a pixel's estimate depends on its own index
+/// alone), at 1/stride^2 of the cost. A check scores a student's image on it first, so that
+/// processes far from the image cost little (`whitted_check`'s pre-pass).
+pub fn expectation_on(
+    frame: &StarFrame,
+    floor: NoiseFloor,
+    seed: u64,
+    grid: Grid,
+) -> Result<StarImage> {
+    render(frame, grid, |model, accel, x, y| {
         expect_pixel(model, accel, frame, (floor, seed), (x, y), None)
     })
+}
+
+/// Every `stride`-th pixel of every `stride`-th row, starting half a stride in (the middle of
+/// each block of stride x stride pixels): the pixels a sparse expectation is estimated at.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Grid {
+    pub stride: u32,
+}
+
+impl Grid {
+    /// Every pixel.
+    pub const EVERY: Grid = Grid { stride: 1 };
+
+    /// The first pixel of each row and column.
+    pub fn offset(self) -> u32 {
+        self.stride.max(1) / 2
+    }
+
+    /// The grid's pixels along an image side of `side` pixels.
+    pub fn count(self, side: u32) -> u32 {
+        let stride = self.stride.max(1);
+        side.saturating_sub(self.offset()).div_ceil(stride)
+    }
+
+    /// The image's coordinate of the grid's `i`-th pixel along a side.
+    pub fn at(self, i: u32) -> u32 {
+        self.offset() + i * self.stride.max(1)
+    }
 }
 
 /// What a Tick 1* film took.
@@ -218,20 +260,27 @@ fn accelerator(model: &impl Model, scene: &Scene) -> Accelerator {
     }
 }
 
+/// The pixels of `grid` rendered by `pixel`, rows in parallel; the image is the grid's.
 fn render(
     frame: &StarFrame,
+    grid: Grid,
     pixel: impl Fn(&crate::course::Rules, &Accelerator, u32, u32) -> PixelResult + Sync,
 ) -> Result<StarImage> {
     let model = frame.course.rules();
     let accel = accelerator(&model, frame.scene);
-    let (width, height) = (frame.camera.width, frame.camera.height);
+    let (width, height) = (
+        grid.count(frame.camera.width),
+        grid.count(frame.camera.height),
+    );
     let rows: Vec<Vec<PixelResult>> = (0..height)
         .into_par_iter()
-        .map(|y| {
+        .map(|j| {
             if interrupt::requested() {
                 return Vec::new();
             }
-            (0..width).map(|x| pixel(&model, &accel, x, y)).collect()
+            (0..width)
+                .map(|i| pixel(&model, &accel, grid.at(i), grid.at(j)))
+                .collect()
         })
         .collect();
     interrupt::check()?;

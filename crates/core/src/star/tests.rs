@@ -356,3 +356,33 @@ fn draws_scatter_around_the_expectation(scene: &Scene, star: &Star) {
         "{star:?}: {outliers} of {tested} channels beyond 4 sigma"
     );
 }
+
+/// A sparse expectation is the whole one's values at the grid's pixels, bit for bit.
+#[test]
+fn an_expectation_on_a_grid_is_the_whole_one_at_its_pixels() {
+    let scene = penumbra_scene();
+    let star = Star {
+        soft: Some(SoftShadows::default()),
+        dof: Some(DepthOfField::default()),
+        ..Star::default()
+    };
+    let f = frame(&scene, &star);
+    let floor = NoiseFloor {
+        standard_error: 4.0 / 255.0,
+        max_paths: 128,
+    };
+    let whole = expectation(&f, floor, 7).expect("renders");
+    let grid = Grid { stride: 3 };
+    let sparse = expectation_on(&f, floor, 7, grid).expect("renders");
+    assert_eq!(sparse.width, grid.count(whole.width));
+    assert_eq!(sparse.height, grid.count(whole.height));
+    assert!(sparse.width >= 2 && sparse.height >= 2);
+    for j in 0..sparse.height {
+        for i in 0..sparse.width {
+            let s = (j * sparse.width + i) as usize;
+            let w = (grid.at(j) * whole.width + grid.at(i)) as usize;
+            assert_eq!(sparse.beauty[s], whole.beauty[w], "({i}, {j})");
+            assert_eq!(sparse.variance[s], whole.variance[w], "({i}, {j})");
+        }
+    }
+}
