@@ -100,7 +100,7 @@ fn the_suite_dir_holds_what_a_tick1_star_program_ran_and_each_printed_command_ru
         "check it: whitted check bump_b2.png -b 2 --course 2023-24 --star bump",
         "check it: whitted check distributed_b2.png -b 2 --course 2023-24 --star distributed",
         "image: 160x120",
-        "closest: y-zx, ",
+        "closest: the handout's method under y-zx, ",
         "scene: suite/distributed.xml",
     ] {
         assert!(text.contains(line), "{line:?} in\n{text}");
@@ -211,7 +211,7 @@ fn a_draw_of_a_variant_shows_its_numbers_and_where_it_fits_worst() {
         "(a draw)",
         "the course's process fits worst at x ",
         // No --suite-dir: no command, and the way to get them, once.
-        "add --suite-dir DIR",
+        "add --suite-dir DIR to write the handout's scenes (bump.xml, its map, distributed.xml)",
     ] {
         assert!(text.contains(line), "{line:?} in\n{text}");
     }

@@ -50,6 +50,17 @@ pub struct Reproduce {
 pub const SUITE_DIR_HINT: &str =
     "add --suite-dir DIR to write the suite's scenes into DIR and get the commands that rerun each case";
 
+/// The same, for a Tick 1* program, which runs the handout's scenes, not the suite.
+pub const STAR_SUITE_DIR_HINT: &str = "add --suite-dir DIR to write the handout's scenes (bump.xml, its map, distributed.xml) into DIR and get the commands that rerun each option";
+
+/// The hint for a run of the suite, or (`star`) of a Tick 1* program's options.
+pub fn suite_dir_hint(star: bool) -> &'static str {
+    match star {
+        true => STAR_SUITE_DIR_HINT,
+        false => SUITE_DIR_HINT,
+    }
+}
+
 /// `s` quoted for a POSIX shell where it needs to be (a path with a NUL byte cannot be
 /// quoted, and is shown as it is).
 pub fn shell_word(s: &str) -> String {

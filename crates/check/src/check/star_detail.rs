@@ -68,15 +68,23 @@ pub fn lines(star: &StarImage) -> Vec<String> {
                 b.tried,
                 share(FOLLOWS)
             ));
-            lines.push(format!(
-                "closest: {}{}, {} of those pixels match; the handout's method under {}: {}",
-                b.parametrisation,
-                b.mistake
-                    .map_or(String::new(), |m| format!(" with {}", m.name())),
-                share(b.matched),
-                b.parametrisation,
-                share(b.matched_correct)
-            ));
+            let closest = match b.mistake {
+                None => format!(
+                    "closest: the handout's method under {}, {} of those pixels match",
+                    b.parametrisation,
+                    share(b.matched)
+                ),
+                Some(m) => format!(
+                    "closest: {} under {}, {} of those pixels match; the handout's method \
+                     under {}: {}",
+                    m.name(),
+                    b.parametrisation,
+                    share(b.matched),
+                    b.parametrisation,
+                    share(b.matched_correct)
+                ),
+            };
+            lines.push(closest);
         }
         StarVerdict::Draw(d) => {
             lines.push(
@@ -120,4 +128,132 @@ pub fn lines(star: &StarImage) -> Vec<String> {
         StarVerdict::NotDone { .. } | StarVerdict::NotJudged(_) => {}
     }
     lines
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::check::bump::BumpFinding;
+    use crate::check::star_both::BumpDraw;
+    use crate::check::star_draw::{DrawCheck, Fit, Process};
+    use whitted_core::star::BumpMistake;
+
+    fn star(option: StarOption, verdict: StarVerdict) -> StarImage {
+        StarImage {
+            option,
+            image: Rgb8 {
+                width: 4,
+                height: 3,
+                bytes: vec![0; 36],
+            },
+            verdict,
+            reference: None,
+        }
+    }
+
+    #[test]
+    fn a_bump_mistake_s_numbers_name_it_beside_the_correct_method() {
+        let finding = BumpFinding {
+            parametrisation: "z-yx",
+            mistake: Some(BumpMistake::Inverted),
+            matched: 0.995,
+            matched_correct: 0.41,
+            tried: 48,
+        };
+        let lines = lines(&star(StarOption::Bump, StarVerdict::Bump(finding)));
+        assert_eq!(lines[0], "image: 4x3");
+        assert!(lines[1].starts_with("renders tried: 48 "), "{lines:?}");
+        assert_eq!(
+            lines[2],
+            "closest: bump-inverted under z-yx, 99.5% of those pixels match; the handout's \
+             method under z-yx: 41.0%"
+        );
+    }
+
+    #[test]
+    fn a_draw_lists_every_process_tried_and_its_worst_tile() {
+        let fits = vec![
+            Fit {
+                process: Process::Course,
+                statistic: 1.9876,
+            },
+            Fit {
+                process: Process::LightSize,
+                statistic: 1.13,
+            },
+        ];
+        let draw = DrawCheck {
+            fits,
+            region: (144, 96, 16, 16),
+        };
+        let lines = lines(&star(StarOption::Distributed, StarVerdict::Draw(draw)));
+        assert_eq!(lines.len(), 5, "{lines:?}");
+        assert_eq!(lines[2].trim_end(), "  course                 1.99");
+        assert!(lines[3].ends_with("1.13  (a draw)"), "{lines:?}");
+        assert_eq!(
+            lines[4],
+            "the course's process fits worst at x 144..=159, y 96..=111"
+        );
+    }
+
+    #[test]
+    fn a_bump_draw_says_how_many_draws_and_the_mistake_s_score() {
+        let draw = BumpDraw {
+            parametrisation: "y-zx",
+            mistake: Some(BumpMistake::Inverted),
+            statistic: 1.44,
+            correct: 3.5,
+            tried: 13,
+        };
+        let lines = lines(&star(StarOption::Bump, StarVerdict::BumpDraw(draw)));
+        assert!(
+            lines[1].contains("then each catalogued mistake under the closest"),
+            "{lines:?}"
+        );
+        assert_eq!(
+            lines[2],
+            "mean z^2 (a draw is near 1): the handout's method under y-zx 3.50, bump-inverted 1.44"
+        );
+    }
+
+    #[test]
+    fn an_option_not_done_has_only_its_size_and_no_reference() {
+        let verdict = StarVerdict::NotDone {
+            option: StarOption::Distributed,
+            neither: false,
+        };
+        let shown = star(StarOption::Distributed, verdict.clone());
+        assert_eq!(lines(&shown), ["image: 4x3"]);
+        let reference = reference(
+            StarOption::Distributed,
+            &verdict,
+            &shown.image,
+            2,
+            Course::Y2023,
+        );
+        assert_eq!(reference.ok().flatten(), None);
+    }
+
+    #[test]
+    fn an_option_1_image_s_reference_is_the_handout_s_method_at_its_size() {
+        let finding = BumpFinding {
+            parametrisation: "y-zx",
+            mistake: None,
+            matched: 1.0,
+            matched_correct: 1.0,
+            tried: 48,
+        };
+        let image = Rgb8 {
+            width: 32,
+            height: 24,
+            bytes: vec![0; 32 * 24 * 3],
+        };
+        let verdict = StarVerdict::Bump(finding);
+        let shown = reference(StarOption::Bump, &verdict, &image, 2, Course::Y2023)
+            .expect("renders")
+            .expect("a reference");
+        assert_eq!((shown.width, shown.height), (32, 24));
+        // The sphere is lit: not the black the image given is.
+        assert!(shown.bytes.iter().any(|&b| b > 40));
+    }
 }

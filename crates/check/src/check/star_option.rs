@@ -203,6 +203,26 @@ mod tests {
     }
 
     #[test]
+    fn the_suite_dir_holds_each_scene_and_the_map_named_by_its_whole_path() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let suite = dir.path().join("suite");
+        write_scenes(&suite).expect("written");
+        let bump = std::fs::read_to_string(suite.join("bump.xml")).expect("bump.xml");
+        let map = suite.join("bumpmap.png");
+        assert!(
+            bump.contains(&format!("bump-map=\"{}\"", map.display())),
+            "{bump}"
+        );
+        assert_eq!(std::fs::read(&map).expect("map"), BUMP_MAP);
+        assert_eq!(
+            std::fs::read_to_string(suite.join("distributed.xml")).expect("distributed"),
+            DISTRIBUTED
+        );
+        // Written again: the same files, left alone.
+        write_scenes(&suite).expect("again");
+    }
+
+    #[test]
     fn each_option_runs_its_handout_scene_once_at_a_size_that_fits() {
         let cases = cases(Course::Y2023);
         let files: Vec<&str> = cases.iter().map(|c| &*c.file).collect();

@@ -310,6 +310,24 @@ mod tests {
     }
 
     #[test]
+    fn a_suite_dir_with_one_clash_is_refused_before_any_file_is_written() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        std::fs::write(dir.path().join("b.xml"), "other").expect("write");
+        let files: [(&str, &[u8]); 2] = [("a.xml", b"a"), ("b.xml", b"b")];
+        let refused = write_files(dir.path(), &files);
+        assert!(
+            matches!(&refused, Err(Error::Usage(m)) if m.contains("b.xml exists with other content")),
+            "{refused:?}"
+        );
+        assert!(!dir.path().join("a.xml").exists());
+        // The same content again is no clash: written once, left alone after.
+        std::fs::write(dir.path().join("b.xml"), "b").expect("write");
+        write_files(dir.path(), &files).expect("written");
+        write_files(dir.path(), &files).expect("left alone");
+        assert_eq!(std::fs::read(dir.path().join("a.xml")).expect("a"), b"a");
+    }
+
+    #[test]
     fn the_course_scenes_are_the_course_s() {
         assert_eq!(TICK2, whitted_core::scene::EMBEDDED_TICK2);
         assert_eq!(

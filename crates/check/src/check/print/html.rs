@@ -217,7 +217,8 @@ pub fn page(result: &CheckResult) -> String {
         }
     }
     if result.needs_suite_dir() {
-        body += &paragraphs(&[crate::check::reproduce::SUITE_DIR_HINT.to_string()]);
+        body +=
+            &paragraphs(&[crate::check::reproduce::suite_dir_hint(result.star_run()).to_string()]);
     }
     format!(
         "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\

@@ -6,7 +6,7 @@
 
 use super::screen::{Keep, Screen, SCREEN_LINES};
 use crate::check::program::RunStatus;
-use crate::check::reproduce::SUITE_DIR_HINT;
+use crate::check::reproduce::suite_dir_hint;
 use crate::check::result::{CaseResult, CheckResult, Subject};
 use crate::check::star_detail;
 use crate::check::summary::{self, candidates_heading, opening};
@@ -190,7 +190,7 @@ fn program(result: &CheckResult, detail: Detail, screen: &mut Screen, hidden: &m
         screen,
     );
     if detail.full() && result.needs_suite_dir() {
-        screen.line(Keep::Always, SUITE_DIR_HINT);
+        screen.line(Keep::Always, suite_dir_hint(result.star_run()));
     }
     let mut tails_shown: Vec<&str> = Vec::new();
     for c in &result.cases {
