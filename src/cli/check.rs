@@ -73,7 +73,9 @@ pub struct CheckArgs {
     pub program: Option<String>,
 
     /// Write the suite's scenes into DIR (made if missing), so that every failing case can be
-    /// rerun and explained from your own directory: without it no rerun command is printed
+    /// rerun and explained from your own directory (a Tick 1* program's: the handout's scenes
+    /// it ran, bump.xml with its map and distributed.xml): without it no rerun command is
+    /// printed
     #[arg(long, value_name = "DIR", requires = "program")]
     pub suite_dir: Option<PathBuf>,
 

@@ -11,12 +11,12 @@ use crate::cli::{CheckArgs, StarCheck};
 use whitted_check::check::print::json::json;
 use whitted_check::check::print::text::{text, Detail};
 use whitted_check::check::print::write_report;
-use whitted_check::check::program::{run_suite, SuiteRun};
+use whitted_check::check::program::{run_suite, star_seen, SuiteRun};
 use whitted_check::check::report::heat_map;
 use whitted_check::check::result::CheckResult;
-use whitted_check::check::suite;
 use whitted_check::check::which_course::{self, Chosen};
 use whitted_check::check::{check_bump_image, check_image, student_png};
+use whitted_check::check::{star_option, suite};
 use whitted_check::mistakes::Bug;
 use whitted_core::course::Course;
 use whitted_core::error::Result;
@@ -199,7 +199,8 @@ fn run_program(args: &CheckArgs, program: &str) -> Result<bool> {
         refuse_clashes(&[], &[report])?;
     }
     let chosen = which_course::for_program(args.course.map(Course::from), program)?;
-    report_suite(args, &chosen, |course| {
+    let star = star_seen(program, None).is_some();
+    report_suite(args, &chosen, star, |course| {
         let run = run_suite(program, args.rule(), args.timeout, course)?;
         Ok((run, Preamble::default()))
     })
@@ -213,14 +214,19 @@ struct Preamble {
     json: Option<Value>,
 }
 
-/// The suite `run` runs under `chosen`'s year, reported as `--program` reports it.
+/// The suite `run` runs under `chosen`'s year, reported as `--program` reports it; `star`: the
+/// program is known as Tick 1* before it runs, and runs its options' handout scenes, which are
+/// what `--suite-dir` writes.
 fn report_suite(
     args: &CheckArgs,
     chosen: &Chosen,
+    star: bool,
     run: impl FnOnce(Course) -> Result<(SuiteRun, Preamble)>,
 ) -> Result<bool> {
-    if let Some(dir) = &args.suite_dir {
-        suite::write_scenes(dir, chosen.course)?;
+    match (&args.suite_dir, star) {
+        (Some(dir), true) => star_option::write_scenes(dir)?,
+        (Some(dir), false) => suite::write_scenes(dir, chosen.course)?,
+        (None, _) => {}
     }
     let report = args.report.as_deref().map(Destination::open).transpose()?;
     let (run, preamble) = run(chosen.course)?;

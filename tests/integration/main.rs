@@ -37,6 +37,7 @@ mod serve;
 mod serve_crash;
 mod serve_hostile;
 mod star_programs;
+mod star_suite;
 mod tick1star;
 mod tonemap;
 mod view;

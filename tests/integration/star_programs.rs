@@ -15,7 +15,7 @@ use crate::common::*;
 use crate::grade::{grade, records};
 use crate::grade_skeletons::fixture_file;
 
-const YEAR: &str = "2023-24";
+pub(crate) const YEAR: &str = "2023-24";
 
 fn course() -> whitted_core::course::Course {
     whitted_core::course::Course::from_name(YEAR).expect("course")
@@ -23,7 +23,7 @@ fn course() -> whitted_core::course::Course {
 
 /// How a student's Tick 1* is written.
 #[derive(Clone, Copy, PartialEq)]
-enum Done {
+pub(crate) enum Done {
     /// Both options: the Tick 1* Renderer and BumpySphere.
     Both,
     /// Option 1 only: the Tick 1 Renderer and the Tick 1* BumpySphere.
@@ -83,7 +83,7 @@ fn files(package: &str, done: Done) -> Vec<(&'static str, String)> {
 
 /// The skeleton and `files` compiled into `d/classes`; the program's command line with the
 /// JVM options `flags`.
-fn compiled(d: &Path, package: &str, done: Done, flags: &str) -> String {
+pub(crate) fn compiled(d: &Path, package: &str, done: Done, flags: &str) -> String {
     let src = d.join("src");
     let classes = d.join("classes");
     let folder = src.join(package.replace('.', "/"));
@@ -136,7 +136,7 @@ fn verdicts(check: &Value) -> Vec<(String, String)> {
         .collect()
 }
 
-const PACKAGE: &str = "uk.ac.cam.cl.gfxintro.ab123.tick1star";
+pub(crate) const PACKAGE: &str = "uk.ac.cam.cl.gfxintro.ab123.tick1star";
 
 #[test]
 fn both_options_pass_for_two_seeds_and_a_bump_mistake_is_named() {

@@ -27,6 +27,7 @@ pub mod reproduce;
 pub mod result;
 pub mod score;
 pub mod star_both;
+pub mod star_detail;
 pub mod star_draw;
 pub mod star_fix;
 pub mod star_not_done;

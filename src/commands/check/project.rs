@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use super::{report_suite, Preamble};
 use crate::cli::CheckArgs;
 use whitted_check::check::image_cache::ImageCache;
-use whitted_check::check::program::{run_suite_as, Plain};
+use whitted_check::check::program::{run_suite_as, star_seen, Plain};
 use whitted_check::check::suite::cases_of;
 use whitted_check::check::which_course::Chosen;
 use whitted_core::course::Course;
@@ -54,7 +54,9 @@ pub fn run(args: &CheckArgs, dir: &Path) -> Result<bool> {
         course: project.course(),
         why: project.why().map(str::to_string),
     };
-    report_suite(args, &chosen, |course| {
+    let seen = project.tick1_star();
+    let star = star_seen(&project.shown_program(None), seen).is_some();
+    report_suite(args, &chosen, star, |course| {
         let launch = Plain(project.command());
         // With the scenes written, the classes go beside them, so that every rerun command
         // printed runs what was checked.
@@ -68,7 +70,7 @@ pub fn run(args: &CheckArgs, dir: &Path) -> Result<bool> {
             &cases_of(course),
             (args.rule(), args.timeout),
             &ImageCache::new(),
-            project.tick1_star(),
+            seen,
         )?;
         let mut lines = project.lines(kept.as_deref());
         // The second build runs only when a case fails: a project that passes costs its

@@ -4,6 +4,7 @@
 //! formats what the result holds; the words themselves are `summary.rs`'s and `words.rs`'s.
 
 pub mod html;
+pub mod html_star;
 pub mod json;
 pub mod screen;
 pub mod text;

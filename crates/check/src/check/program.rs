@@ -236,7 +236,7 @@ pub fn run_suite_as(
     seen: Option<StarSeen>,
 ) -> Result<SuiteRun> {
     let course = suite.first().map_or(Course::Y2016, |c| c.course);
-    match seen.or(is_tick1_star(program).then_some(StarSeen::Package)) {
+    match star_seen(program, seen) {
         Some(seen) => star_run::run(launch, program, course, timeout, seen),
         None => run_suite_with(launch, program, suite, rule, timeout, cache),
     }
@@ -473,6 +473,13 @@ fn rerun_differs(
 /// optional Tick 1* (soft shadows, depth of field: hundreds of rays a pixel, a random image).
 pub fn is_tick1_star(program: &str) -> bool {
     tick1_star::in_package(program)
+}
+
+/// How a program is known as Tick 1* before it runs, if it is: by its sources where they were
+/// seen (`seen`), else by its package. Such a program runs its options' handout scenes, not
+/// the suite, and `--suite-dir` writes those.
+pub fn star_seen(program: &str, seen: Option<StarSeen>) -> Option<StarSeen> {
+    seen.or(is_tick1_star(program).then_some(StarSeen::Package))
 }
 
 /// One case's program run alone, as the suite runs it (its own folder, scene and limits): its

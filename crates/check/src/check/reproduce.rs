@@ -9,7 +9,7 @@ use std::path::Path;
 
 use serde_json::{json, Value};
 
-use crate::check::suite::SuiteCase;
+use crate::check::suite::{Role, SuiteCase};
 use crate::check::CaseReport;
 use crate::mistakes::Mistakes;
 use whitted_core::course::Course;
@@ -49,6 +49,17 @@ pub struct Reproduce {
 /// written.
 pub const SUITE_DIR_HINT: &str =
     "add --suite-dir DIR to write the suite's scenes into DIR and get the commands that rerun each case";
+
+/// The same, for a Tick 1* program, which runs the handout's scenes, not the suite.
+pub const STAR_SUITE_DIR_HINT: &str = "add --suite-dir DIR to write the handout's scenes (bump.xml, its map, distributed.xml) into DIR and get the commands that rerun each option";
+
+/// The hint for a run of the suite, or (`star`) of a Tick 1* program's options.
+pub fn suite_dir_hint(star: bool) -> &'static str {
+    match star {
+        true => STAR_SUITE_DIR_HINT,
+        false => SUITE_DIR_HINT,
+    }
+}
 
 /// `s` quoted for a POSIX shell where it needs to be (a path with a NUL byte cannot be
 /// quoted, and is shown as it is).
@@ -128,14 +139,7 @@ impl Reproduce {
                 case.size_option()
                     .map_or(String::new(), |[option, size]| format!(" {option} {size}"))
             )),
-            check: Some(format!(
-                "whitted check {output} -i {quoted} -b {}{}",
-                case.bounces,
-                match case.course {
-                    Course::Y2016 => String::new(),
-                    other => format!(" --course {other}"),
-                }
-            )),
+            check: Some(check_command(case, &output, &quoted)),
             explain,
             scene: SceneSource::Written(scene),
         }
@@ -192,6 +196,24 @@ impl Reproduce {
             "check": self.check,
             "explain": self.explain,
         })
+    }
+}
+
+/// The check of the image a rerun of `case` writes (`output`) of the scene at `scene`: a Tick 1
+/// case's against its scene; a Tick 1* option's by that option's judge (`--star`), which
+/// knows the handout's scene, at the year it was run under.
+fn check_command(case: &SuiteCase, output: &str, scene: &str) -> String {
+    match (case.role, case.course) {
+        (Role::Star(option), course) => format!(
+            "whitted check {output} -b {} --course {course} --star {}",
+            case.bounces,
+            option.name()
+        ),
+        (_, Course::Y2016) => format!("whitted check {output} -i {scene} -b {}", case.bounces),
+        (_, course) => format!(
+            "whitted check {output} -i {scene} -b {} --course {course}",
+            case.bounces
+        ),
     }
 }
 

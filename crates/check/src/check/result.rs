@@ -81,10 +81,13 @@ impl CaseResult {
     }
 
     /// Whether its commands are worth a student's time: it fails, or passes while rendering
-    /// exactly what catalogued mistakes render.
+    /// exactly what catalogued mistakes render; a Tick 1* option's image always (a random
+    /// image is seen again only by running it again).
     pub fn worth_rerunning(&self) -> bool {
-        self.report()
-            .is_some_and(|r| !r.difference.verdict.passes() || !r.hidden_mistakes.is_empty())
+        matches!(self.status, RunStatus::Star(_))
+            || self
+                .report()
+                .is_some_and(|r| !r.difference.verdict.passes() || !r.hidden_mistakes.is_empty())
     }
 }
 

@@ -8,8 +8,9 @@
 use std::borrow::Cow;
 use std::path::Path;
 
-use crate::check::suite::{takes_resolution, Role, SuiteCase};
+use crate::check::suite::{self, takes_resolution, Role, SuiteCase};
 use whitted_core::course::Course;
+use whitted_core::error::{Error, Result};
 
 const BUMP: &str = include_str!("../../scenes/tick1star/bump.xml");
 const DISTRIBUTED: &str = include_str!("../../scenes/tick1star/distributed.xml");
@@ -148,6 +149,25 @@ pub fn cases(course: Course) -> Vec<SuiteCase> {
         .collect()
 }
 
+/// Writes what a Tick 1* program is run on into `dir` (`--suite-dir`, made if missing): each
+/// option's handout scene and the files it reads, refused where a file of the same name holds
+/// other content, as the Tick 1 suite's are. bump.xml names its map by its whole path in
+/// `dir`: the course's program reads the map from the folder it runs in and whitted reads it
+/// beside the scene, and only a whole path is found by both, from anywhere.
+pub fn write_scenes(dir: &Path) -> Result<()> {
+    let whole = std::path::absolute(dir).map_err(|e| Error::io(dir, "cannot resolve", e))?;
+    let scenes: Vec<(StarOption, String)> = StarOption::ALL
+        .into_iter()
+        .map(|option| (option, option.xml_in(&whole)))
+        .collect();
+    let mut files: Vec<(&str, &[u8])> = Vec::new();
+    for (option, xml) in &scenes {
+        files.push((option.file(), xml.as_bytes()));
+        files.extend(option.assets().iter().copied());
+    }
+    suite::write_files(dir, &files)
+}
+
 /// What the report says up front of how the options were run.
 pub fn plan(course: Course, asked: u64) -> String {
     let (w, h) = size(course);
@@ -180,6 +200,26 @@ mod tests {
         );
         let moved = DISTRIBUTED.replace("z=\"12\"", "z=\"13\"");
         assert_eq!(StarOption::of_content(moved.as_bytes()), None);
+    }
+
+    #[test]
+    fn the_suite_dir_holds_each_scene_and_the_map_named_by_its_whole_path() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let suite = dir.path().join("suite");
+        write_scenes(&suite).expect("written");
+        let bump = std::fs::read_to_string(suite.join("bump.xml")).expect("bump.xml");
+        let map = suite.join("bumpmap.png");
+        assert!(
+            bump.contains(&format!("bump-map=\"{}\"", map.display())),
+            "{bump}"
+        );
+        assert_eq!(std::fs::read(&map).expect("map"), BUMP_MAP);
+        assert_eq!(
+            std::fs::read_to_string(suite.join("distributed.xml")).expect("distributed"),
+            DISTRIBUTED
+        );
+        // Written again: the same files, left alone.
+        write_scenes(&suite).expect("again");
     }
 
     #[test]

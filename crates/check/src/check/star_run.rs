@@ -9,6 +9,7 @@ use std::time::Duration;
 use crate::check::bump::{self, BumpFinding, FOLLOWS};
 use crate::check::program::{run_programs, CaseOutcome, Launch, Ran, RunStatus, SuiteRun};
 use crate::check::star_both::{self, BumpDraw, Drawn};
+use crate::check::star_detail;
 use crate::check::star_draw::{self, DrawCheck, Process};
 use crate::check::star_not_done;
 use crate::check::star_option::{self, StarOption};
@@ -26,6 +27,10 @@ pub struct StarImage {
     pub option: StarOption,
     pub image: Rgb8,
     pub verdict: StarVerdict,
+    /// The render the image was compared with, where its verdict has one (option 1's
+    /// handout method under the parametrisation found: `star_detail.rs`), for the report
+    /// page to show beside it.
+    pub reference: Option<Rgb8>,
 }
 
 impl StarImage {
@@ -179,7 +184,7 @@ pub fn judge(
 }
 
 /// The handout's bump map, shipped with its scene, read as the course reads it.
-fn handout_map(option: StarOption) -> Result<BumpMap> {
+pub(crate) fn handout_map(option: StarOption) -> Result<BumpMap> {
     let bad = |why: String| Error::Usage(format!("the handout's bump map: {why}"));
     let (_, bytes) = option
         .assets()
@@ -211,11 +216,17 @@ pub fn run(
     let mut outcomes = Vec::new();
     for (case, (ran, stderr_tail)) in cases.iter().zip(finished) {
         let status = match (ran, StarOption::of_file(&case.file)) {
-            (Ran::Image(image), Some(option)) => RunStatus::Star(Box::new(StarImage {
-                option,
-                verdict: judge(option, &image, case.bounces, course)?,
-                image,
-            })),
+            (Ran::Image(image), Some(option)) => {
+                let verdict = judge(option, &image, case.bounces, course)?;
+                let reference =
+                    star_detail::reference(option, &verdict, &image, case.bounces, course)?;
+                RunStatus::Star(Box::new(StarImage {
+                    option,
+                    verdict,
+                    image,
+                    reference,
+                }))
+            }
             (Ran::Image(_), None) => RunStatus::Crashed("not a Tick 1* scene".into()),
             (Ran::Failed(status), _) => status,
         };

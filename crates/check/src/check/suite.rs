@@ -114,25 +114,39 @@ pub fn takes_resolution(course: Course) -> bool {
 /// rerun and explain each case from their own directory. A file of the same name and content
 /// is left as it is; one with other content (another year's) is refused, never replaced.
 pub fn write_scenes(dir: &Path, course: Course) -> Result<()> {
-    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, "cannot create the directory", e))?;
     let mut files: Vec<SuiteCase> = cases_of(course);
     files.dedup_by(|a, b| a.file == b.file);
-    for case in &files {
-        let path = dir.join(&*case.file);
+    let files: Vec<(&str, &[u8])> = files
+        .iter()
+        .map(|case| (&*case.file, case.xml.as_bytes()))
+        .collect();
+    write_files(dir, &files)
+}
+
+/// Writes each `(name, bytes)` into `dir` (made if missing), as `--suite-dir` does: a file
+/// of the same name and content is left as it is; if any has other content, every file is
+/// refused before one is written, and none is ever replaced.
+pub fn write_files(dir: &Path, files: &[(&str, &[u8])]) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, "cannot create the directory", e))?;
+    let mut missing = Vec::new();
+    for &(name, bytes) in files {
+        let path = dir.join(name);
         match std::fs::read(&path) {
-            Ok(bytes) if bytes == case.xml.as_bytes() => continue,
+            Ok(there) if there == bytes => {}
             Ok(_) => {
                 return Err(Error::Usage(format!(
                     "{} exists with other content; not replaced (choose another --suite-dir)",
                     path.display()
                 )))
             }
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => missing.push((path, bytes)),
             Err(e) => return Err(Error::io(&path, "cannot read", e)),
         }
+    }
+    for (path, bytes) in missing {
         let mut file = tempfile::NamedTempFile::new_in(dir)
             .map_err(|e| Error::io(dir, "cannot write into", e))?;
-        std::io::Write::write_all(&mut file, case.xml.as_bytes())
+        std::io::Write::write_all(&mut file, bytes)
             .map_err(|e| Error::io(&path, "cannot write", e))?;
         file.persist_noclobber(&path)
             .map_err(|e| Error::io(&path, "cannot write", e.error))?;
@@ -293,6 +307,24 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn a_suite_dir_with_one_clash_is_refused_before_any_file_is_written() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        std::fs::write(dir.path().join("b.xml"), "other").expect("write");
+        let files: [(&str, &[u8]); 2] = [("a.xml", b"a"), ("b.xml", b"b")];
+        let refused = write_files(dir.path(), &files);
+        assert!(
+            matches!(&refused, Err(Error::Usage(m)) if m.contains("b.xml exists with other content")),
+            "{refused:?}"
+        );
+        assert!(!dir.path().join("a.xml").exists());
+        // The same content again is no clash: written once, left alone after.
+        std::fs::write(dir.path().join("b.xml"), "b").expect("write");
+        write_files(dir.path(), &files).expect("written");
+        write_files(dir.path(), &files).expect("left alone");
+        assert_eq!(std::fs::read(dir.path().join("a.xml")).expect("a"), b"a");
     }
 
     #[test]

@@ -6,6 +6,7 @@
 
 use super::text::image_heading;
 use super::zoom::worst_region;
+use crate::check::program::RunStatus;
 use crate::check::report::heat_map;
 use crate::check::result::{CheckResult, Subject};
 use crate::check::summary::{self, candidates_heading};
@@ -67,6 +68,15 @@ pub fn findings_block(findings: &Findings) -> String {
     out
 }
 
+/// Images side by side, each `<img>` with its caption (already escaped).
+pub(super) fn trio(images: &[(String, &str)]) -> String {
+    let mut row = String::from("<div class=\"trio\">");
+    for (html, caption) in images {
+        row += &format!("<figure>{html}<figcaption>{caption}</figcaption></figure>");
+    }
+    row + "</div>\n"
+}
+
 /// A failing case: its name and verdict, the student's image, the reference and where they
 /// differ side by side, and below them the same three cut to the worst region, enlarged.
 /// `references` embeds the reference.
@@ -87,14 +97,7 @@ pub fn case_block(name: &str, case: &CaseReport, references: &dyn Embed) -> Stri
         escape(name),
         escape(&words::verdict(case))
     );
-    let trio = |images: [(String, &str); 3]| -> String {
-        let mut row = String::from("<div class=\"trio\">");
-        for (html, caption) in images {
-            row += &format!("<figure>{html}<figcaption>{caption}</figcaption></figure>");
-        }
-        row + "</div>\n"
-    };
-    out += &trio([
+    out += &trio(&[
         (
             image(w, h, case.student.bytes.clone(), "your image"),
             "your image",
@@ -120,7 +123,7 @@ pub fn case_block(name: &str, case: &CaseReport, references: &dyn Embed) -> Stri
             region.scale(),
             region.scale()
         );
-        out += &trio([
+        out += &trio(&[
             (
                 zoom(&case.student.bytes, "your image, enlarged"),
                 "your image",
@@ -192,6 +195,9 @@ pub fn page(result: &CheckResult) -> String {
     }
     body += "</table>\n";
     for c in &result.cases {
+        if let RunStatus::Star(star) = &c.status {
+            body += &super::html_star::star_block(&c.name, star);
+        }
         match c.report() {
             Some(r) if !c.passed() => body += &case_block(&c.name, r, &Inline),
             Some(_) => {}
@@ -211,7 +217,8 @@ pub fn page(result: &CheckResult) -> String {
         }
     }
     if result.needs_suite_dir() {
-        body += &paragraphs(&[crate::check::reproduce::SUITE_DIR_HINT.to_string()]);
+        body +=
+            &paragraphs(&[crate::check::reproduce::suite_dir_hint(result.star_run()).to_string()]);
     }
     format!(
         "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\

@@ -5,8 +5,10 @@
 //! explain each case.
 
 use super::screen::{Keep, Screen, SCREEN_LINES};
-use crate::check::reproduce::SUITE_DIR_HINT;
+use crate::check::program::RunStatus;
+use crate::check::reproduce::suite_dir_hint;
 use crate::check::result::{CaseResult, CheckResult, Subject};
+use crate::check::star_detail;
 use crate::check::summary::{self, candidates_heading, opening};
 use crate::check::{words, CaseReport, Findings};
 use whitted_core::numbers::plain;
@@ -30,7 +32,8 @@ impl Detail {
 pub fn text(result: &CheckResult, detail: Detail) -> String {
     let mut screen = Screen::default();
     let mut hidden = Hidden {
-        images: result.any_image() && !result.passed(),
+        // A Tick 1* option's image is shown whatever its verdict: it is a random one.
+        images: (result.any_image() && !result.passed()) || any_star_image(result),
         report: result.report.clone(),
         ..Hidden::default()
     };
@@ -55,6 +58,8 @@ struct Hidden {
     /// The commands left out, in words.
     commands: Option<&'static str>,
     stderr: bool,
+    /// The numbers a Tick 1* option's verdict rests on (`star_detail.rs`).
+    star_numbers: bool,
     /// The suite's scenes were not written, so there are no commands to rerun a case.
     suite_dir: bool,
     /// Some case wrote an image, which a report page would show.
@@ -73,6 +78,9 @@ impl Hidden {
         }
         if self.details {
             parts.push("what the images cannot tell apart".into());
+        }
+        if self.star_numbers {
+            parts.push("the numbers behind each option's verdict".into());
         }
         if self.stderr {
             parts.push("the program's standard error".into());
@@ -182,11 +190,22 @@ fn program(result: &CheckResult, detail: Detail, screen: &mut Screen, hidden: &m
         screen,
     );
     if detail.full() && result.needs_suite_dir() {
-        screen.line(Keep::Always, SUITE_DIR_HINT);
+        screen.line(Keep::Always, suite_dir_hint(result.star_run()));
     }
     let mut tails_shown: Vec<&str> = Vec::new();
     for c in &result.cases {
         screen.line(Keep::Always, format!("  {:<28} {}", c.name, case_line(c)));
+        if let RunStatus::Star(star) = &c.status {
+            match detail.full() {
+                true => screen.push(
+                    Keep::Always,
+                    star_detail::lines(star)
+                        .iter()
+                        .map(|l| format!("      {l}")),
+                ),
+                false => hidden.star_numbers = true,
+            }
+        }
         if c.report().is_none() && !c.stderr_tail.is_empty() && !c.said_above {
             let lines = c.stderr_tail.lines();
             if detail.full() {
@@ -230,6 +249,14 @@ fn program(result: &CheckResult, detail: Detail, screen: &mut Screen, hidden: &m
     } else if !result.passed() {
         findings_lines(&result.findings, detail, screen, hidden);
     }
+}
+
+/// Whether a Tick 1* program's case wrote an image (which the report page shows).
+fn any_star_image(result: &CheckResult) -> bool {
+    result
+        .cases
+        .iter()
+        .any(|c| matches!(c.status, RunStatus::Star(_)))
 }
 
 /// The line of a standard error tail that says what went wrong: its last line that is not a
