@@ -308,6 +308,41 @@ fn check_dir_runs_a_tick1_star_project_s_options_not_the_suite() {
     assert_eq!(out.status.code(), Some(0), "{json}");
 }
 
+/// A Tick 1* project whose bump mapping has a mistake (written into its BumpySphere, as a
+/// student's is: no JVM option) fails option 1 by name, and the report says nothing of its
+/// course classes: a second render of a Tick 1* case on the year's Tick 1 classes (which lack
+/// the student's BumpySphere, and whose random images differ run to run) would blame them.
+#[test]
+fn a_tick1_star_project_s_bump_mistake_blames_no_course_class() {
+    let d = tempfile::tempdir().expect("tempdir");
+    let project = d.path().join("project");
+    std::fs::create_dir_all(&project).expect("project");
+    compiled(&project, PACKAGE, Done::Bump, "");
+    std::fs::remove_dir_all(project.join("classes")).expect("classes");
+    let bumpy = project
+        .join("src")
+        .join(PACKAGE.replace('.', "/"))
+        .join("BumpySphere.java");
+    let text = std::fs::read_to_string(&bumpy).expect("BumpySphere");
+    let edited = text.replace(
+        r#"System.getProperty("bump", "y-zx")"#,
+        r#"System.getProperty("bump", "y-zx,inverted")"#,
+    );
+    assert_ne!(edited, text, "the fixture's default moved");
+    std::fs::write(&bumpy, edited).expect("write");
+    let out = whitted(d.path(), &["check", "--course", YEAR, "--json", "project"]);
+    let json: Value =
+        serde_json::from_slice(&out.stdout).unwrap_or_else(|_| panic!("{}", stderr(&out)));
+    let cases = verdicts(&json);
+    assert_eq!(cases[0].0, "bump-mistake", "{cases:?}");
+    assert!(cases[0].1.contains("bump-inverted"), "{cases:?}");
+    assert_eq!(out.status.code(), Some(1), "{json}");
+    let notes = json["project"]["notes"].to_string();
+    for blame in ["otherwise than", "writes no image", "is not 2023-24's"] {
+        assert!(!notes.contains(blame), "{blame}: {notes}");
+    }
+}
+
 /// A student's folder of a Moodle class: `files` under the course's package folder.
 fn student(class: &Path, folder: &str, package: &str, files: &[(&str, String)]) {
     let dir = class

@@ -55,8 +55,9 @@ struct CourseClass {
     own: Option<Vec<u8>>,
 }
 
-/// The year's classes but the student's own files and the unit tests, each with the project's
-/// copy.
+/// The year's classes but the student's own files (Tick 1*'s `BumpySphere.java` too: the
+/// skeleton's stub is theirs to fill in, with whatever helpers) and the unit tests, each with
+/// the project's copy.
 fn course_classes(found: &Found, course: Course) -> Result<Vec<CourseClass>> {
     let skeleton = Skeleton::clean_room(course)?;
     let package = package_of(found, &skeleton);
@@ -65,6 +66,7 @@ fn course_classes(found: &Found, course: Course) -> Result<Vec<CourseClass>> {
         .files
         .iter()
         .filter(|(name, _)| !theirs.contains(&name.as_str()))
+        .filter(|(name, _)| !archive::OPTIONAL.contains(&name.as_str()))
         .filter(|(name, _)| !NOT_RENDERED.contains(&name.as_str()))
         .map(|(name, bytes)| CourseClass {
             name: name.clone(),
