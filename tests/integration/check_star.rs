@@ -21,7 +21,7 @@ const PACKAGE: &str = "uk.ac.cam.cl.gfxintro.ab123.tick1star";
 const YEAR: &str = "2023-24";
 
 /// The Java Tick 1* of 2023-24 compiled once for every test of this process.
-fn classes() -> &'static Path {
+pub(crate) fn classes() -> &'static Path {
     static CLASSES: OnceLock<PathBuf> = OnceLock::new();
     CLASSES.get_or_init(|| {
         let d = process_dir("tick1star");
@@ -79,7 +79,7 @@ fn program(flags: &str) -> String {
 
 /// Our Java's image of the handout's `scene` (copied with its map into `d`) with `flags`,
 /// at `size`.
-fn java_image(d: &Path, scene: &str, flags: &[&str], size: &str, out: &str) -> PathBuf {
+pub(crate) fn java_image(d: &Path, scene: &str, flags: &[&str], size: &str, out: &str) -> PathBuf {
     let handout = root().join("crates/check/scenes/tick1star");
     for file in [scene, "bumpmap.png"] {
         std::fs::copy(handout.join(file), d.join(file)).expect("copy");
