@@ -506,9 +506,33 @@ fn a_bump_image_checked_with_no_scene_asks_whether_it_is_another_scene() {
     );
     assert!(run.status.success(), "{}", stderr(&run));
     let out = whitted(d.path(), &["check", "--course", YEAR, "bump.png"]);
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(
         text.contains("is this another scene? give -i SCENE") && text.contains("-i bump.xml"),
         "{text}"
     );
+    // The note and the verdict, and nothing that reads the image as the default scene's.
+    assert!(text.contains(": differs (tolerance"), "{text}");
+    for contradiction in [
+        "progress:",
+        "not written yet",
+        "reflectivity",
+        "candidate",
+        "diagnosis:",
+        "outside the catalogue",
+    ] {
+        assert!(!text.contains(contradiction), "{contradiction}: {text}");
+    }
+    let out = whitted(d.path(), &["check", "--course", YEAR, "--json", "bump.png"]);
+    let json: Value = serde_json::from_slice(&out.stdout).expect("json");
+    assert!(
+        json["another_scene"]
+            .as_str()
+            .is_some_and(|n| n.contains("is this another scene?")),
+        "{json}"
+    );
+    assert_eq!(json["summary"].as_array().map(Vec::len), Some(1), "{json}");
+    assert_eq!(json["diagnosis"], serde_json::json!([]), "{json}");
+    assert_eq!(json["passed"], false, "{json}");
 }

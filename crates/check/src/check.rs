@@ -99,6 +99,10 @@ pub struct Findings {
     /// not done, the parametrisation and mistake a deterministic image follows, or what a
     /// draw with both options on is a draw of.
     pub bump: Option<bump_judge::BumpVerdict>,
+    /// An image checked against the default scene that looks like another scene's
+    /// (`another_scene.rs`): the note, said in place of a diagnosis that would assume the
+    /// default scene.
+    pub another_scene: Option<String>,
 }
 
 impl Findings {
@@ -144,6 +148,14 @@ impl Findings {
         findings
     }
 
+    /// An image of another scene than the default one it was checked against: the note
+    /// (`another_scene.rs`) and nothing diagnosed.
+    pub fn of_another_scene(note: String, course: Course) -> Findings {
+        let mut findings = Findings::nothing(1, Evidence::Nothing, course);
+        findings.another_scene = Some(note);
+        findings
+    }
+
     /// Nothing found: no images, or every one identical.
     fn nothing(cases: usize, evidence: Evidence, course: Course) -> Findings {
         Findings {
@@ -157,6 +169,7 @@ impl Findings {
             tick1_star: None,
             outside: None,
             bump: None,
+            another_scene: None,
         }
     }
 }
@@ -228,6 +241,7 @@ pub fn find(cases: &[Case], all_pass: bool, course: Course) -> Result<Findings> 
         tick1_star: None,
         outside: None,
         bump: None,
+        another_scene: None,
     };
     if findings.weak() {
         let fit = match fitted {
@@ -323,6 +337,7 @@ impl Fitted {
             tick1_star: None,
             outside: None,
             bump: None,
+            another_scene: None,
         };
         self.tell(&mut findings, cases);
         findings.progress = Stages::of(&evidence(&findings, all_pass), course);

@@ -37,6 +37,11 @@ pub fn opening(findings: &Findings) -> Vec<String> {
     }
     // A Tick 1* image: the options' progress and option 1's verdict, with where and fix for
     // a mistake; Tick 1's stages and diagnosis say nothing of it.
+    // An image of another scene: the note alone; Tick 1's stages would read the default
+    // scene's.
+    if let Some(note) = &findings.another_scene {
+        return vec![note.clone()];
+    }
     if let (Some(progress), Some(verdict)) = (super::star_fix::progress(findings), &findings.bump) {
         let mut lines = vec![progress];
         lines.extend(super::star_fix::verdict_lines(verdict));

@@ -146,6 +146,9 @@ pub fn add_findings(object: &mut Value, findings: &Findings) {
         }
         None => {}
     }
+    if let Some(note) = &findings.another_scene {
+        object["another_scene"] = json!(note);
+    }
     if let Some(star) = &findings.tick1_star {
         object["tick1_star"] = json!({
             "seen": star.seen.name(),

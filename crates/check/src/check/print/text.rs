@@ -282,8 +282,9 @@ fn case_line(c: &CaseResult) -> String {
 /// screen only the best, and only when it explains the images well; else every one.
 fn findings_lines(findings: &Findings, detail: Detail, screen: &mut Screen, hidden: &mut Hidden) {
     let list = &findings.diagnosis;
-    if crate::check::star_fix::is_star_image(findings) {
-        // The opening lines hold the bump finding; no Tick 1 mistake is looked for.
+    if crate::check::star_fix::is_star_image(findings) || findings.another_scene.is_some() {
+        // The opening lines hold the bump finding, or the note that the image is of another
+        // scene; no Tick 1 mistake is looked for.
         return;
     }
     if list.is_empty() {
