@@ -130,3 +130,67 @@ pub fn judge(
     };
     Ok(Judged { verdict, correct })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use whitted_core::star::BumpMistake;
+
+    fn finding(mistake: Option<BumpMistake>, matched: f64) -> BumpVerdict {
+        BumpVerdict::Rendered(BumpFinding {
+            parametrisation: "y-zx",
+            mistake,
+            matched,
+            matched_correct: 0.5,
+            tried: 48,
+        })
+    }
+
+    fn draw(mistake: Option<BumpMistake>) -> BumpVerdict {
+        BumpVerdict::Drawn(BumpDraw {
+            parametrisation: "y-zx",
+            mistake,
+            statistic: 1.2,
+            correct: 3.5,
+            tried: 13,
+        })
+    }
+
+    #[test]
+    fn a_draw_and_an_option_not_done_decide_the_exit_status_and_a_render_leaves_it_to_the_bytes() {
+        assert_eq!(draw(None).decides(), Some(true));
+        assert_eq!(draw(Some(BumpMistake::Inverted)).decides(), Some(false));
+        assert_eq!(BumpVerdict::NotDone.decides(), Some(true));
+        assert_eq!(finding(None, 1.0).decides(), None);
+        assert_eq!(finding(Some(BumpMistake::Inverted), 1.0).decides(), None);
+    }
+
+    #[test]
+    fn each_verdict_has_its_name_and_progress() {
+        let cases = [
+            (BumpVerdict::NotDone, "option-not-done", "not done"),
+            (finding(None, 0.99), "bump-correct", "done"),
+            (
+                finding(Some(BumpMistake::Inverted), 0.99),
+                "bump-mistake",
+                "with a mistake",
+            ),
+            // The nearest candidate, a mistake, reproduces too little to be named.
+            (
+                finding(Some(BumpMistake::Inverted), 0.5),
+                "bump-unmatched",
+                "with a mistake",
+            ),
+            (draw(None), "bump-draw", "done"),
+            (
+                draw(Some(BumpMistake::WrongTexel)),
+                "bump-draw-mistake",
+                "with a mistake",
+            ),
+        ];
+        for (verdict, name, progress) in cases {
+            assert_eq!(verdict.name(), name, "{verdict:?}");
+            assert_eq!(verdict.progress(), progress, "{verdict:?}");
+        }
+    }
+}
