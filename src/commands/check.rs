@@ -124,7 +124,7 @@ fn run_image(args: &CheckArgs, image: &std::path::Path) -> Result<bool> {
         eprintln!("warning: {warning}");
     }
     let bump = args.star == Some(StarCheck::Bump) || !input.bumps.is_empty();
-    let (case, findings) = if bump {
+    let (mut case, findings) = if bump {
         let star = Star {
             bumps: super::render_star::bumped_spheres(&input, args.input.as_deref())?,
             ..Star::default()
@@ -151,13 +151,14 @@ fn run_image(args: &CheckArgs, image: &std::path::Path) -> Result<bool> {
         out.write_png(&heat_map(&case.student, &case.reference, args.tolerance))?;
     }
     let name = image.display().to_string();
-    let another = whitted_check::check::another_scene::note(
-        &case.difference,
-        &findings,
+    // An image of another scene: the note, and no diagnosis that assumes the default scene.
+    let findings = whitted_check::check::another_scene::findings(
+        &mut case,
+        findings,
         args.input.is_some(),
+        chosen.course,
     );
     let mut result = CheckResult::of_image(&name, args.input.as_deref(), case, findings, &chosen);
-    result.notes.extend(another);
     result.report = args.report.as_ref().map(|p| p.display().to_string());
     if let Some(out) = report.as_mut() {
         write_report(out, &result)?;

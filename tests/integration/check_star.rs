@@ -21,7 +21,7 @@ const PACKAGE: &str = "uk.ac.cam.cl.gfxintro.ab123.tick1star";
 const YEAR: &str = "2023-24";
 
 /// The Java Tick 1* of 2023-24 compiled once for every test of this process.
-fn classes() -> &'static Path {
+pub(crate) fn classes() -> &'static Path {
     static CLASSES: OnceLock<PathBuf> = OnceLock::new();
     CLASSES.get_or_init(|| {
         let d = process_dir("tick1star");
@@ -79,7 +79,7 @@ fn program(flags: &str) -> String {
 
 /// Our Java's image of the handout's `scene` (copied with its map into `d`) with `flags`,
 /// at `size`.
-fn java_image(d: &Path, scene: &str, flags: &[&str], size: &str, out: &str) -> PathBuf {
+pub(crate) fn java_image(d: &Path, scene: &str, flags: &[&str], size: &str, out: &str) -> PathBuf {
     let handout = root().join("crates/check/scenes/tick1star");
     for file in [scene, "bumpmap.png"] {
         std::fs::copy(handout.join(file), d.join(file)).expect("copy");
@@ -555,9 +555,33 @@ fn a_bump_image_checked_with_no_scene_asks_whether_it_is_another_scene() {
     );
     assert!(run.status.success(), "{}", stderr(&run));
     let out = whitted(d.path(), &["check", "--course", YEAR, "bump.png"]);
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(
         text.contains("is this another scene? give -i SCENE") && text.contains("-i bump.xml"),
         "{text}"
     );
+    // The note and the verdict, and nothing that reads the image as the default scene's.
+    assert!(text.contains(": differs (tolerance"), "{text}");
+    for contradiction in [
+        "progress:",
+        "not written yet",
+        "reflectivity",
+        "candidate",
+        "diagnosis:",
+        "outside the catalogue",
+    ] {
+        assert!(!text.contains(contradiction), "{contradiction}: {text}");
+    }
+    let out = whitted(d.path(), &["check", "--course", YEAR, "--json", "bump.png"]);
+    let json: Value = serde_json::from_slice(&out.stdout).expect("json");
+    assert!(
+        json["another_scene"]
+            .as_str()
+            .is_some_and(|n| n.contains("is this another scene?")),
+        "{json}"
+    );
+    assert_eq!(json["summary"].as_array().map(Vec::len), Some(1), "{json}");
+    assert_eq!(json["diagnosis"], serde_json::json!([]), "{json}");
+    assert_eq!(json["passed"], false, "{json}");
 }

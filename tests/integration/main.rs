@@ -8,6 +8,7 @@ mod check_histories;
 mod check_print;
 mod check_project;
 mod check_star;
+mod check_star_both;
 mod cli_errors;
 mod common;
 mod courses;

@@ -8,6 +8,7 @@
 
 pub mod another_scene;
 pub mod bump;
+pub mod bump_judge;
 pub mod case;
 pub mod diagnose;
 pub mod difference;
@@ -96,10 +97,14 @@ pub struct Findings {
     pub tick1_star: Option<Tick1Star>,
     /// Where no candidate explains the images well: where what it leaves lies.
     pub outside: Option<Outside>,
-    /// A Tick 1* bump-mapped image: the parametrisation and mistake it follows.
-    pub bump: Option<bump::BumpFinding>,
-    /// A Tick 1* handout scene's image that is the Tick 1 render: that option not done.
-    pub star_not_done: Option<star_option::StarOption>,
+    /// A Tick 1* bump-mapped image: what option 1's judge found (`bump_judge.rs`): option 1
+    /// not done, the parametrisation and mistake a deterministic image follows, or what a
+    /// draw with both options on is a draw of.
+    pub bump: Option<bump_judge::BumpVerdict>,
+    /// An image checked against the default scene that looks like another scene's
+    /// (`another_scene.rs`): the note, said in place of a diagnosis that would assume the
+    /// default scene.
+    pub another_scene: Option<String>,
 }
 
 impl Findings {
@@ -133,15 +138,23 @@ impl Findings {
         Findings::nothing(0, Evidence::Nothing, course)
     }
 
-    /// A bump-mapped image's findings: the bump check's, nothing else diagnosed.
-    pub fn of_bump(finding: bump::BumpFinding, course: Course) -> Findings {
-        let evidence = if finding.passes() {
+    /// A bump-mapped image's findings: option 1's judge's, nothing else diagnosed.
+    pub fn of_bump(verdict: bump_judge::BumpVerdict, course: Course) -> Findings {
+        let evidence = if verdict.passes() {
             Evidence::AllCorrect
         } else {
             Evidence::Unexplained
         };
         let mut findings = Findings::nothing(1, evidence, course);
-        findings.bump = Some(finding);
+        findings.bump = Some(verdict);
+        findings
+    }
+
+    /// An image of another scene than the default one it was checked against: the note
+    /// (`another_scene.rs`) and nothing diagnosed.
+    pub fn of_another_scene(note: String, course: Course) -> Findings {
+        let mut findings = Findings::nothing(1, Evidence::Nothing, course);
+        findings.another_scene = Some(note);
         findings
     }
 
@@ -158,7 +171,7 @@ impl Findings {
             tick1_star: None,
             outside: None,
             bump: None,
-            star_not_done: None,
+            another_scene: None,
         }
     }
 }
@@ -230,7 +243,7 @@ pub fn find(cases: &[Case], all_pass: bool, course: Course) -> Result<Findings> 
         tick1_star: None,
         outside: None,
         bump: None,
-        star_not_done: None,
+        another_scene: None,
     };
     if findings.weak() {
         let fit = match fitted {
@@ -326,7 +339,7 @@ impl Fitted {
             tick1_star: None,
             outside: None,
             bump: None,
-            star_not_done: None,
+            another_scene: None,
         };
         self.tell(&mut findings, cases);
         findings.progress = Stages::of(&evidence(&findings, all_pass), course);
@@ -407,9 +420,11 @@ fn fit_terms(cases: &[Case]) -> Result<Vec<TermFit>> {
     Ok(terms::fit(&term_cases))
 }
 
-/// A student's Tick 1* bump-mapped image of `scene` (its bumped spheres in `star`) checked
-/// (`bump.rs`): the case is judged by `rule` against the correct method in the
-/// parametrisation the image follows.
+/// A student's Tick 1* bump-mapped image of `scene` (its bumped spheres in `star`, the maps
+/// of the student's own scene) judged by option 1's judge (`bump_judge.rs`), the one
+/// `--star bump` and a program's run use, so `-i bump.xml` and no `-i` agree. The case is
+/// judged by `rule` against the render the verdict is read against: the Tick 1 render for
+/// option 1 not done, else the correct method in the parametrisation found (a draw's own).
 pub fn check_bump_image(
     scene: &Scene,
     scene_name: &str,
@@ -418,35 +433,30 @@ pub fn check_bump_image(
     student: Rgb8,
     course: Course,
 ) -> Result<(CaseReport, Findings)> {
-    // Option 1 not done, which is no mistake: the Tick 1 render (a smooth sphere), or, when
-    // no method reproduces the image, a sphere shaded flat (the skeleton's getNormalAt
-    // returning the zero vector). The same order as a program's bump image is judged in
-    // (`star_run::judge`), so `-i bump.xml` and no `-i` agree.
-    let not_done = |student: Rgb8| -> Result<(CaseReport, Findings)> {
-        let reference = bump::render_bump(
+    use bump_judge::BumpVerdict;
+    use whitted_core::star::{bump::Parametrisation, BumpMethod, Star};
+    let judged = bump_judge::judge(scene, star, &student, bounces, course)?;
+    let size = (student.width, student.height);
+    let reference = match (&judged.verdict, judged.correct) {
+        (BumpVerdict::NotDone, _) | (_, None) => bump::render_bump(
             scene,
-            &whitted_core::star::Star::default(),
-            whitted_core::star::BumpMethod::default(),
-            (student.width, student.height),
+            &Star::default(),
+            BumpMethod::default(),
+            size,
             bounces,
             course,
-        )?;
-        let report = bump_report(scene_name, (bounces, rule), student, reference);
-        let mut findings = Findings::nothing(1, Evidence::AllCorrect, course);
-        findings.star_not_done = Some(star_option::StarOption::Bump);
-        Ok((report, findings))
+        )?,
+        (BumpVerdict::Drawn(draw), _) => {
+            let method = BumpMethod {
+                parametrisation: Parametrisation::named(draw.parametrisation).unwrap_or_default(),
+                mistake: None,
+            };
+            bump::render_bump(scene, star, method, size, bounces, course)?
+        }
+        (BumpVerdict::Rendered(_), Some(correct)) => correct,
     };
-    if star_not_done::is_tick1_render(scene, &student, bounces, course)? {
-        return not_done(student);
-    }
-    let (finding, reference) = bump::check_bump(scene, star, &student, bounces, course)?;
-    if finding.matched < bump::FOLLOWS
-        && star_not_done::is_flat_sphere(scene, &student, bounces, course)?
-    {
-        return not_done(student);
-    }
     let report = bump_report(scene_name, (bounces, rule), student, reference);
-    Ok((report, Findings::of_bump(finding, course)))
+    Ok((report, Findings::of_bump(judged.verdict, course)))
 }
 
 /// A bump image's case: judged by `rule` against `reference`, with no Tick 1 diagnosis (a

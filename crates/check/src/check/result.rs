@@ -62,6 +62,10 @@ pub struct CaseResult {
     pub role: Option<Role>,
     /// What reproduces it from the directory the check ran in.
     pub reproduce: Reproduce,
+    /// Whether it passes, where a verdict other than its bytes' decides it: a Tick 1* bump
+    /// image judged as a draw (no random image equals any one render) or as option 1 not
+    /// done (`BumpVerdict::decides`).
+    pub decided: Option<bool>,
 }
 
 impl CaseResult {
@@ -74,9 +78,10 @@ impl CaseResult {
     }
 
     pub fn passed(&self) -> bool {
-        match &self.status {
-            RunStatus::Star(s) => s.verdict.passes(),
-            _ => self.report().is_some_and(|r| r.difference.verdict.passes()),
+        match (&self.status, self.decided) {
+            (_, Some(passes)) => passes,
+            (RunStatus::Star(s), None) => s.verdict.passes(),
+            (_, None) => self.report().is_some_and(|r| r.difference.verdict.passes()),
         }
     }
 
@@ -84,10 +89,13 @@ impl CaseResult {
     /// exactly what catalogued mistakes render; a Tick 1* option's image always (a random
     /// image is seen again only by running it again).
     pub fn worth_rerunning(&self) -> bool {
+        // An image judged by its verdict (a bump draw, an option not done): its bytes'
+        // comparison, and the commands that trace it, say nothing.
         matches!(self.status, RunStatus::Star(_))
-            || self
-                .report()
-                .is_some_and(|r| !r.difference.verdict.passes() || !r.hidden_mistakes.is_empty())
+            || (self.decided.is_none()
+                && self.report().is_some_and(|r| {
+                    !r.difference.verdict.passes() || !r.hidden_mistakes.is_empty()
+                }))
     }
 }
 
@@ -116,6 +124,7 @@ impl CheckResult {
                 said_above: false,
                 role: None,
                 reproduce,
+                decided: findings.bump.as_ref().and_then(|b| b.decides()),
             }],
             findings,
             notes: Vec::new(),
@@ -148,6 +157,7 @@ impl CheckResult {
                     said_above: c.said_above,
                     role: Some(c.case.role),
                     reproduce,
+                    decided: None,
                 }
             })
             .collect();
@@ -166,13 +176,12 @@ impl CheckResult {
         }
     }
 
-    /// Whether every case passes: the exit status.
-    /// Every case passes; or the image shows a Tick 1* option not done, which is no
-    /// mistake (one option is enough), as a program's run of it passes.
+    /// Whether every case passes: the exit status. A Tick 1* bump image's case is decided by
+    /// its verdict where its bytes cannot say (`CaseResult::decided`): option 1 not done is
+    /// no mistake (one option is enough), and a random image is judged as a draw, as a
+    /// program's run of it is.
     pub fn passed(&self) -> bool {
-        let not_done =
-            matches!(self.subject, Subject::Image { .. }) && self.findings.star_not_done.is_some();
-        not_done || self.cases.iter().all(CaseResult::passed)
+        self.cases.iter().all(CaseResult::passed)
     }
 
     /// The one image checked, when this is the check of an image.

@@ -4,6 +4,7 @@
 //! stages say nothing of the options.
 
 use super::bump::BumpFinding;
+use super::bump_judge::BumpVerdict;
 use super::star_option::StarOption;
 use super::Findings;
 use whitted_core::star::BumpMistake;
@@ -40,31 +41,60 @@ pub fn place_and_fix(m: BumpMistake) -> (&'static str, &'static str) {
 /// nothing reproduces the image.
 pub fn lines(finding: &BumpFinding) -> Vec<String> {
     match finding.mistake {
-        Some(m) if finding.matched >= super::bump::FOLLOWS => {
-            let (place, fix) = place_and_fix(m);
-            vec![format!("where: {place}"), format!("fix: {fix}")]
-        }
+        Some(m) if finding.matched >= super::bump::FOLLOWS => where_and_fix(m),
         _ => Vec::new(),
+    }
+}
+
+/// The where and fix lines of `m`.
+fn where_and_fix(m: BumpMistake) -> Vec<String> {
+    let (place, fix) = place_and_fix(m);
+    vec![format!("where: {place}"), format!("fix: {fix}")]
+}
+
+/// Option 1's verdict in the report's lines: what it is, then, for a mistake (of a
+/// deterministic image or of a draw), where it is and the line to change.
+pub fn verdict_lines(verdict: &BumpVerdict) -> Vec<String> {
+    match verdict {
+        BumpVerdict::NotDone => vec![super::star_not_done::sentence(StarOption::Bump, false)],
+        BumpVerdict::Rendered(f) => std::iter::once(f.sentence()).chain(lines(f)).collect(),
+        BumpVerdict::Drawn(d) => std::iter::once(d.sentence())
+            .chain(d.mistake.into_iter().flat_map(where_and_fix))
+            .collect(),
+    }
+}
+
+/// What the case's bytes were compared with, where `verdict` decides it rather than they
+/// (`BumpVerdict::decides`): the render its reference is.
+pub fn compared_with(verdict: &BumpVerdict) -> &'static str {
+    match verdict {
+        BumpVerdict::NotDone => "the scene's Tick 1 render",
+        BumpVerdict::Drawn(_) => {
+            "the handout's method rendered with no soft shadows or depth of field, which no \
+             random image equals"
+        }
+        BumpVerdict::Rendered(_) => "the handout's method's render",
     }
 }
 
 /// Whether the findings are of a Tick 1* image (bump mapping), whose report has no Tick 1
 /// stages or diagnosis.
 pub fn is_star_image(findings: &Findings) -> bool {
-    findings.bump.is_some() || findings.star_not_done.is_some()
+    findings.bump.is_some()
 }
 
 /// The progress of the options shown by a Tick 1* image: option 1's state as the image shows
-/// it; option 2 is not shown by a bump image.
+/// it; option 2 is not shown by a bump image, unless it is a draw with both options on (then
+/// it is on, and judged on distributed.xml's image).
 pub fn progress(findings: &Findings) -> Option<String> {
-    let option1 = match (&findings.bump, findings.star_not_done) {
-        (_, Some(StarOption::Bump)) => "not done",
-        (Some(b), _) if b.passes() => "done",
-        (Some(_), _) => "with a mistake",
-        (None, _) => return None,
+    let verdict = findings.bump.as_ref()?;
+    let option2 = match verdict {
+        BumpVerdict::Drawn(_) => "on in this image too (judged on distributed.xml's image)",
+        _ => "not shown by this image",
     };
     Some(format!(
-        "progress: option 1 (bump mapping) {option1}; option 2 (distributed ray tracing) not shown by this image"
+        "progress: option 1 (bump mapping) {}; option 2 (distributed ray tracing) {option2}",
+        verdict.progress()
     ))
 }
 

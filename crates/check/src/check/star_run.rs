@@ -6,9 +6,10 @@
 use std::sync::Arc;
 use std::time::Duration;
 
-use crate::check::bump::{self, BumpFinding, FOLLOWS};
+use crate::check::bump::BumpFinding;
+use crate::check::bump_judge::{self, BumpVerdict};
 use crate::check::program::{run_programs, CaseOutcome, Launch, Ran, RunStatus, SuiteRun};
-use crate::check::star_both::{self, BumpDraw, Drawn};
+use crate::check::star_both::BumpDraw;
 use crate::check::star_detail;
 use crate::check::star_draw::{self, DrawCheck, Process};
 use crate::check::star_not_done;
@@ -88,20 +89,13 @@ impl StarVerdict {
     /// The JSON value.
     pub fn name(&self) -> &'static str {
         match self {
-            StarVerdict::Bump(b) => match (b.passes(), b.mistake) {
-                (true, _) => "bump-correct",
-                (false, Some(_)) => "bump-mistake",
-                (false, None) => "bump-unmatched",
-            },
+            StarVerdict::Bump(b) => bump_judge::rendered_name(b),
             StarVerdict::Draw(d) => match d.drawn_from() {
                 Some(Process::Course) => "course-draw",
                 Some(_) => "variant-draw",
                 None => "not-a-draw",
             },
-            StarVerdict::BumpDraw(b) => match b.passes() {
-                true => "bump-draw",
-                false => "bump-draw-mistake",
-            },
+            StarVerdict::BumpDraw(b) => bump_judge::drawn_name(b),
             StarVerdict::NotDone { .. } => "option-not-done",
             StarVerdict::NotJudged(_) => "not-judged",
         }
@@ -132,9 +126,9 @@ impl StarVerdict {
     }
 }
 
-/// The judge of `option`'s image, rendered under `course` at `bounces`: first whether it is
-/// the Tick 1 render (the option not done), then its option's judge; a bump image that no
-/// deterministic render reproduces is judged as a draw with both options on.
+/// The judge of `option`'s image of its handout scene, rendered under `course` at `bounces`:
+/// option 1's in `bump_judge.rs`'s order (the one `check -i bump.xml` follows too); option
+/// 2's first whether it is the Tick 1 render (the option not done), then as a draw.
 pub fn judge(
     option: StarOption,
     image: &Rgb8,
@@ -147,9 +141,6 @@ pub fn judge(
         option,
         neither: false,
     };
-    if star_not_done::is_tick1_render(&scene, image, bounces, course)? {
-        return Ok(not_done);
-    }
     Ok(match option {
         StarOption::Bump => {
             let map = Arc::new(handout_map(option)?);
@@ -163,21 +154,16 @@ pub fn judge(
                     .collect(),
                 ..Star::default()
             };
-            let (finding, _) = bump::check_bump(&scene, &star, image, bounces, course)?;
-            // Reproduced, rightly or by a catalogued mistake: deterministic, no draw.
-            if finding.matched >= FOLLOWS {
-                return Ok(StarVerdict::Bump(finding));
-            }
-            if star_not_done::is_flat_sphere(&scene, image, bounces, course)? {
-                return Ok(not_done);
-            }
-            match star_both::check(&scene, &star, image, bounces, course)? {
-                Some(Drawn::Bumped(draw)) => StarVerdict::BumpDraw(draw),
-                Some(Drawn::Smooth(_)) => not_done,
-                None => StarVerdict::Bump(finding),
+            match bump_judge::judge(&scene, &star, image, bounces, course)?.verdict {
+                BumpVerdict::NotDone => not_done,
+                BumpVerdict::Rendered(finding) => StarVerdict::Bump(finding),
+                BumpVerdict::Drawn(draw) => StarVerdict::BumpDraw(draw),
             }
         }
         StarOption::Distributed => {
+            if star_not_done::is_tick1_render(&scene, image, bounces, course)? {
+                return Ok(not_done);
+            }
             StarVerdict::Draw(star_draw::check(&scene, image, bounces, course)?)
         }
     })

@@ -35,31 +35,22 @@ pub fn opening(findings: &Findings) -> Vec<String> {
     if let Some(star) = findings.tick1_star.as_ref().filter(|s| s.plan.is_some()) {
         return vec![star.sentence()];
     }
-    // A Tick 1* image: the options' progress and the bump finding's what, where and fix;
-    // Tick 1's stages and diagnosis say nothing of it.
-    if let Some(progress) = super::star_fix::progress(findings) {
+    // A Tick 1* image: the options' progress and option 1's verdict, with where and fix for
+    // a mistake; Tick 1's stages and diagnosis say nothing of it.
+    // An image of another scene: the note alone; Tick 1's stages would read the default
+    // scene's.
+    if let Some(note) = &findings.another_scene {
+        return vec![note.clone()];
+    }
+    if let (Some(progress), Some(verdict)) = (super::star_fix::progress(findings), &findings.bump) {
         let mut lines = vec![progress];
-        if let Some(b) = &findings.bump {
-            lines.push(b.sentence());
-            lines.extend(super::star_fix::lines(b));
-        }
-        lines.extend(
-            findings
-                .star_not_done
-                .map(|o| crate::check::star_not_done::sentence(o, false)),
-        );
+        lines.extend(super::star_fix::verdict_lines(verdict));
         return lines;
     }
     let mut lines = vec![findings.progress.sentence()];
     // What the program is, or why its cases died, before anything about its images.
     lines.extend(findings.tick1_star.as_ref().map(|star| star.sentence()));
     lines.extend(findings.missing_class.as_ref().map(|m| m.sentence()));
-    lines.extend(findings.bump.as_ref().map(|b| b.sentence()));
-    lines.extend(
-        findings
-            .star_not_done
-            .map(|o| crate::check::star_not_done::sentence(o, false)),
-    );
     if let Some(noise) = findings.not_reproducible {
         lines.push(noise.sentence());
         return lines;

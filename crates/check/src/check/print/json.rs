@@ -5,11 +5,14 @@ use serde_json::{json, Value};
 
 use std::path::Path;
 
+use crate::check::bump_judge::{self, BumpVerdict};
 use crate::check::diagnose::Diagnosis;
 use crate::check::numbers::NumberFit;
 use crate::check::program::{RunStatus, SuiteRun};
 use crate::check::progress::Stages;
 use crate::check::result::{CaseResult, CheckResult, Subject};
+use crate::check::star_fix::place_and_fix;
+use crate::check::star_option::StarOption;
 use crate::check::terms::TermFit;
 use crate::check::{summary, words, CaseReport, Findings};
 
@@ -106,23 +109,45 @@ pub fn add_findings(object: &mut Value, findings: &Findings) {
             "known_cause": m.known_cause,
         });
     }
-    if let Some(bump) = &findings.bump {
-        object["bump"] = json!({
-            "parametrisation": bump.parametrisation,
-            "mistake": bump.mistake.map(|m| m.name()),
-            "matched": bump.matched,
-            "matched_correct": bump.matched_correct,
-            "candidates": bump.tried,
-            "passes": bump.passes(),
-            "where": bump.mistake.map(|m| crate::check::star_fix::place_and_fix(m).0),
-            "fix": bump.mistake.map(|m| crate::check::star_fix::place_and_fix(m).1),
-        });
+    match &findings.bump {
+        Some(BumpVerdict::Rendered(bump)) => {
+            object["bump"] = json!({
+                "verdict": bump_judge::rendered_name(bump),
+                "parametrisation": bump.parametrisation,
+                "mistake": bump.mistake.map(|m| m.name()),
+                "matched": bump.matched,
+                "matched_correct": bump.matched_correct,
+                "candidates": bump.tried,
+                "passes": bump.passes(),
+                "where": bump.mistake.map(|m| place_and_fix(m).0),
+                "fix": bump.mistake.map(|m| place_and_fix(m).1),
+            });
+        }
+        Some(BumpVerdict::Drawn(draw)) => {
+            object["bump_draw"] = json!({
+                "verdict": bump_judge::drawn_name(draw),
+                "parametrisation": draw.parametrisation,
+                "mistake": draw.mistake.map(|m| m.name()),
+                "statistic": draw.statistic,
+                "statistic_correct": draw.correct,
+                "candidates": draw.tried,
+                "passes": draw.passes(),
+                "where": draw.mistake.map(|m| place_and_fix(m).0),
+                "fix": draw.mistake.map(|m| place_and_fix(m).1),
+                "line": draw.sentence(),
+            });
+        }
+        Some(BumpVerdict::NotDone) => {
+            let option = StarOption::Bump;
+            object["star_not_done"] = json!({
+                "option": option.name(),
+                "line": crate::check::star_not_done::sentence(option, false),
+            });
+        }
+        None => {}
     }
-    if let Some(option) = findings.star_not_done {
-        object["star_not_done"] = json!({
-            "option": option.name(),
-            "line": crate::check::star_not_done::sentence(option, false),
-        });
+    if let Some(note) = &findings.another_scene {
+        object["another_scene"] = json!(note);
     }
     if let Some(star) = &findings.tick1_star {
         object["tick1_star"] = json!({
@@ -200,7 +225,12 @@ fn outcome_json(case: &CaseResult) -> Value {
 /// checked against (`"course"`, and `"course_chosen_because"` where it was not asked for).
 pub fn json(result: &CheckResult) -> Value {
     let mut object = match (&result.subject, result.image()) {
-        (Subject::Image { .. }, Some(case)) => case_json(case, Some(&result.findings)),
+        (Subject::Image { .. }, Some(case)) => {
+            let mut object = case_json(case, Some(&result.findings));
+            // The exit status: for a Tick 1* draw, its verdict, not `"verdict"`'s bytes.
+            object["passed"] = json!(result.passed());
+            object
+        }
         (subject, _) => {
             let program = match subject {
                 Subject::Program { program, .. } => program,

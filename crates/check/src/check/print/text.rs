@@ -136,7 +136,24 @@ fn image(
     hidden: &mut Hidden,
 ) {
     let d = &case.difference;
-    opening_lines(result, image_heading(case), screen);
+    // A Tick 1* bump image whose verdict, not its bytes, decides it: its heading names the
+    // verdict, and its bytes are only compared with what they are measured against.
+    let decided = result.cases[0]
+        .decided
+        .and(result.findings.bump.as_ref())
+        .map(|v| (v, crate::check::star_fix::compared_with(v)));
+    let heading = match decided {
+        Some((verdict, _)) => format!(
+            "{}, {}x{}, {} bounces: {}",
+            case.scene_name,
+            d.width,
+            d.height,
+            case.bounces,
+            verdict.name()
+        ),
+        None => image_heading(case),
+    };
+    opening_lines(result, heading, screen);
     if d.differing_pixels == 0 {
         screen.line(
             Keep::Always,
@@ -145,7 +162,13 @@ fn image(
         return;
     }
     screen.push(Keep::Always, words::passes_but_hidden(case));
-    screen.line(Keep::Always, summary::difference_sentence(d));
+    match decided {
+        Some((_, against)) => screen.line(
+            Keep::Always,
+            format!("against {against}: {}", summary::difference_sentence(d)),
+        ),
+        None => screen.line(Keep::Always, summary::difference_sentence(d)),
+    }
     if let (Some((x0, y0, x1, y1)), Some((x, y))) = (d.bounds, d.worst_pixel) {
         screen.line(
             Keep::IfRoom,
@@ -153,6 +176,10 @@ fn image(
         );
     }
     findings_lines(&result.findings, detail, screen, hidden);
+    if decided.is_some() {
+        // Its worst pixel against one render says nothing of a draw or of an option not done.
+        return;
+    }
     let commands = &result.cases[0].reproduce.explain;
     if detail.full() {
         if let Some(reference) = commands.first() {
@@ -282,8 +309,9 @@ fn case_line(c: &CaseResult) -> String {
 /// screen only the best, and only when it explains the images well; else every one.
 fn findings_lines(findings: &Findings, detail: Detail, screen: &mut Screen, hidden: &mut Hidden) {
     let list = &findings.diagnosis;
-    if crate::check::star_fix::is_star_image(findings) {
-        // The opening lines hold the bump finding; no Tick 1 mistake is looked for.
+    if crate::check::star_fix::is_star_image(findings) || findings.another_scene.is_some() {
+        // The opening lines hold the bump finding, or the note that the image is of another
+        // scene; no Tick 1 mistake is looked for.
         return;
     }
     if list.is_empty() {
