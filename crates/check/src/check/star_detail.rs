@@ -95,7 +95,13 @@ pub fn lines(star: &StarImage) -> Vec<String> {
                     "  {:<22} {:.2}{}",
                     f.process.name(),
                     f.statistic,
-                    if f.is_draw() { "  (a draw)" } else { "" }
+                    match (f.is_draw(), f.stride) {
+                        (true, _) => "  (a draw)".to_string(),
+                        (false, 1) => String::new(),
+                        (false, n) => format!(
+                            "  (on every {n}th pixel of every {n}th row: too far for the rest to matter)"
+                        ),
+                    }
                 )
             }));
             let (x, y, w, h) = d.region;
@@ -176,10 +182,12 @@ mod tests {
             Fit {
                 process: Process::Course,
                 statistic: 1.9876,
+                stride: 1,
             },
             Fit {
                 process: Process::LightSize,
                 statistic: 1.13,
+                stride: 1,
             },
         ];
         let draw = DrawCheck {
