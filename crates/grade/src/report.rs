@@ -70,7 +70,9 @@ pub fn page(
             );
         }
         Outcome::CompileTimeout => body += "<p>javac did not finish within the time limit.</p>\n",
-        Outcome::Ran(run) => body += &ran(run, shown, feedback),
+        Outcome::Ran(run) => {
+            body += &ran(run, shown, feedback, super::result::completed(submission))
+        }
     }
     body += &format!(
         "<p class=\"policy\">Graded {}.</p>\n",
@@ -94,12 +96,30 @@ pub fn page(
 
 /// The cases, the diagnosis with its fixes, and the progress.
 /// The progress is said once: the feedback above holds it when no mistake explains the images.
-fn ran(run: &SuiteRun, shown: &Shown, feedback: &str) -> String {
+/// `completed`: the files whitted's finished Tick 1 supplied to a one-file Tick 1* hand-in.
+fn ran(
+    run: &SuiteRun,
+    shown: &Shown,
+    feedback: &str,
+    completed: Option<&[&'static str]>,
+) -> String {
     let findings = &run.findings;
     let mut out = String::new();
     // A Tick 1* run's options' scenes say nothing of the Tick 1 stages: what was run instead.
     let progress = match findings.tick1_star.as_ref().filter(|t| t.plan.is_some()) {
-        Some(star) => star.sentence(),
+        // A one-file hand-in was recognised by what it is, whatever its package.
+        Some(star) => match completed {
+            Some(completed) => star.sentence().replacen(
+                &format!("({})", star.seen.why()),
+                &format!(
+                    "(a hand-in of its option's file, completed with whitted's finished Tick 1: \
+                     {})",
+                    completed.join(", ")
+                ),
+                1,
+            ),
+            None => star.sentence(),
+        },
         None => findings.progress.sentence(),
     };
     if !feedback.contains(&progress) {

@@ -23,7 +23,6 @@ use super::watch::Step;
 use whitted_check::check::image_cache::ImageCache;
 use whitted_check::check::program::{run_suite_as, Launch, LimitHit, Stage, SuiteRun};
 use whitted_check::check::suite::SuiteCase;
-use whitted_check::check::tick1_star;
 use whitted_core::course::Course;
 use whitted_core::error::{Error, Result};
 
@@ -156,12 +155,7 @@ pub fn grade(
         student: &submission.id,
     };
     // A Tick 1* submission runs its options' handout scenes, not the suite (`star_run.rs`).
-    let theirs: Vec<(&str, &[u8])> = files
-        .sources
-        .iter()
-        .map(|(name, bytes)| (*name, bytes.as_slice()))
-        .collect();
-    let star = tick1_star::in_sources(package, &theirs);
+    let star = files.star;
     let run = run_suite_as(
         &launch,
         &format!("java {main}"),
@@ -275,10 +269,20 @@ fn sources(setup: &Setup, files: &Files, package: Option<&str>) -> Vec<(String, 
         .sources
         .iter()
         .map(|(name, bytes)| (format!("{folder}{name}"), bytes.clone()));
+    // A Tick 1* hand-in of one file: whitted's finished Tick 1 for the rest (`finished.rs`).
+    let finished = files.completed.iter().filter_map(|name| {
+        let bytes = super::finished::source(name, setup.course)?;
+        let from = Some(super::skeleton::TICK1_PACKAGE);
+        Some((
+            format!("{folder}{name}"),
+            super::package::moved(&bytes, from, package),
+        ))
+    });
     setup
         .skeleton
         .sources_in(package)
         .into_iter()
+        .chain(finished)
         .chain(theirs)
         .map(|(path, bytes)| (path, without_bom(&bytes).to_vec()))
         .collect()
