@@ -75,6 +75,26 @@ fn a_bumpy_sphere_handed_in_alone_is_judged_on_whitted_finished_tick1() {
         "Ben Baker_61002_assignsubmission_file_",
         &[("BumpySphere.java", inverted)],
     );
+    // Slow, as a program of hundreds of rays a pixel is: ten seconds of CPU before it renders,
+    // more than the sandbox's CPU limit of twice `--timeout` (2 s here) and 5 s, but well
+    // within the minutes a Tick 1* case of a year's own size is given: it is judged, not killed.
+    let slow = bumpy_sphere("uk.ac.cam.cl.gfxintro.gh012.tick1star", &|t| {
+        t.replace(
+            "        super(position, radius, colour);\n",
+            "        super(position, radius, colour);\n        \
+             java.lang.management.ThreadMXBean cpu = \
+             java.lang.management.ManagementFactory.getThreadMXBean();\n        \
+             double spin = 0;\n        \
+             while (cpu.getCurrentThreadCpuTime() < 10_000_000_000L) spin += Math.sqrt(spin + 1);\n        \
+             if (spin < 0) System.out.println(spin);\n",
+        )
+    });
+    assert!(slow.contains("ThreadMXBean"), "the spin is written in");
+    hand_in(
+        &class,
+        "Dee Dale_61004_assignsubmission_file_",
+        &[("BumpySphere.java", slow)],
+    );
     // A Tick 1 Renderer alone is no Tick 1* hand-in: the Tick 1 needs all three files.
     let renderer = fixture("2021-22", "ef789", &[])
         .into_iter()
@@ -140,6 +160,10 @@ fn a_bumpy_sphere_handed_in_alone_is_judged_on_whitted_finished_tick1() {
         "{report}"
     );
     assert!(!report.contains("its package is tick1star"), "{report}");
+
+    let dee = result_json(&out, "61004");
+    assert_eq!(row("61004")["grade"], "100", "{rows:?}");
+    assert_eq!(verdicts(&dee)[0].1, "bump-correct", "{dee}");
 
     assert_eq!(row("61003")["status"], "no-files", "{rows:?}");
     let cy = result_json(&out, "61003");
