@@ -239,9 +239,14 @@ fn from_folders(dir: &Path) -> Result<Vec<(String, String, Holdings)>> {
 /// `..` or empty.
 /// What is said of the other `.java` files a submission holds: not graded, the year's own
 /// classes used instead, as in the course's tester.
-fn ignored_note(names: &std::collections::BTreeSet<String>, course: Course) -> String {
+/// `star`: a Tick 1* submission, whose `BumpySphere.java` is taken too.
+fn ignored_note(names: &std::collections::BTreeSet<String>, course: Course, star: bool) -> String {
     let names: Vec<&str> = names.iter().map(String::as_str).collect();
-    let taken = archive::submitted(course).join(", ");
+    let mut taken = archive::submitted(course).to_vec();
+    if star {
+        taken.extend(archive::OPTIONAL);
+    }
+    let taken = taken.join(", ");
     format!(
         "{}: not graded. Only {taken} are taken from a submission; every other class is the \
          course's own, so changes to {} do not count",
@@ -289,7 +294,8 @@ fn settle(students: Vec<(String, String, Holdings)>, course: Course) -> Vec<Subm
                 choose(&holdings, &mut notes, &mut warnings, course)
             };
             if !holdings.ignored_java.is_empty() {
-                notes.push(ignored_note(&holdings.ignored_java, course));
+                let star = files.as_ref().is_ok_and(|f| f.star.is_some());
+                notes.push(ignored_note(&holdings.ignored_java, course, star));
             }
             Submission {
                 id: safe,
@@ -465,5 +471,22 @@ mod tests {
         assert_eq!(safe_id("a/b c"), "a_b_c");
         assert_eq!(safe_id(""), "_");
         assert_eq!(safe_id("é"), "_");
+    }
+
+    #[test]
+    fn a_tick1_star_submission_s_note_says_its_bumpy_sphere_is_taken_too() {
+        let names = std::collections::BTreeSet::from(["Tick1.java".to_string()]);
+        let plain = ignored_note(&names, Course::Y2021, false);
+        assert!(
+            plain.contains("Only Plane.java, Renderer.java, Sphere.java are taken"),
+            "{plain}"
+        );
+        let star = ignored_note(&names, Course::Y2021, true);
+        assert!(
+            star.contains(
+                "Only Plane.java, Renderer.java, Sphere.java, BumpySphere.java are taken"
+            ),
+            "{star}"
+        );
     }
 }
