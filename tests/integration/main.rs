@@ -26,6 +26,7 @@ mod grade_courses;
 mod grade_hostile;
 mod grade_machine;
 mod grade_skeletons;
+mod grade_star;
 mod hostile;
 mod inspect;
 mod properties;

@@ -12,6 +12,7 @@ use super::archive::{self, Holdings};
 use super::moodle;
 use super::package;
 use super::status::StudentStatus;
+use whitted_check::check::tick1_star::{self, StarSeen};
 use whitted_core::course::Course;
 use whitted_core::error::{Error, Result};
 
@@ -39,9 +40,15 @@ pub struct Submission {
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Files {
     pub sources: Vec<(&'static str, Vec<u8>)>,
-    /// The package `Renderer.java` declares (None: the default package). Read for the later
-    /// years only, whose package carries the student's user id; 2016-17's is `gfx.tick2`.
+    /// The package `Renderer.java` declares (None: the default package), or `BumpySphere.java`
+    /// in a hand-in without a Renderer. Read for the later years only, whose package carries
+    /// the student's user id; 2016-17's is `gfx.tick2`.
     pub package: Option<String>,
+    /// Whether it is a Tick 1* submission, and by what (one rule, read once here).
+    pub star: Option<StarSeen>,
+    /// The files a Tick 1* hand-in of its option's file alone lacks, which whitted's finished
+    /// Tick 1 supplies (`finished.rs`), in the order of `archive::submitted`.
+    pub completed: Vec<&'static str>,
 }
 
 /// Why a student cannot be graded: the status of docs/grade.md and a sentence.
@@ -232,9 +239,14 @@ fn from_folders(dir: &Path) -> Result<Vec<(String, String, Holdings)>> {
 /// `..` or empty.
 /// What is said of the other `.java` files a submission holds: not graded, the year's own
 /// classes used instead, as in the course's tester.
-fn ignored_note(names: &std::collections::BTreeSet<String>, course: Course) -> String {
+/// `star`: a Tick 1* submission, whose `BumpySphere.java` is taken too.
+fn ignored_note(names: &std::collections::BTreeSet<String>, course: Course, star: bool) -> String {
     let names: Vec<&str> = names.iter().map(String::as_str).collect();
-    let taken = archive::submitted(course).join(", ");
+    let mut taken = archive::submitted(course).to_vec();
+    if star {
+        taken.extend(archive::OPTIONAL);
+    }
+    let taken = taken.join(", ");
     format!(
         "{}: not graded. Only {taken} are taken from a submission; every other class is the \
          course's own, so changes to {} do not count",
@@ -282,7 +294,8 @@ fn settle(students: Vec<(String, String, Holdings)>, course: Course) -> Vec<Subm
                 choose(&holdings, &mut notes, &mut warnings, course)
             };
             if !holdings.ignored_java.is_empty() {
-                notes.push(ignored_note(&holdings.ignored_java, course));
+                let star = files.as_ref().is_ok_and(|f| f.star.is_some());
+                notes.push(ignored_note(&holdings.ignored_java, course, star));
             }
             Submission {
                 id: safe,
@@ -322,6 +335,7 @@ fn choose(
         .iter()
         .map(|w| (*w, true))
         .chain(optional.iter().map(|w| (*w, false)));
+    let mut missing = Vec::new();
     for (wanted, required) in files {
         let mut copies: Vec<&archive::Found> = holdings
             .found
@@ -339,13 +353,10 @@ fn choose(
             )
         });
         let Some(first) = copies.first() else {
-            if !required {
-                continue;
+            if required {
+                missing.push(wanted);
             }
-            return Err(Refusal {
-                status: StudentStatus::NoFiles,
-                message: format!("no {wanted} in the submission"),
-            });
+            continue;
         };
         if name_of(first).is_some_and(|(_, exact)| !exact) {
             warnings.push(format!(
@@ -372,19 +383,30 @@ fn choose(
     }
     let package = match course.is_default() {
         true => None,
-        false => {
-            let renderer = chosen.iter().find(|(name, _)| *name == "Renderer.java");
-            let declared = renderer.map_or(Ok(None), |(_, bytes)| package::declared(bytes));
-            declared.map_err(|why| Refusal {
-                status: StudentStatus::Error,
-                message: format!("Renderer.java: {why}"),
-            })?
-        }
+        false => declared_package(&chosen)?,
     };
+    let theirs: Vec<(&str, &[u8])> = chosen.iter().map(|(n, b)| (*n, b.as_slice())).collect();
+    let bumpy = chosen.iter().any(|(name, _)| optional.contains(name));
+    let star = tick1_star::in_sources(package.as_deref(), &theirs).or_else(|| {
+        // Option 1's file without the Tick 1 it extends is a Tick 1* hand-in whatever its
+        // package: no Tick 1 submission is a BumpySphere alone.
+        (bumpy && !missing.is_empty()).then_some(StarSeen::Package)
+    });
+    if let Some(&first) = missing.first() {
+        let handed: Vec<&str> = chosen.iter().map(|(name, _)| *name).collect();
+        match star {
+            Some(_) => notes.push(super::finished::note(&handed, &missing, course)),
+            None => {
+                return Err(Refusal {
+                    status: StudentStatus::NoFiles,
+                    message: no_files(first, &handed, course),
+                })
+            }
+        }
+    }
     // A BumpySphere.java is Tick 1*'s only in a Tick 1* submission; elsewhere it is the
     // skeleton's stub a whole project carries (2023-24's as shipped does not compile).
-    let theirs: Vec<(&str, &[u8])> = chosen.iter().map(|(n, b)| (*n, b.as_slice())).collect();
-    if whitted_check::check::tick1_star::in_sources(package.as_deref(), &theirs).is_none() {
+    if star.is_none() {
         let before = chosen.len();
         chosen.retain(|(name, _)| !optional.contains(name));
         if chosen.len() < before {
@@ -399,7 +421,42 @@ fn choose(
     Ok(Files {
         sources: chosen,
         package,
+        star,
+        completed: missing,
     })
+}
+
+/// The package the submission's files declare: `Renderer.java`'s, else (a Tick 1* hand-in
+/// of option 1's file alone) `BumpySphere.java`'s; None for the default package.
+fn declared_package(
+    chosen: &[(&'static str, Vec<u8>)],
+) -> std::result::Result<Option<String>, Refusal> {
+    let declaring = ["Renderer.java", "BumpySphere.java"]
+        .iter()
+        .find_map(|wanted| chosen.iter().find(|(name, _)| name == wanted));
+    match declaring {
+        None => Ok(None),
+        Some((name, bytes)) => package::declared(bytes).map_err(|why| Refusal {
+            status: StudentStatus::Error,
+            message: format!("{name}: {why}"),
+        }),
+    }
+}
+
+/// Why a submission without `first` cannot be graded: a Tick 1 hand-in must be whole (only a
+/// Tick 1* option's file alone is completed with whitted's finished Tick 1).
+fn no_files(first: &str, handed: &[&str], course: Course) -> String {
+    match (course.is_default(), handed) {
+        (true, _) | (false, []) => format!("no {first} in the submission"),
+        (false, _) => format!(
+            "no {first} in the submission (it holds {} only): a Tick 1 submission is {}; a \
+             Tick 1* hand-in of one file (BumpySphere.java, or a Renderer.java with \
+             SHADOW_RAY_COUNT or DOF_RAY_COUNT, or in a tick1star package) is graded on \
+             whitted's finished Tick 1",
+            handed.join(", "),
+            archive::submitted(course).join(", ")
+        ),
+    }
 }
 
 #[cfg(test)]
@@ -414,5 +471,22 @@ mod tests {
         assert_eq!(safe_id("a/b c"), "a_b_c");
         assert_eq!(safe_id(""), "_");
         assert_eq!(safe_id("é"), "_");
+    }
+
+    #[test]
+    fn a_tick1_star_submission_s_note_says_its_bumpy_sphere_is_taken_too() {
+        let names = std::collections::BTreeSet::from(["Tick1.java".to_string()]);
+        let plain = ignored_note(&names, Course::Y2021, false);
+        assert!(
+            plain.contains("Only Plane.java, Renderer.java, Sphere.java are taken"),
+            "{plain}"
+        );
+        let star = ignored_note(&names, Course::Y2021, true);
+        assert!(
+            star.contains(
+                "Only Plane.java, Renderer.java, Sphere.java, BumpySphere.java are taken"
+            ),
+            "{star}"
+        );
     }
 }

@@ -24,6 +24,7 @@ mod clash;
 mod class;
 mod compile;
 mod feedback_zip;
+mod finished;
 mod html;
 mod intake;
 mod jvm;
@@ -383,6 +384,11 @@ fn key(
             for (name, bytes) in &files.sources {
                 parts.push(name.as_bytes().to_vec());
                 parts.push(bytes.clone());
+            }
+            // What completes a one-file Tick 1* hand-in is graded too.
+            for name in &files.completed {
+                parts.push(format!("finished {name}").into_bytes());
+                parts.extend(finished::source(name, options.course));
             }
         }
         Err(refusal) => parts.push(refusal.message.as_bytes().to_vec()),

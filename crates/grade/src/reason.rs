@@ -47,6 +47,13 @@ pub fn reason(result: &StudentResult) -> String {
             };
             match field("status").as_str() {
                 "ok" | "" => field("verdict"),
+                // A Tick 1* option's image: its judge's verdict (`bump-unmatched`,
+                // `not-a-draw`), which says what failed where the status says only that it
+                // was judged.
+                "tick1-star" => case
+                    .and_then(|c| c["tick1_star"]["verdict"].as_str())
+                    .unwrap_or("tick1-star")
+                    .to_string(),
                 other => other.to_string(),
             }
         })
@@ -112,6 +119,29 @@ mod tests {
             (1.0, false, "ok", "differs"),
         ]);
         assert_eq!(reason(&hidden), "timeout");
+    }
+
+    #[test]
+    fn a_failing_tick1_star_option_gives_its_judge_s_verdict() {
+        let mut result = graded(&[
+            (1.0, true, "tick1-star", ""),
+            (1.0, false, "tick1-star", ""),
+        ]);
+        let cases = result
+            .extra
+            .check
+            .as_mut()
+            .and_then(|c| c["cases"].as_array_mut())
+            .expect("cases");
+        cases[0]["tick1_star"] = json!({"verdict": "option-not-done"});
+        cases[1]["tick1_star"] = json!({"verdict": "not-a-draw"});
+        assert_eq!(reason(&result), "not-a-draw");
+        let timed_out = graded(&[(1.0, false, "tick1-star", ""), (1.0, false, "timeout", "")]);
+        assert_eq!(
+            reason(&timed_out),
+            "timeout",
+            "a limit is worse than a verdict"
+        );
     }
 
     #[test]

@@ -70,11 +70,13 @@ pub fn page(
             );
         }
         Outcome::CompileTimeout => body += "<p>javac did not finish within the time limit.</p>\n",
-        Outcome::Ran(run) => body += &ran(run, shown, feedback),
+        Outcome::Ran(run) => {
+            body += &ran(run, shown, feedback, super::result::completed(submission))
+        }
     }
     body += &format!(
         "<p class=\"policy\">Graded {}.</p>\n",
-        escape(&shown.policy.describe())
+        escape(&policy_line(outcome, shown.policy))
     );
     if !submission.notes.is_empty() {
         body += "<h2>Notes on the submission</h2>\n<ul>\n";
@@ -94,12 +96,30 @@ pub fn page(
 
 /// The cases, the diagnosis with its fixes, and the progress.
 /// The progress is said once: the feedback above holds it when no mistake explains the images.
-fn ran(run: &SuiteRun, shown: &Shown, feedback: &str) -> String {
+/// `completed`: the files whitted's finished Tick 1 supplied to a one-file Tick 1* hand-in.
+fn ran(
+    run: &SuiteRun,
+    shown: &Shown,
+    feedback: &str,
+    completed: Option<&[&'static str]>,
+) -> String {
     let findings = &run.findings;
     let mut out = String::new();
     // A Tick 1* run's options' scenes say nothing of the Tick 1 stages: what was run instead.
     let progress = match findings.tick1_star.as_ref().filter(|t| t.plan.is_some()) {
-        Some(star) => star.sentence(),
+        // A one-file hand-in was recognised by what it is, whatever its package.
+        Some(star) => match completed {
+            Some(completed) => star.sentence().replacen(
+                &format!("({})", star.seen.why()),
+                &format!(
+                    "(a hand-in of its option's file, completed with whitted's finished Tick 1: \
+                     {})",
+                    completed.join(", ")
+                ),
+                1,
+            ),
+            None => star.sentence(),
+        },
         None => findings.progress.sentence(),
     };
     if !feedback.contains(&progress) {
@@ -178,4 +198,54 @@ fn caption_only(caption: Vec<String>) -> PngImage {
         caption,
         tiles: [blank(), blank(), blank()],
     }])
+}
+
+/// How the student was graded, in words: the suite's policy, or for a Tick 1* run (whose two
+/// options' images are judged, not compared with the suite's references) Tick 1*'s own rule.
+fn policy_line(outcome: &Outcome, policy: &Policy) -> String {
+    match outcome {
+        Outcome::Ran(run) if super::result::is_star(run) => STAR_POLICY.to_string(),
+        _ => policy.describe(),
+    }
+}
+
+/// Tick 1*'s rule (docs/grade.md, "Tick 1*"), as `result.rs` applies it.
+const STAR_POLICY: &str = "as Tick 1*: each option's handout scene run once and its image \
+     judged by its option, accepted (100) when every option's verdict passes (one option done \
+     well and the other not done is enough), else 0; the Tick 1 suite's cases and tolerance do \
+     not apply";
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_tick1_star_run_is_said_to_be_graded_by_its_options_not_the_suite() {
+        let policy = Policy {
+            grading: super::super::policy::Grading::PassFail,
+            rule: whitted_check::check::pass_rule::PassRule::strict(2),
+            weights: vec![1.0],
+            source: "every case, 1 each".into(),
+        };
+        let star = Outcome::Ran(Box::new(SuiteRun {
+            program: "java a.tick1star.Tick1".into(),
+            cases: Vec::new(),
+            findings: {
+                let mut findings =
+                    whitted_check::check::Findings::of_star(whitted_core::course::Course::Y2021);
+                findings.tick1_star = Some(whitted_check::check::tick1_star::Tick1Star {
+                    seen: whitted_check::check::tick1_star::StarSeen::Package,
+                    timeout: 900,
+                    stopped: false,
+                    plan: Some("ran the options' scenes".into()),
+                });
+                findings
+            },
+        }));
+        let said = policy_line(&star, &policy);
+        assert!(said.starts_with("as Tick 1*"), "{said}");
+        assert!(said.ends_with("cases and tolerance do not apply"), "{said}");
+        let refused = Outcome::CompileTimeout;
+        assert_eq!(policy_line(&refused, &policy), policy.describe());
+    }
 }

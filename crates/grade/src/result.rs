@@ -230,7 +230,10 @@ pub fn build(
             progress = Some(report["progress"].clone());
             check = Some(report);
             beyond = Some(run.cases.iter().map(CaseBeyond::of).collect());
-            let feedback = feedback(run, policy);
+            let mut feedback = feedback(run, policy);
+            if let Some(completed) = completed(submission) {
+                feedback = format!("{feedback} {}", super::finished::feedback(completed));
+            }
             (StudentStatus::Graded, tests, passes, feedback, timed_out)
         }
     };
@@ -375,6 +378,12 @@ fn diagnosis_ids(run: &SuiteRun) -> Vec<&'static str> {
         .diagnosis
         .first()
         .map_or_else(Vec::new, |d| d.mistakes.ids())
+}
+
+/// The files a one-file Tick 1* hand-in lacked, which whitted's finished Tick 1 supplied.
+pub fn completed(submission: &Submission) -> Option<&[&'static str]> {
+    let files = submission.files.as_ref().ok()?;
+    (!files.completed.is_empty()).then_some(files.completed.as_slice())
 }
 
 /// Whether `run` is a Tick 1* program's run of its options' handout scenes (`star_run.rs`),

@@ -22,8 +22,8 @@ use super::warm_javac::{Warm, WarmJavac};
 use super::watch::Step;
 use whitted_check::check::image_cache::ImageCache;
 use whitted_check::check::program::{run_suite_as, Launch, LimitHit, Stage, SuiteRun};
+use whitted_check::check::star_option;
 use whitted_check::check::suite::SuiteCase;
-use whitted_check::check::tick1_star;
 use whitted_core::course::Course;
 use whitted_core::error::{Error, Result};
 
@@ -147,21 +147,17 @@ pub fn grade(
     // The classes, however they were made, for the sandbox's users to read.
     super::work_area::open_up(&work)?;
     let main = super::package::qualified(package, setup.skeleton.main);
+    // A Tick 1* submission runs its options' handout scenes, not the suite (`star_run.rs`).
+    let star = files.star;
     let launch = SandboxedJava {
         setup,
+        limits: run_limits(setup, star.is_some()),
         classes,
         main: main.clone(),
         slot,
         runs: Mutex::default(),
         student: &submission.id,
     };
-    // A Tick 1* submission runs its options' handout scenes, not the suite (`star_run.rs`).
-    let theirs: Vec<(&str, &[u8])> = files
-        .sources
-        .iter()
-        .map(|(name, bytes)| (*name, bytes.as_slice()))
-        .collect();
-    let star = tick1_star::in_sources(package, &theirs);
     let run = run_suite_as(
         &launch,
         &format!("java {main}"),
@@ -173,6 +169,20 @@ pub fn grade(
     let mut run = run;
     offer_only_their_files(&mut run, setup.course);
     Ok(Outcome::Ran(Box::new(run)))
+}
+
+/// The limits a student's program runs under: `--timeout`'s, but for a Tick 1* program at a
+/// year's own size, whose cases are given minutes (`star_option::timeout`): its sandbox's CPU
+/// time limit must follow that time, or a correct 800x600 render of hundreds of rays a pixel
+/// is killed after twice `--timeout` of CPU, long before its case's time is up.
+fn run_limits(setup: &Setup, star: bool) -> Limits {
+    match star {
+        true => Limits {
+            seconds: star_option::timeout(setup.course, setup.limits.seconds),
+            ..setup.limits
+        },
+        false => setup.limits,
+    }
 }
 
 /// The candidates after the first keep only mistakes in the files a student hands in: one in
@@ -275,10 +285,20 @@ fn sources(setup: &Setup, files: &Files, package: Option<&str>) -> Vec<(String, 
         .sources
         .iter()
         .map(|(name, bytes)| (format!("{folder}{name}"), bytes.clone()));
+    // A Tick 1* hand-in of one file: whitted's finished Tick 1 for the rest (`finished.rs`).
+    let finished = files.completed.iter().filter_map(|name| {
+        let bytes = super::finished::source(name, setup.course)?;
+        let from = Some(super::skeleton::TICK1_PACKAGE);
+        Some((
+            format!("{folder}{name}"),
+            super::package::moved(&bytes, from, package),
+        ))
+    });
     setup
         .skeleton
         .sources_in(package)
         .into_iter()
+        .chain(finished)
         .chain(theirs)
         .map(|(path, bytes)| (path, without_bom(&bytes).to_vec()))
         .collect()
@@ -305,6 +325,8 @@ fn lay_out(sources: &[(&str, &[u8])], work: &Path) -> Result<Vec<String>> {
 /// `java <their package>.Tick1`) with the case's arguments appended.
 struct SandboxedJava<'a> {
     setup: &'a Setup,
+    /// The limits its cases run under (`run_limits`).
+    limits: Limits,
     classes: PathBuf,
     /// The main class, qualified.
     main: String,
@@ -317,7 +339,7 @@ struct SandboxedJava<'a> {
 
 impl Launch for SandboxedJava<'_> {
     fn command(&self, dir: &Path) -> Result<Command> {
-        let limits = self.setup.limits;
+        let limits = self.limits;
         let mut program = vec![self.setup.java.display().to_string()];
         program.extend(jvm::options(limits));
         program.extend([
