@@ -108,6 +108,18 @@ fn a_both_options_draw_passes_with_i_bump_xml_as_without_it() {
     for contradiction in ["diagnosis:", "differs (tolerance", "trace the worst pixel"] {
         assert!(!text.contains(contradiction), "{contradiction}: {text}");
     }
+    // The report page's heading is the text's: the verdict, not the bytes' comparison.
+    let (_, status) = check_text(
+        d.path(),
+        &["-i", "bump.xml", "--report", "r.html", "draw.png"],
+    );
+    assert_eq!(status, Some(0));
+    let page = std::fs::read_to_string(d.path().join("r.html")).expect("report");
+    assert!(
+        page.contains("<strong>passes</strong>: bump.xml, 160x120, 2 bounces: bump-draw"),
+        "{page}"
+    );
+    assert!(!page.contains("differs (tolerance"), "{page}");
 }
 
 #[test]

@@ -122,6 +122,14 @@ impl Process {
         }
     }
 
+    /// Whether a program drawing from it does what the handout asks: the course's process, or
+    /// the aperture over the whole side, which the handout's words allow too
+    /// (docs/tick1star.md: "each coordinate ... scaled by the half side; the handout's words
+    /// allow the full side too"). Such a draw is named and passes.
+    pub fn accepted(self) -> bool {
+        matches!(self, Process::Course | Process::ApertureFullSide)
+    }
+
     /// What a program drawing from it does, in words.
     pub fn explanation(self) -> &'static str {
         match self {
@@ -136,8 +144,9 @@ impl Process {
                  unit sphere's point by it"
             }
             Process::ApertureFullSide => {
-                "the aperture's points span [-0.2, 0.2]: DOF_AMOUNT (0.2) is the side, so each \
-                 coordinate is (2 random - 1) times half of it"
+                "the aperture's points span [-0.2, 0.2], DOF_AMOUNT each way: the handout's \
+                 words allow this reading (its own program takes DOF_AMOUNT as the side, each \
+                 coordinate (2 random - 1) times half of it), so it passes"
             }
             Process::DofNotAveraged => {
                 "the 50 aperture rays' colours are summed: divide by DOF_RAY_COUNT"
@@ -245,6 +254,11 @@ impl DrawCheck {
             .map(|f| f.process)
     }
 
+    /// Whether the image is a draw of what the handout asks (`Process::accepted`).
+    pub fn passes(&self) -> bool {
+        self.drawn_from().is_some_and(Process::accepted)
+    }
+
     /// The verdict in a line.
     pub fn line(&self) -> String {
         let course = self.course().statistic;
@@ -254,6 +268,15 @@ impl DrawCheck {
                 "scores as one draw of the course's distribution does (mean z^2 {course:.2}, at most \
                  {THRESHOLD} passes; another estimator of the same expectation, such as \
                  shading each light sample, scores alike)"
+            ),
+            Some(variant) if variant.accepted() => format!(
+                "a draw of {} (mean z^2 {:.2}; the course's own process {course:.2}): {}",
+                variant.name(),
+                self.fits
+                    .iter()
+                    .find(|f| f.process == variant)
+                    .map_or(0.0, |f| f.statistic),
+                variant.explanation()
             ),
             Some(variant) => format!(
                 "not a draw of the course's distribution (mean z^2 {course:.2} > {THRESHOLD}), \

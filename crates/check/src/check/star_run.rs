@@ -92,6 +92,7 @@ impl StarVerdict {
             StarVerdict::Bump(b) => bump_judge::rendered_name(b),
             StarVerdict::Draw(d) => match d.drawn_from() {
                 Some(Process::Course) => "course-draw",
+                Some(p) if p.accepted() => "accepted-variant-draw",
                 Some(_) => "variant-draw",
                 None => "not-a-draw",
             },
@@ -105,7 +106,7 @@ impl StarVerdict {
     pub fn passes(&self) -> bool {
         match self {
             StarVerdict::Bump(b) => b.passes(),
-            StarVerdict::Draw(d) => d.drawn_from() == Some(Process::Course),
+            StarVerdict::Draw(d) => d.passes(),
             StarVerdict::BumpDraw(b) => b.passes(),
             // One option is enough; neither is not.
             StarVerdict::NotDone { neither, .. } => !neither,

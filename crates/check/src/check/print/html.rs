@@ -4,7 +4,6 @@
 //! to the worst region and enlarged). Every string is escaped: scene names, program lines and
 //! error output are a student's and must never become markup.
 
-use super::text::image_heading;
 use super::zoom::worst_region;
 use crate::check::program::RunStatus;
 use crate::check::report::heat_map;
@@ -158,7 +157,7 @@ pub fn page(result: &CheckResult) -> String {
     };
     let (n, _) = result.pass_counts();
     let heading = match result.image() {
-        Some(case) => image_heading(case),
+        Some(case) => super::text::checked_heading(result, case),
         None => format!("{n} of {} cases pass", result.cases.len()),
     };
     body += &format!(
@@ -174,7 +173,7 @@ pub fn page(result: &CheckResult) -> String {
     body += &paragraphs(&summary::opening(&result.findings)[..1]);
     if result.any_image() && !passed && !star_image {
         body += &findings_block(&result.findings);
-        if result.findings.diagnosis.is_empty() {
+        if result.findings.diagnosis.is_empty() && result.findings.another_scene.is_none() {
             body += "<p>No catalogued mistake reproduces the images better than the reference does.</p>\n";
         }
     } else {

@@ -105,6 +105,33 @@ impl Hidden {
 
 /// The first line of an image's report: the scene, the size, the bounces, the verdict and
 /// the rule it was given by.
+/// The verdict that decides a checked image, where one does (a Tick 1* bump image's draw or
+/// option not done), not its bytes.
+fn decided_verdict(result: &CheckResult) -> Option<&crate::check::bump_judge::BumpVerdict> {
+    result
+        .cases
+        .first()
+        .and_then(|c| c.decided)
+        .and(result.findings.bump.as_ref())
+}
+
+/// A checked image's heading, in the text and the report page: the verdict's name where the
+/// verdict decides it, else the byte comparison's (`image_heading`).
+pub fn checked_heading(result: &CheckResult, case: &CaseReport) -> String {
+    let d = &case.difference;
+    match decided_verdict(result) {
+        Some(verdict) => format!(
+            "{}, {}x{}, {} bounces: {}",
+            case.scene_name,
+            d.width,
+            d.height,
+            case.bounces,
+            verdict.name()
+        ),
+        None => image_heading(case),
+    }
+}
+
 pub fn image_heading(case: &CaseReport) -> String {
     let d = &case.difference;
     format!(
@@ -138,22 +165,8 @@ fn image(
     let d = &case.difference;
     // A Tick 1* bump image whose verdict, not its bytes, decides it: its heading names the
     // verdict, and its bytes are only compared with what they are measured against.
-    let decided = result.cases[0]
-        .decided
-        .and(result.findings.bump.as_ref())
-        .map(|v| (v, crate::check::star_fix::compared_with(v)));
-    let heading = match decided {
-        Some((verdict, _)) => format!(
-            "{}, {}x{}, {} bounces: {}",
-            case.scene_name,
-            d.width,
-            d.height,
-            case.bounces,
-            verdict.name()
-        ),
-        None => image_heading(case),
-    };
-    opening_lines(result, heading, screen);
+    let decided = decided_verdict(result).map(|v| (v, crate::check::star_fix::compared_with(v)));
+    opening_lines(result, checked_heading(result, case), screen);
     if d.differing_pixels == 0 {
         screen.line(
             Keep::Always,
