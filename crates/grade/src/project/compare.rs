@@ -55,9 +55,8 @@ struct CourseClass {
     own: Option<Vec<u8>>,
 }
 
-/// The year's classes but the student's own files (Tick 1*'s `BumpySphere.java` too: the
-/// skeleton's stub is theirs to fill in, with whatever helpers) and the unit tests, each with
-/// the project's copy.
+/// The year's classes but the student's own files and the unit tests, each with the project's
+/// copy.
 fn course_classes(found: &Found, course: Course) -> Result<Vec<CourseClass>> {
     let skeleton = Skeleton::clean_room(course)?;
     let package = package_of(found, &skeleton);
@@ -66,7 +65,6 @@ fn course_classes(found: &Found, course: Course) -> Result<Vec<CourseClass>> {
         .files
         .iter()
         .filter(|(name, _)| !theirs.contains(&name.as_str()))
-        .filter(|(name, _)| !archive::OPTIONAL.contains(&name.as_str()))
         .filter(|(name, _)| !NOT_RENDERED.contains(&name.as_str()))
         .map(|(name, bytes)| CourseClass {
             name: name.clone(),
@@ -90,6 +88,11 @@ fn package_of<'a>(found: &'a Found, skeleton: &'a Skeleton) -> Option<&'a str> {
 pub fn members_differ(found: &Found, course: Course) -> Result<Vec<(String, String)>> {
     let mut out = Vec::new();
     for CourseClass { name, year, own } in course_classes(found, course)? {
+        // Tick 1*'s BumpySphere is the year's class only as a stub the student fills in, with
+        // whatever helpers: theirs, not the course's.
+        if archive::OPTIONAL.contains(&name.as_str()) {
+            continue;
+        }
         let Some(own) = own else {
             out.push((
                 name.clone(),
@@ -225,7 +228,9 @@ pub fn renders_differ(
         let mut sources: Vec<(String, Vec<u8>)> = classes
             .iter()
             .map(|class| {
-                let bytes = match (swapped == Some(class.name.as_str()), &class.own) {
+                // The student's own BumpySphere always: it is theirs (`members_differ`).
+                let theirs = archive::OPTIONAL.contains(&class.name.as_str());
+                let bytes = match (swapped == Some(class.name.as_str()) || theirs, &class.own) {
                     (true, Some(own)) => own.clone(),
                     _ => class.year.clone(),
                 };
