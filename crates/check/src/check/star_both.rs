@@ -16,7 +16,7 @@ use whitted_core::course::Course;
 use whitted_core::error::Result;
 use whitted_core::scene::Scene;
 use whitted_core::star::bump::PARAMETRISATIONS;
-use whitted_core::star::{BumpMethod, BumpMistake, DepthOfField, SoftShadows, Star};
+use whitted_core::star::{BumpMethod, BumpMistake, DepthOfField, Grid, SoftShadows, Star};
 
 /// A bump image found to be a draw of the bumped scene with both options on.
 #[derive(Debug, Clone, PartialEq)]
@@ -112,10 +112,15 @@ fn lowest(
     course: Course,
 ) -> Result<Option<(usize, f64)>> {
     let stars: Vec<(Star, f64)> = stars.iter().map(|s| (s.clone(), 1.0)).collect();
-    Ok(star_prepass::scores(scene, &stars, image, bounces, course)?
+    let scores = star_prepass::scores(scene, &stars, image, bounces, course)?;
+    // The one scored on every pixel, if any was: a grid's score runs low (its floor is
+    // coarser) and would win against it unfairly.
+    let whole = scores.iter().any(|s| s.grid == Grid::EVERY);
+    Ok(scores
         .iter()
-        .map(|s| s.mean())
         .enumerate()
+        .filter(|(_, s)| !whole || s.grid == Grid::EVERY)
+        .map(|(i, s)| (i, s.mean()))
         .min_by(|a, b| a.1.total_cmp(&b.1)))
 }
 

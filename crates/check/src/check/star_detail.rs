@@ -98,9 +98,8 @@ pub fn lines(star: &StarImage) -> Vec<String> {
                     match (f.is_draw(), f.stride) {
                         (true, _) => "  (a draw)".to_string(),
                         (false, 1) => String::new(),
-                        (false, n) => format!(
-                            "  (on every {n}th pixel of every {n}th row: too far for the rest to matter)"
-                        ),
+                        (false, n) =>
+                            format!("  (scored on every {n}th pixel of every {n}th row only)"),
                     }
                 )
             }));

@@ -216,14 +216,17 @@ pub struct Fit {
     pub process: Process,
     /// The mean z^2 over every random channel of the pixels scored.
     pub statistic: f64,
-    /// The pixels scored: 1 every pixel; more, the pre-pass's grid alone (the process was too
-    /// far from the image for the rest to matter).
+    /// The pixels scored: 1 every pixel; more, the pre-pass's grid alone (the process was not
+    /// the best of those scored with it, or too far from the image for the rest to matter).
     pub stride: u32,
 }
 
 impl Fit {
+    /// Whether the image is a draw of the process: scored on every pixel (a grid's score,
+    /// its floor coarser, runs low, and is only ever a process too far to matter) and under
+    /// the threshold.
     pub fn is_draw(&self) -> bool {
-        self.statistic <= THRESHOLD
+        self.stride == 1 && self.statistic <= THRESHOLD
     }
 }
 

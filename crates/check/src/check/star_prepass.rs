@@ -40,9 +40,10 @@ const FLOOR: NoiseFloor = NoiseFloor {
 /// about [`PIXELS`] pixels (every pixel, for images that small).
 pub fn grid(width: u32, height: u32) -> Grid {
     let pixels = f64::from(width) * f64::from(height);
-    let stride = (pixels / f64::from(PIXELS)).sqrt().floor().max(1.0);
+    let stride = (pixels / f64::from(PIXELS)).sqrt().floor().max(1.0) as u32;
+    // No wider than the narrower side: a grid keeps a pixel of every row and column it spans.
     Grid {
-        stride: stride as u32,
+        stride: stride.min(width.min(height)).max(1),
     }
 }
 
@@ -93,6 +94,9 @@ mod tests {
     fn the_grid_leaves_about_five_thousand_pixels() {
         assert_eq!(grid(160, 120), Grid::EVERY);
         assert_eq!(grid(40, 30), Grid::EVERY);
+        // A strip keeps a pixel across.
+        assert_eq!(grid(100_000, 1), Grid::EVERY);
+        assert_eq!(grid(100_000, 3).count(3), 1);
         for (w, h, stride) in [(640, 480, 7), (800, 600, 9), (1920, 1080, 20)] {
             let g = grid(w, h);
             assert_eq!(g.stride, stride, "{w}x{h}");
