@@ -37,6 +37,8 @@ pub fn run(args: &CheckArgs) -> Result<bool> {
             "--watch, --no-browser and --port are options of --view".into(),
         ));
     }
+    // A Tick 1* image's reference, the first time, takes up to a minute: show how far it is.
+    whitted_check::check::star_reference::show_progress();
     if let Some(routed) = star::routed(args) {
         return run(&routed);
     }

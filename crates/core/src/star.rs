@@ -31,8 +31,8 @@ use std::sync::Arc;
 pub use aperture::{DepthOfField, Focus};
 pub use bump::{BumpMap, BumpMethod, BumpMistake, Parametrisation};
 pub use image::{
-    course_draw, expectation, expectation_on, star_film, Grid, NoiseFloor, Sampling, StarFrame,
-    StarImage, StarStats,
+    course_draw, expectation, expectation_counted, expectation_on, star_film, Grid, NoiseFloor,
+    Sampling, StarFrame, StarImage, StarStats,
 };
 pub use light::{LightSampling, ShadowShare, ShadowedTerms, SoftShadows};
 

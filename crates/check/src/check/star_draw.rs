@@ -222,6 +222,16 @@ pub struct Fit {
 }
 
 impl Fit {
+    /// The fit of `process` as the pre-pass scored it: its mean, and its grid's stride when it
+    /// was not scored on every pixel.
+    fn of(process: Process, score: &Score) -> Fit {
+        Fit {
+            process,
+            statistic: score.mean(),
+            stride: score.grid.stride,
+        }
+    }
+
     /// Whether the image is a draw of the process: scored on every pixel (a grid's score,
     /// its floor coarser, runs low, and is only ever a process too far to matter) and under
     /// the threshold.
@@ -326,11 +336,7 @@ pub fn check(scene: &Scene, image: &Rgb8, bounces: u32, course: Course) -> Resul
         Ok(processes
             .iter()
             .zip(&scores)
-            .map(|(process, s)| Fit {
-                process: *process,
-                statistic: s.mean(),
-                stride: s.grid.stride,
-            })
+            .map(|(process, s)| Fit::of(*process, s))
             .collect())
     };
     let course_score = {
@@ -340,11 +346,7 @@ pub fn check(scene: &Scene, image: &Rgb8, bounces: u32, course: Course) -> Resul
     let course_score = course_score
         .first()
         .ok_or_else(|| Error::Usage("no score of the course's process".into()))?;
-    let mut fits = vec![Fit {
-        process: Process::Course,
-        statistic: course_score.mean(),
-        stride: course_score.grid.stride,
-    }];
+    let mut fits = vec![Fit::of(Process::Course, course_score)];
     if !fits[0].is_draw() {
         fits.extend(score(&Process::ALL[1..])?);
     }

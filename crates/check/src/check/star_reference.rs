@@ -6,12 +6,25 @@
 
 use std::collections::HashMap;
 use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex, OnceLock};
 
 use crate::check::star_reference_file as file;
 use whitted_core::error::Result;
+use whitted_core::progress::Bar;
 use whitted_core::scene::Scene;
-use whitted_core::star::{expectation_on, Grid, NoiseFloor, Star, StarFrame, StarImage};
+use whitted_core::star::{expectation_counted, Grid, NoiseFloor, Star, StarFrame, StarImage};
+
+/// Whether a reference being computed shows a bar (`show_progress`).
+static SHOW_PROGRESS: AtomicBool = AtomicBool::new(false);
+
+/// Shows a progress bar on stderr while a reference is computed, from now on in this process:
+/// `whitted check`, where one person waits up to a minute for a whole reference the first
+/// time. The bar appears only after half a second and only on a terminal
+/// (`whitted_core::progress::Bar`); grade and serve, which draw their own, never call this.
+pub fn show_progress() {
+    SHOW_PROGRESS.store(true, Ordering::Relaxed);
+}
 
 /// What the memory may hold, in bytes of references (a 640x480 one is about 35 MB); past it,
 /// new references are not kept in memory (they still are on disk).
@@ -158,7 +171,7 @@ impl ReferenceCache {
         let image = match from_disk {
             Some(image) => Arc::new(image),
             None => {
-                let image = Arc::new(expectation_on(frame, floor, seed, key.grid)?);
+                let image = Arc::new(compute(&key, frame, floor, seed)?);
                 if let Some(folder) = &self.folder {
                     file::store(folder, &text, &image);
                 }
@@ -183,6 +196,31 @@ impl ReferenceCache {
             .lock()
             .unwrap_or_else(std::sync::PoisonError::into_inner)
     }
+}
+
+/// The reference of `key`, computed; with a bar when `show_progress` was called.
+fn compute(
+    key: &ReferenceKey,
+    frame: &StarFrame,
+    floor: NoiseFloor,
+    seed: u64,
+) -> Result<StarImage> {
+    let shown = SHOW_PROGRESS.load(Ordering::Relaxed);
+    let rows = key.grid.count(key.height);
+    let what = match key.grid == Grid::EVERY {
+        true => format!(
+            "reference {}x{} (kept for next time)",
+            key.width, key.height
+        ),
+        false => format!(
+            "reference {}x{}, 1 px in {}x{} (kept for next time)",
+            key.width, key.height, key.grid.stride, key.grid.stride
+        ),
+    };
+    let bar = Bar::counting(u64::from(rows), !shown, &what, "rows");
+    let image = expectation_counted(frame, (floor, seed), key.grid, &|| bar.advance(1))?;
+    bar.finish();
+    Ok(image)
 }
 
 /// The bytes `image` holds, about.

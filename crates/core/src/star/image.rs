@@ -121,9 +121,24 @@ pub fn expectation_on(
     seed: u64,
     grid: Grid,
 ) -> Result<StarImage> {
-    render(frame, grid, |model, accel, x, y| {
-        expect_pixel(model, accel, frame, (floor, seed), (x, y), None)
-    })
+    expectation_counted(frame, (floor, seed), grid, &|| {})
+}
+
+/// [`expectation_on`], calling `row_done` as each of the grid's rows is finished (from any
+/// thread): a whole expectation at the course's size can take a minute, and the person
+/// waiting for it is shown how far it is (`whitted_check`'s reference cache draws the bar).
+pub fn expectation_counted(
+    frame: &StarFrame,
+    (floor, seed): (NoiseFloor, u64),
+    grid: Grid,
+    row_done: &(dyn Fn() + Sync),
+) -> Result<StarImage> {
+    render_counted(
+        frame,
+        grid,
+        |model, accel, x, y| expect_pixel(model, accel, frame, (floor, seed), (x, y), None),
+        row_done,
+    )
 }
 
 /// Every `stride`-th pixel of every `stride`-th row, starting half a stride in (the middle of
@@ -266,6 +281,16 @@ fn render(
     grid: Grid,
     pixel: impl Fn(&crate::course::Rules, &Accelerator, u32, u32) -> PixelResult + Sync,
 ) -> Result<StarImage> {
+    render_counted(frame, grid, pixel, &|| {})
+}
+
+/// [`render`], calling `row_done` after each row.
+fn render_counted(
+    frame: &StarFrame,
+    grid: Grid,
+    pixel: impl Fn(&crate::course::Rules, &Accelerator, u32, u32) -> PixelResult + Sync,
+    row_done: &(dyn Fn() + Sync),
+) -> Result<StarImage> {
     let model = frame.course.rules();
     let accel = accelerator(&model, frame.scene);
     let (width, height) = (
@@ -278,9 +303,11 @@ fn render(
             if interrupt::requested() {
                 return Vec::new();
             }
-            (0..width)
+            let row = (0..width)
                 .map(|i| pixel(&model, &accel, grid.at(i), grid.at(j)))
-                .collect()
+                .collect();
+            row_done();
+            row
         })
         .collect();
     interrupt::check()?;

@@ -385,4 +385,12 @@ fn an_expectation_on_a_grid_is_the_whole_one_at_its_pixels() {
             assert_eq!(sparse.variance[s], whole.variance[w], "({i}, {j})");
         }
     }
+    // Counted (the check's progress bar), the same image, one call per row of the grid.
+    let rows = std::sync::atomic::AtomicU32::new(0);
+    let counted = expectation_counted(&f, (floor, 7), grid, &|| {
+        rows.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    })
+    .expect("renders");
+    assert_eq!(counted, sparse);
+    assert_eq!(rows.into_inner(), sparse.height);
 }
