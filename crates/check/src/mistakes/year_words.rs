@@ -7,7 +7,7 @@
 
 use std::borrow::Cow;
 
-use whitted_core::course::{Course, ShadowBias};
+use whitted_core::course::{Course, ShadowBias, View};
 
 /// 2016-17's phrase, and the later years'. Replaced in one pass from left to right, the first
 /// phrase of the table that starts at a place winning, so a replacement is never read again.
@@ -46,13 +46,32 @@ const ALONG_N: [(&str, &str); 2] = [
     ),
 ];
 
+/// The view direction as the years whose V points to the origin of the ray that found the
+/// point (2017-18 on) write it: there `normalise(-P)` is itself a mistake (`view-to-camera`),
+/// so no fix may send a student to it.
+const FROM_RAY_ORIGIN: [(&str, &str); 2] = [
+    (
+        "V = normalise(P) instead of normalise(-P)",
+        "V = normalise(P) instead of normalise(O - P), towards the origin O of the ray that found P",
+    ),
+    (
+        "V = normalise(-P): Vector3 V = P.scale(-1).normalised();",
+        "V = normalise(O - P): Vector3 V = O.subtract(P).normalised();",
+    ),
+];
+
 /// `text` (a catalogue text in 2016-17's names) in `course`'s names.
 pub fn in_year(text: &'static str, course: Course) -> Cow<'static, str> {
     if course.is_default() {
         return Cow::Borrowed(text);
     }
+    let rules = course.rules();
     let named = replaced(Cow::Borrowed(text), &LATER);
-    match course.rules().shadow_bias {
+    let named = match rules.view {
+        View::FromRayOrigin => replaced(named, &FROM_RAY_ORIGIN),
+        View::ToCamera => named,
+    };
+    match rules.shadow_bias {
         ShadowBias::AlongN => replaced(named, &ALONG_N),
         _ => named,
     }
@@ -104,6 +123,22 @@ mod tests {
         assert!(Bug::NoShadowBias
             .fix(Course::Y2016)
             .contains("new Ray(P.add(L.scale(EPSILON)), L)"));
+        // From 2017-18 V points to the ray's origin: the fix of a flipped V says so, never
+        // normalise(-P), which is that year's view-to-camera mistake.
+        assert!(Bug::ViewFlipped
+            .fix(Course::Y2016)
+            .contains("P.scale(-1).normalised()"));
+        for course in Course::ALL.into_iter().filter(|c| !c.is_default()) {
+            let fix = Bug::ViewFlipped.fix(course);
+            assert!(
+                fix.contains("Vector3 V = O.subtract(P).normalised();")
+                    && !fix.contains("scale(-1)"),
+                "{course}: {fix}"
+            );
+            assert!(Bug::ViewFlipped
+                .description(course)
+                .contains("instead of normalise(O - P)"));
+        }
         let fix = no_shadows.fix(Course::Y2023);
         assert!(
             fix.contains("nearer than distanceToLight = |light.getPosition() - P|"),
