@@ -75,8 +75,8 @@ pub struct CheckArgs {
     /// Write the suite's scenes into DIR (made if missing), so that every failing case can be
     /// rerun and explained from your own directory (a Tick 1* program's: the handout's scenes
     /// it ran, bump.xml with its map and distributed.xml): without it no rerun command is
-    /// printed
-    #[arg(long, value_name = "DIR", requires = "program")]
+    /// printed. With --program or a project folder (an image check runs no scene)
+    #[arg(long, value_name = "DIR")]
     pub suite_dir: Option<PathBuf>,
 
     /// Seconds each case of `--program` may take

@@ -42,6 +42,18 @@ pub fn run(args: &CheckArgs) -> Result<bool> {
     if let Some(routed) = star::routed(args) {
         return run(&routed);
     }
+    let project = match (&args.program, &args.image) {
+        (None, Some(dir)) => project::is_project_arg(dir),
+        (None, None) => true,
+        (Some(_), _) => false,
+    };
+    if args.suite_dir.is_some() && args.program.is_none() && !project {
+        return Err(whitted_core::Error::Usage(
+            "--suite-dir writes the scenes a program runs: give it with --program, a project \
+             folder, or no image in a project folder"
+                .into(),
+        ));
+    }
     match (&args.program, &args.image) {
         (Some(program), _) => run_program(args, program),
         // The handout's scenes, embedded: `--star distributed`, and `--star bump` without -i.

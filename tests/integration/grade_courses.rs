@@ -422,3 +422,38 @@ fn a_slow_tick1_star_project_is_one_timeout_and_said_to_be_tick1_star() {
         std::fs::read_to_string(dir.path().join("out/students/gh012/report.html")).expect("report");
     assert!(report.contains("a Tick 1* program"), "{report}");
 }
+
+/// A later year's class graded without `--course` (2016-17's Tick 2, the default) would be
+/// every student a compile error with grade 0, in a worksheet ready to upload: it is refused
+/// before anyone is graded, naming the flag, and nothing is written.
+#[test]
+fn a_tick1_class_graded_without_its_year_is_refused_and_nothing_is_written() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let class = dir.path().join("class");
+    let tree = "src/uk/ac/cam/cl/gfxintro/{crsid}/tick1";
+    for (folder, crsid) in [
+        ("Ada_41001_assignsubmission_file", "ab123"),
+        ("Ben_41002_assignsubmission_file", "cd456"),
+    ] {
+        student(&class, folder, &submission(crsid, &[]), tree, crsid);
+    }
+    let out = grade(dir.path(), &["class", "-o", "out"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains("2 of 2 submissions are Tick 1 hand-ins (students 41001, 41002")
+            && stderr.contains("give --course YEAR, one of 2017-18"),
+        "{stderr}"
+    );
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(!dir.path().join("out").join("moodle.csv").exists());
+    // With the year the same class is graded.
+    let out = grade_year(dir.path(), "2021-22");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let rows = records(&dir.path().join("out/class.csv"));
+    assert!(rows.iter().all(|r| r["grade"] == "100"), "{rows:?}");
+}

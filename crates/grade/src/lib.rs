@@ -48,6 +48,7 @@ mod student;
 mod warm_javac;
 mod watch;
 mod work_area;
+mod wrong_year;
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -134,6 +135,7 @@ pub fn run(options: &Options) -> Result<Summary> {
     refuse_outdir_inside(&options.submissions, &options.outdir)?;
     let (skeleton, suite, policy) = course(options)?;
     let submissions = intake::read(&options.submissions, options.course)?;
+    wrong_year::refuse_tick1_as_2016(&submissions, options.course)?;
     let only = only(options, &submissions)?;
     let java = jdk_tool("java")?;
     let javac = jdk_tool("javac")?;

@@ -124,6 +124,51 @@ impl Stages {
             .collect();
         format!("progress: {}", parts.join("; "))
     }
+
+    /// What to do next, in the handout's order, while a stage is still not written: the
+    /// diagnosis is ranked by how much each entry explains, which is not the order a student
+    /// works in. The earliest stage not written yet, or with a mistake before it, that one:
+    /// "next: shading (Renderer.illuminate, not written yet): ...". None when every stage is
+    /// written (the diagnosis says all there is) or nothing is known.
+    pub fn next(&self) -> Option<String> {
+        let later_missing = |i: usize| {
+            self.stages[i + 1..]
+                .iter()
+                .find(|(_, s)| *s == StageState::Missing)
+                .map(|(stage, _)| stage.key(self.course))
+        };
+        let (i, (stage, state)) = self
+            .stages
+            .iter()
+            .enumerate()
+            .find(|(_, (_, s))| matches!(s, StageState::Missing | StageState::Mistaken(_)))?;
+        let key = stage.key(self.course);
+        match state {
+            StageState::Missing => {
+                let entry = stage
+                    .missing_entries()
+                    .iter()
+                    .find(|b| b.offered_in(self.course))?;
+                let then = match later_missing(i) {
+                    Some(after) => format!(", then {after}"),
+                    None => String::new(),
+                };
+                Some(format!(
+                    "next: {key} ({}, not written yet), the handout's next stage{then}; the \
+                     later stages show once it is",
+                    entry.place()
+                ))
+            }
+            StageState::Mistaken(ids) => later_missing(i).map(|after| {
+                format!(
+                    "next: mend {key} ({}) before writing {after}: its mistake shows in every \
+                     later stage's image",
+                    ids.join(", ")
+                )
+            }),
+            _ => None,
+        }
+    }
 }
 
 /// The stage not written yet (of `missing`) that keeps anything of `stage` from showing, if
@@ -189,6 +234,14 @@ mod tests {
         );
         let states: Vec<&str> = p.stages.iter().map(|(_, s)| s.name()).collect();
         assert_eq!(states, ["done", "mistaken", "missing", "missing"]);
+        // The earliest stage with a mistake comes before the unwritten ones.
+        assert_eq!(
+            p.next().as_deref(),
+            Some(
+                "next: mend lights (reflect-unclamped) before writing shadows: its mistake \
+                 shows in every later stage's image"
+            )
+        );
         let unknown = Stages::of(&Evidence::Nothing, Course::Y2016);
         assert!(unknown
             .stages
@@ -248,6 +301,36 @@ mod tests {
              shadows not reached (spheres not written yet: nothing of it can show); \
              reflection not reached (spheres not written yet: nothing of it can show)"
         );
+        assert_eq!(
+            p.next().as_deref(),
+            Some(
+                "next: spheres (Sphere.intersectionWith, not written yet), the handout's next \
+                 stage, then planes; the later stages show once it is"
+            )
+        );
+        // Half-way through 2023-24's handout: shading before planes, whatever the diagnosis
+        // ranks first.
+        let half = Stages::of(
+            &Evidence::Explained {
+                mistakes: Mistakes::of(&[
+                    Bug::ShadingMissing,
+                    Bug::PlanesMissing,
+                    Bug::ReflectionIgnored,
+                ]),
+                number: None,
+                explained: 1.0,
+            },
+            Course::Y2023,
+        );
+        let next = half.next().expect("a next stage");
+        assert!(
+            next.starts_with("next: shading (Renderer.illuminate(..., O), not written yet)")
+                && next.contains("then planes"),
+            "{next}"
+        );
+        // Every stage written: the diagnosis says the rest.
+        let done = Stages::of(&Evidence::AllCorrect, Course::Y2023);
+        assert_eq!(done.next(), None);
         // Flat spheres, no planes: the reflection shows, no shadow can.
         assert_eq!(
             states(

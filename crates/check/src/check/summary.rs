@@ -48,6 +48,7 @@ pub fn opening(findings: &Findings) -> Vec<String> {
         return lines;
     }
     let mut lines = vec![findings.progress.sentence()];
+    lines.extend(findings.progress.next());
     // What the program is, or why its cases died, before anything about its images.
     lines.extend(findings.tick1_star.as_ref().map(|star| star.sentence()));
     lines.extend(findings.missing_class.as_ref().map(|m| m.sentence()));

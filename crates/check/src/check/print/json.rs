@@ -82,6 +82,7 @@ pub fn progress_json(progress: &Stages) -> Value {
 pub fn add_findings(object: &mut Value, findings: &Findings) {
     object["diagnosis"] = diagnosis_json(&findings.diagnosis);
     object["progress"] = progress_json(&findings.progress);
+    object["next"] = json!(findings.progress.next());
     if !findings.terms.is_empty() {
         object["terms"] = terms_json(&findings.terms);
     }
