@@ -153,9 +153,19 @@ impl Stages {
                     Some(after) => format!(", then {after}"),
                     None => String::new(),
                 };
+                let hidden: Vec<&str> = self
+                    .stages
+                    .iter()
+                    .filter(|(_, s)| *s == StageState::NotReached(*stage))
+                    .map(|(later, _)| later.key(self.course))
+                    .collect();
+                let shows = match hidden.as_slice() {
+                    [] => String::new(),
+                    [one] => format!(" ({one} can show once it is)"),
+                    many => format!(" ({} can show once it is)", many.join(", ")),
+                };
                 Some(format!(
-                    "next: {key} ({}, not written yet), the handout's next stage{then}; the \
-                     later stages show once it is",
+                    "next: {key} ({}, not written yet), the handout's next stage{shows}{then}",
                     entry.place()
                 ))
             }
@@ -305,7 +315,7 @@ mod tests {
             p.next().as_deref(),
             Some(
                 "next: spheres (Sphere.intersectionWith, not written yet), the handout's next \
-                 stage, then planes; the later stages show once it is"
+                 stage (shading, shadows, reflection can show once it is), then planes"
             )
         );
         // Half-way through 2023-24's handout: shading before planes, whatever the diagnosis
