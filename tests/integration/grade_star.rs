@@ -166,17 +166,22 @@ fn a_bumpy_sphere_handed_in_alone_is_judged_on_whitted_finished_tick1() {
         2,
         "each option's image"
     );
-    // Its sheet has a row per option: the image's tiles (800x600 shown at 320x240), not the
-    // blank tiles of a student with no image.
+    // Its sheet has a row per option: the image's tiles (800x600 shown a third the size, at
+    // most 320 wide: 266x200), not the 160x120 blank tiles of a student with no image.
     let sheet = read_png(&out.join("students/61001/report.png"));
-    assert_eq!(sheet.width, 3 * 320 + 4 * 8, "tiles of the options' images");
+    let (tile_w, tile_h) = (800 / 3, 600 / 3);
+    assert_eq!(
+        sheet.width,
+        3 * tile_w + 4 * 8,
+        "tiles of the options' images"
+    );
     let pixel = |x: u32, y: u32| {
         let i = 3 * (y * sheet.width + x) as usize;
         [sheet.data[i], sheet.data[i + 1], sheet.data[i + 2]]
     };
     // The first tile starts below the headings, at (8, 26).
-    let first_tile_lit = (0..240u32)
-        .flat_map(|y| (0..320u32).map(move |x| (x + 8, y + 26)))
+    let first_tile_lit = (0..tile_h)
+        .flat_map(|y| (0..tile_w).map(move |x| (x + 8, y + 26)))
         .any(|(x, y)| pixel(x, y) != [0; 3] && pixel(x, y) != [24; 3]);
     assert!(first_tile_lit, "the bump image is drawn on the sheet");
 
