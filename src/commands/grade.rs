@@ -65,6 +65,9 @@ pub fn run(args: &GradeArgs) -> Result<()> {
         summary.graded_now,
         summary.skipped
     );
+    if let Some(line) = summary.not_graded_line(&options) {
+        text += &format!("\n{line}");
+    }
     if let Some(index) = &summary.index {
         text += &format!("\n{}", index.display());
     }

@@ -142,6 +142,48 @@ fn a_bumpy_sphere_handed_in_alone_is_judged_on_whitted_finished_tick1() {
     );
     let notes = ann["extra_data"]["notes"].to_string();
     assert!(notes.contains("BumpySphere.java alone"), "{notes}");
+    // Recognised as a hand-in, whatever its package says.
+    assert_eq!(
+        ann["extra_data"]["check"]["tick1_star"]["seen"], "hand-in",
+        "{}",
+        ann["extra_data"]["check"]["tick1_star"]
+    );
+    // Its page shows each option's image with the option's verdict, as `check --report` does.
+    let page = std::fs::read_to_string(out.join("students/61001/report.html")).expect("report");
+    let bump_heading = "<h2>bump.xml -b 2: option 1, bump mapping</h2>\n";
+    let verdict = page
+        .split_once(bump_heading)
+        .and_then(|(_, after)| after.split_once("</p>"))
+        .map(|(verdict, _)| verdict)
+        .expect("option 1's block");
+    assert!(
+        verdict.starts_with("<p class=\"pass\">") && verdict.contains("y-zx"),
+        "{verdict}"
+    );
+    assert!(page.contains("<h2>distributed.xml -b 2: option 2,"));
+    assert_eq!(
+        page.matches("alt=\"your image\"").count(),
+        2,
+        "each option's image"
+    );
+    // Its sheet has a row per option: the image's tiles (800x600 shown a third the size, at
+    // most 320 wide: 266x200), not the 160x120 blank tiles of a student with no image.
+    let sheet = read_png(&out.join("students/61001/report.png"));
+    let (tile_w, tile_h) = (800 / 3, 600 / 3);
+    assert_eq!(
+        sheet.width,
+        3 * tile_w + 4 * 8,
+        "tiles of the options' images"
+    );
+    let pixel = |x: u32, y: u32| {
+        let i = 3 * (y * sheet.width + x) as usize;
+        [sheet.data[i], sheet.data[i + 1], sheet.data[i + 2]]
+    };
+    // The first tile starts below the headings, at (8, 26).
+    let first_tile_lit = (0..tile_h)
+        .flat_map(|y| (0..tile_w).map(move |x| (x + 8, y + 26)))
+        .any(|(x, y)| pixel(x, y) != [0; 3] && pixel(x, y) != [24; 3]);
+    assert!(first_tile_lit, "the bump image is drawn on the sheet");
 
     let ben = result_json(&out, "61002");
     assert_eq!(row("61002")["status"], "graded", "{rows:?}");
@@ -160,6 +202,17 @@ fn a_bumpy_sphere_handed_in_alone_is_judged_on_whitted_finished_tick1() {
         "{report}"
     );
     assert!(!report.contains("its package is tick1star"), "{report}");
+    assert_eq!(ben["extra_data"]["check"]["tick1_star"]["seen"], "hand-in");
+    // The failed option's verdict and its images: the render it was compared with beside it.
+    assert!(
+        report.contains("<p class=\"fail\">") && report.contains("inverted"),
+        "the verdict on the page"
+    );
+    assert!(
+        report.contains("the handout&#39;s method under parametrisation")
+            || report.contains("the handout's method under parametrisation"),
+        "the reference beside the image"
+    );
 
     let dee = result_json(&out, "61004");
     assert_eq!(row("61004")["grade"], "100", "{rows:?}");

@@ -25,6 +25,7 @@ mod grade;
 mod grade_courses;
 mod grade_hostile;
 mod grade_machine;
+mod grade_only;
 mod grade_skeletons;
 mod grade_star;
 mod hostile;

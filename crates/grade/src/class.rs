@@ -38,6 +38,16 @@ fn grade_text(grade: f64) -> String {
     whitted_core::numbers::plain(grade)
 }
 
+/// A student's grade in every class file: blank for one not graded (`--only` graded
+/// others), as Moodle's own worksheet has an ungraded student's, never a 0 that an upload
+/// would give them.
+fn grade_cell(r: &StudentResult) -> String {
+    match r.is_graded() {
+        true => grade_text(r.extra.grade),
+        false => String::new(),
+    }
+}
+
 pub fn class_csv(rows: &[StudentResult]) -> String {
     let mut out = line(
         &[
@@ -60,7 +70,7 @@ pub fn class_csv(rows: &[StudentResult]) -> String {
             r.extra.passed.to_string(),
             r.extra.cases.to_string(),
             r.extra.diagnosis.join("+"),
-            grade_text(r.extra.grade),
+            grade_cell(r),
             super::reason::reason(r),
         ]);
     }
@@ -120,7 +130,10 @@ fn fraction_of(n: usize, of: usize) -> String {
 
 /// Moodle's offline grading worksheet, the columns its import reads: `Identifier` is
 /// `Participant <id>`; the grade and the feedback always together (importing feedback alone
-/// would overwrite grades with nothing).
+/// would overwrite grades with nothing). A student not graded has grade, feedback and date
+/// blank, as Moodle's own worksheet has an ungraded student's grade and feedback: Moodle's
+/// import skips a blank grade, and takes any grade it holds for them as newer than a blank
+/// date, so that their feedback there is kept too.
 pub fn moodle_csv(rows: &[StudentResult], modified: &str) -> String {
     let mut out = line(
         &[
@@ -140,10 +153,13 @@ pub fn moodle_csv(rows: &[StudentResult], modified: &str) -> String {
             format!("Participant {}", r.extra.id),
             r.extra.name.clone(),
             r.extra.status.name().to_string(),
-            grade_text(r.extra.grade),
+            grade_cell(r),
             "100".into(),
             "Yes".into(),
-            modified.to_string(),
+            match r.is_graded() {
+                true => modified.to_string(),
+                false => String::new(),
+            },
             r.extra.feedback.clone(),
         ]);
     }
@@ -273,7 +289,7 @@ pub fn index_html(rows: &[StudentResult], title: &str, settings: &[String]) -> S
             r.extra.passed,
             r.extra.cases,
             escape(&r.extra.diagnosis.join(" + ")),
-            grade_text(r.extra.grade)
+            grade_cell(r)
         );
     }
     body += "</table>\n";

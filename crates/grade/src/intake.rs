@@ -387,11 +387,13 @@ fn choose(
     };
     let theirs: Vec<(&str, &[u8])> = chosen.iter().map(|(n, b)| (*n, b.as_slice())).collect();
     let bumpy = chosen.iter().any(|(name, _)| optional.contains(name));
-    let star = tick1_star::in_sources(package.as_deref(), &theirs).or_else(|| {
-        // Option 1's file without the Tick 1 it extends is a Tick 1* hand-in whatever its
-        // package: no Tick 1 submission is a BumpySphere alone.
-        (bumpy && !missing.is_empty()).then_some(StarSeen::Package)
-    });
+    let star = match tick1_star::in_sources(package.as_deref(), &theirs) {
+        // A Tick 1* file without the Tick 1 it extends is a hand-in of its option's file; so
+        // is option 1's file alone whatever its package: no Tick 1 submission is a
+        // BumpySphere alone.
+        seen if !missing.is_empty() && (seen.is_some() || bumpy) => Some(StarSeen::HandIn),
+        seen => seen,
+    };
     if let Some(&first) = missing.first() {
         let handed: Vec<&str> = chosen.iter().map(|(name, _)| *name).collect();
         match star {

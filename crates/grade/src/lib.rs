@@ -126,8 +126,29 @@ pub struct Summary {
     pub skipped: usize,
     /// Students per status, over the whole class.
     pub statuses: Vec<(String, usize)>,
+    /// Students of the class with no result in OUTDIR (`--only` graded others): the class
+    /// files give them no grade.
+    pub not_graded: usize,
     /// The class page, when this run wrote it.
     pub index: Option<PathBuf>,
+}
+
+impl Summary {
+    /// What the closing lines say of the students left ungraded, and how to grade them;
+    /// None when there are none.
+    pub fn not_graded_line(&self, options: &Options) -> Option<String> {
+        (self.not_graded > 0).then(|| {
+            format!(
+                "{} not graded by this run or an earlier one into {}: their grades in \
+                 moodle.csv and class.csv are left blank (an upload leaves them as they are); \
+                 grade them with `whitted grade {} -o {}` (without --only)",
+                self.not_graded,
+                options.outdir.display(),
+                options.submissions.display(),
+                options.outdir.display()
+            )
+        })
+    }
 }
 
 /// Grades the class of `options`.
@@ -196,6 +217,7 @@ pub fn run(options: &Options) -> Result<Summary> {
         graded_now: todo.len(),
         skipped,
         statuses: count_statuses(&rows),
+        not_graded: rows.iter().filter(|r| !r.is_graded()).count(),
         index: None,
     };
     if options.part.is_none() {

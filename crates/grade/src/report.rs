@@ -9,6 +9,7 @@ use super::intake::Submission;
 use super::policy::Policy;
 use super::student::Outcome;
 use whitted_check::check::print::html::{case_block, findings_block};
+use whitted_check::check::print::html_star::star_block;
 use whitted_check::check::program::CaseOutcome;
 use whitted_check::check::program::{RunStatus, SuiteRun};
 use whitted_check::check::report::{contact_sheet, failing_rows, ReportRow};
@@ -107,15 +108,11 @@ fn ran(
     let mut out = String::new();
     // A Tick 1* run's options' scenes say nothing of the Tick 1 stages: what was run instead.
     let progress = match findings.tick1_star.as_ref().filter(|t| t.plan.is_some()) {
-        // A one-file hand-in was recognised by what it is, whatever its package.
+        // A one-file hand-in says which files whitted's finished Tick 1 supplied.
         Some(star) => match completed {
             Some(completed) => star.sentence().replacen(
                 &format!("({})", star.seen.why()),
-                &format!(
-                    "(a hand-in of its option's file, completed with whitted's finished Tick 1: \
-                     {})",
-                    completed.join(", ")
-                ),
+                &format!("({}: {})", star.seen.why(), completed.join(", ")),
                 1,
             ),
             None => star.sentence(),
@@ -150,6 +147,8 @@ fn ran(
     for case in run.cases.iter().filter(|c| !shown.withheld(c)) {
         match &case.status {
             RunStatus::Ok(r) if !case.passed() => out += &case_block(&case.name, r, shown.images),
+            // A Tick 1* option's image, whatever its verdict, as `check --report` shows it.
+            RunStatus::Star(star) => out += &star_block(&case.name, star),
             RunStatus::Ok(_) => {}
             _ if !case.stderr_tail.is_empty() => {
                 out += &format!(
@@ -165,7 +164,8 @@ fn ran(
     out
 }
 
-/// The contact sheet of the failing cases; of the first case when every one passes; of the
+/// The contact sheet of the failing cases and of every Tick 1* option's image (a random
+/// draw, shown whatever its verdict); of the first case when every one passes; of the
 /// feedback alone when nothing ran.
 pub fn sheet(outcome: &Outcome, feedback: &str, shown: &Shown) -> PngImage {
     let Outcome::Ran(run) = outcome else {
@@ -177,6 +177,15 @@ pub fn sheet(outcome: &Outcome, feedback: &str, shown: &Shown) -> PngImage {
     };
     // The hidden cases withheld: the rows of the others alone.
     let mut rows = failing_rows(run, |c| !shown.withheld(c));
+    rows.extend(
+        run.cases
+            .iter()
+            .filter(|c| !shown.withheld(c))
+            .filter_map(|c| match &c.status {
+                RunStatus::Star(star) => Some(ReportRow::of_star(&c.name, star)),
+                _ => None,
+            }),
+    );
     if rows.is_empty() {
         rows.extend(run.cases.iter().filter(|c| !shown.withheld(c)).find_map(
             |c| match &c.status {

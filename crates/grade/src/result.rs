@@ -107,7 +107,8 @@ fn no_allowance() -> String {
 }
 
 impl StudentResult {
-    /// The row of a student who has no result (yet): an `error` that `--rerun failed` grades.
+    /// The row of a student who has no result (yet): `not-graded`, with no grade of theirs
+    /// written anywhere (`grade_cell`); any run without `--only` grades them.
     pub fn not_graded(submission: &Submission) -> StudentResult {
         StudentResult {
             extra: Extra {
@@ -118,7 +119,7 @@ impl StudentResult {
                 compile_errors: None,
                 diagnosis: Vec::new(),
                 failed: true,
-                feedback: "not graded yet".into(),
+                feedback: String::new(),
                 fingerprint: None,
                 folder: submission.folder.clone(),
                 grade: 0.0,
@@ -131,7 +132,7 @@ impl StudentResult {
                 progress: None,
                 sandbox: false,
                 skeleton: String::new(),
-                status: StudentStatus::Error,
+                status: StudentStatus::NotGraded,
                 tolerance: 0,
                 warnings: Vec::new(),
                 whitted: String::new(),
@@ -140,6 +141,13 @@ impl StudentResult {
             score: 0.0,
             tests: Vec::new(),
         }
+    }
+
+    /// Whether a grade was given: false for a student this run and those before it did not
+    /// grade, whose grade cells are left blank (as Moodle's own worksheet has them) so that
+    /// an upload leaves their grade as it is, never 0.
+    pub fn is_graded(&self) -> bool {
+        self.extra.status != StudentStatus::NotGraded
     }
 
     /// Per case: its name and whether it passed.

@@ -16,6 +16,10 @@ pub enum StudentStatus {
     /// Something stopped them being graded (a compilation that timed out, two submissions of
     /// one id, a program that could not be started): `--rerun failed` tries again.
     Error,
+    /// In the class but not graded by this run nor any before it into OUTDIR (`--only`
+    /// graded others): no result, and no grade written for them anywhere. Never in a
+    /// `result.json`, only in the class files' rows.
+    NotGraded,
 }
 
 impl StudentStatus {
@@ -26,6 +30,7 @@ impl StudentStatus {
             StudentStatus::CompileError => "compile-error",
             StudentStatus::NoFiles => "no-files",
             StudentStatus::Error => "error",
+            StudentStatus::NotGraded => "not-graded",
         }
     }
 }

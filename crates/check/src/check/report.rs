@@ -2,8 +2,10 @@
 //! contact sheet with one row per failing case (their image, the reference, the heat map and
 //! a caption with the case, the verdict and the top diagnosis).
 
+use crate::check::bump::PIXEL_TOLERANCE;
 use crate::check::difference::pixel_difference;
 use crate::check::program::{CaseOutcome, RunStatus, SuiteRun};
+use crate::check::star_run::StarImage;
 use crate::check::student_png::Rgb8;
 use crate::check::summary::{fits, largest};
 use crate::check::{CaseReport, Findings};
@@ -117,6 +119,36 @@ impl ReportRow {
             None => caption.push("no catalogued mistake fits".into()),
         }
         ReportRow { caption, tiles }
+    }
+}
+
+impl ReportRow {
+    /// The row of a Tick 1* option's case: its image whatever the verdict (a random image is
+    /// not seen again by running the program again), and beside it the render it was
+    /// compared with and where they differ when the verdict has one (option 1's handout
+    /// method), else blank tiles; captioned with the option and its verdict, as
+    /// `print/html_star.rs` heads its block.
+    pub fn of_star(case_name: &str, star: &StarImage) -> Self {
+        let shown = &star.image;
+        let (w, h) = (shown.width, shown.height);
+        let blank = || tile(w, h, |_, _| [0; 3]);
+        let [reference, heat] = match &star.reference {
+            Some(reference) if reference.width == w && reference.height == h => {
+                let heat = heat_pixels(shown, reference, PIXEL_TOLERANCE);
+                [
+                    tile(w, h, |x, y| reference.pixel(x, y)),
+                    tile(w, h, |x, y| heat[y as usize * w as usize + x as usize]),
+                ]
+            }
+            _ => [blank(), blank()],
+        };
+        ReportRow {
+            caption: vec![
+                format!("{case_name}: {}", star.option.what()),
+                star.verdict.line(),
+            ],
+            tiles: [tile(w, h, |x, y| shown.pixel(x, y)), reference, heat],
+        }
     }
 }
 

@@ -14,6 +14,11 @@ pub enum StarSeen {
     TwoRunsDiffer,
     /// Its first case, the suite's quickest, ran out of time.
     FirstCaseTimedOut,
+    /// A hand-in of its option's file alone (`BumpySphere.java`, or a Tick 1* `Renderer.java`
+    /// without the Tick 1 files), as the handout asks students to submit: `grade` completes
+    /// it with whitted's finished Tick 1, so neither its package nor its ray counts are what
+    /// the report should name.
+    HandIn,
 }
 
 impl StarSeen {
@@ -24,6 +29,7 @@ impl StarSeen {
             StarSeen::RayCounts => "ray-counts",
             StarSeen::TwoRunsDiffer => "two-runs-differ",
             StarSeen::FirstCaseTimedOut => "first-case-timed-out",
+            StarSeen::HandIn => "hand-in",
         }
     }
 }
@@ -36,6 +42,9 @@ impl StarSeen {
             StarSeen::RayCounts => "its Renderer has SHADOW_RAY_COUNT or DOF_RAY_COUNT",
             StarSeen::TwoRunsDiffer => "run twice on one case, it wrote two different images",
             StarSeen::FirstCaseTimedOut => "its first case, the quickest, ran out of time",
+            StarSeen::HandIn => {
+                "a hand-in of its option's file alone, completed with whitted's finished Tick 1"
+            }
         }
     }
 }
@@ -90,7 +99,9 @@ impl Tick1Star {
             );
         }
         let why = match self.seen {
-            StarSeen::Package | StarSeen::RayCounts => self.seen.why().to_string(),
+            StarSeen::Package | StarSeen::RayCounts | StarSeen::HandIn => {
+                self.seen.why().to_string()
+            }
             StarSeen::TwoRunsDiffer => {
                 "run twice on one case, it wrote two different images".to_string()
             }
