@@ -381,3 +381,46 @@ pub fn render(build: &Build, java: &Path, case: &SuiteCase, timeout: u64) -> Res
         None => Rendered::Nothing,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_classes_not_the_year_s_code_are_tried_and_a_bumpy_sphere_is_the_student_s() {
+        let (_dir, found) = super::super::clean_project(Course::Y2023);
+        let on = OnYear::new(&found, Course::Y2023)
+            .expect("read")
+            .expect("the student's files");
+        assert!(on.edited(&[]).is_empty());
+        assert_eq!(
+            on.submitted(),
+            "Sphere.java, Plane.java, Renderer.java and BumpySphere.java"
+        );
+        let edit = |name: &str, how: &dyn Fn(&str) -> String| {
+            let path = found.file(name).expect("a course class");
+            let text = std::fs::read_to_string(path).expect("read");
+            let edited = how(&text);
+            assert_ne!(edited, text, "{name}");
+            std::fs::write(path, edited).expect("write");
+        };
+        edit("SceneLoader.java", &|t| {
+            t.replacen("number(e, \"kS\", 1.2)", "0", 1)
+        });
+        // A comment and blank lines are no edit.
+        edit("Camera.java", &|t| format!("// mine\n\n{t}\n\n"));
+        let on = OnYear::new(&found, Course::Y2023)
+            .expect("read")
+            .expect("the student's files");
+        // A suspect whose code is the year's is not tried; the edited one is, after it.
+        assert_eq!(
+            on.edited(&["Scene.java".to_string()]),
+            vec!["SceneLoader.java"]
+        );
+        let (_dir, found) = super::super::clean_project(Course::Y2021);
+        let on = OnYear::new(&found, Course::Y2021)
+            .expect("read")
+            .expect("the student's files");
+        assert_eq!(on.submitted(), "Sphere.java, Plane.java and Renderer.java");
+    }
+}

@@ -151,3 +151,25 @@ pub fn verdicts_differ(
     ));
     Ok(lines)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use whitted_check::check::star_option::StarOption;
+
+    #[test]
+    fn an_option_not_done_says_the_same_whether_or_not_the_other_was() {
+        let not_done = |neither| StarVerdict::NotDone {
+            option: StarOption::Distributed,
+            neither,
+        };
+        assert_eq!(says(&not_done(true)), says(&not_done(false)));
+        let other = StarVerdict::NotDone {
+            option: StarOption::Bump,
+            neither: false,
+        };
+        assert_ne!(says(&not_done(false)), says(&other));
+        assert_ne!(says(&not_done(false)), says(&StarVerdict::NotJudged("why")));
+        assert_eq!(shown(&not_done(true)), "option-not-done");
+    }
+}
