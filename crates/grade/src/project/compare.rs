@@ -288,7 +288,7 @@ impl OnYear {
     }
 
     /// "Sphere.java, Plane.java and Renderer.java": the student's files in the builds, in
-    /// words, with their own BumpySphere where the project has one (Tick 1*'s option 1).
+    /// words, with their own BumpySphere where it is not the year's stub (Tick 1*'s option 1).
     pub fn submitted(&self) -> String {
         let mut names: Vec<&str> = match archive::submitted(self.course) {
             [a, b, c] => vec![c, a, b],
@@ -297,7 +297,8 @@ impl OnYear {
         names.extend(
             self.classes
                 .iter()
-                .filter(|c| archive::OPTIONAL.contains(&c.name.as_str()) && c.own.is_some())
+                .filter(|c| archive::OPTIONAL.contains(&c.name.as_str()))
+                .filter(|c| c.own.as_ref().is_some_and(|own| !same_code(&c.year, own)))
                 .map(|c| c.name.as_str()),
         );
         match names.split_last() {
@@ -386,17 +387,27 @@ pub fn render(build: &Build, java: &Path, case: &SuiteCase, timeout: u64) -> Res
 mod tests {
     use super::*;
 
+    /// A clean project of `course` with the student's files (read, never compiled here).
+    fn with_student_files(course: Course) -> (tempfile::TempDir, Found) {
+        let (dir, found) = super::super::clean_project(course);
+        for name in archive::submitted(course) {
+            let class = name.trim_end_matches(".java");
+            std::fs::write(found.folder.join(name), format!("class {class} {{}}\n"))
+                .expect("write");
+        }
+        let found = super::super::find::find(dir.path(), None).expect("found");
+        (dir, found)
+    }
+
     #[test]
     fn only_classes_not_the_year_s_code_are_tried_and_a_bumpy_sphere_is_the_student_s() {
-        let (_dir, found) = super::super::clean_project(Course::Y2023);
+        let (_dir, found) = with_student_files(Course::Y2023);
         let on = OnYear::new(&found, Course::Y2023)
             .expect("read")
             .expect("the student's files");
         assert!(on.edited(&[]).is_empty());
-        assert_eq!(
-            on.submitted(),
-            "Sphere.java, Plane.java, Renderer.java and BumpySphere.java"
-        );
+        // The year's stub is not said: it is no work of the student's.
+        assert_eq!(on.submitted(), "Sphere.java, Plane.java and Renderer.java");
         let edit = |name: &str, how: &dyn Fn(&str) -> String| {
             let path = found.file(name).expect("a course class");
             let text = std::fs::read_to_string(path).expect("read");
@@ -407,17 +418,24 @@ mod tests {
         edit("SceneLoader.java", &|t| {
             t.replacen("number(e, \"kS\", 1.2)", "0", 1)
         });
+        edit("BumpySphere.java", &|t| {
+            t.replacen("return new Vector3(0);", "return position;", 1)
+        });
         // A comment and blank lines are no edit.
         edit("Camera.java", &|t| format!("// mine\n\n{t}\n\n"));
         let on = OnYear::new(&found, Course::Y2023)
             .expect("read")
             .expect("the student's files");
+        assert_eq!(
+            on.submitted(),
+            "Sphere.java, Plane.java, Renderer.java and BumpySphere.java"
+        );
         // A suspect whose code is the year's is not tried; the edited one is, after it.
         assert_eq!(
             on.edited(&["Scene.java".to_string()]),
             vec!["SceneLoader.java"]
         );
-        let (_dir, found) = super::super::clean_project(Course::Y2021);
+        let (_dir, found) = with_student_files(Course::Y2021);
         let on = OnYear::new(&found, Course::Y2021)
             .expect("read")
             .expect("the student's files");
