@@ -7,6 +7,7 @@ mod check_courses;
 mod check_histories;
 mod check_print;
 mod check_project;
+mod check_project_star;
 mod check_star;
 mod check_star_both;
 mod cli_errors;

@@ -76,7 +76,7 @@ pub fn run(args: &CheckArgs, dir: &Path) -> Result<bool> {
         // The second build runs only when a case fails: a project that passes costs its
         // compile and nothing more.
         if !run.passed() {
-            lines.extend(project.explain_failure(&run, args.timeout)?);
+            lines.extend(project.explain_failure(&run, args.timeout, &|line| eprintln!("{line}"))?);
         }
         let notes: Vec<String> = lines
             .iter()

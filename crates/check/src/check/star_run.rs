@@ -15,6 +15,7 @@ use crate::check::star_draw::{self, DrawCheck, Process};
 use crate::check::star_not_done;
 use crate::check::star_option::{self, StarOption};
 use crate::check::student_png::{self, Rgb8};
+use crate::check::suite::SuiteCase;
 use crate::check::tick1_star::{StarSeen, Tick1Star};
 use crate::check::Findings;
 use whitted_core::course::Course;
@@ -168,6 +169,17 @@ pub fn judge(
             StarVerdict::Draw(star_draw::check(&scene, image, bounces, course)?)
         }
     })
+}
+
+/// The judge of one image of a Tick 1* case (one of `star_option::cases`), as [`run`] judges
+/// it: for a caller that renders the case again on another build of the same program and
+/// compares verdicts, a random image's only fair comparison (`check DIR`'s second build). None
+/// for a case of no option's scene.
+pub fn judge_case(case: &SuiteCase, image: &Rgb8) -> Result<Option<StarVerdict>> {
+    match StarOption::of_file(&case.file) {
+        Some(option) => judge(option, image, case.bounces, case.course).map(Some),
+        None => Ok(None),
+    }
 }
 
 /// The handout's bump map, shipped with its scene, read as the course reads it.

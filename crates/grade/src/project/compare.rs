@@ -11,7 +11,7 @@
 //! among the year's, first those whose members already differ. A project that passes costs
 //! nothing more than its compile.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use super::find::Found;
 use super::javac::{self, Build};
@@ -195,6 +195,119 @@ impl Rendered {
     }
 }
 
+/// The student's own files compiled among `course`'s clean-room classes, with at most one of
+/// the project's copies of a course class swapped in: the builds both comparisons run a failing
+/// case on (the pixels of a Tick 1 case here; the verdicts of a Tick 1* case, `star_verdicts.rs`).
+pub struct OnYear {
+    pub course: Course,
+    classes: Vec<CourseClass>,
+    /// The student's files, each by its path in the build.
+    student: Vec<(String, Vec<u8>)>,
+    folder: String,
+    main: String,
+    pub java: PathBuf,
+}
+
+impl OnYear {
+    /// None when the project lacks one of the files a student hands in (nothing to build).
+    pub fn new(found: &Found, course: Course) -> Result<Option<OnYear>> {
+        let java = javac::jdk_tool("java")?;
+        let classes = course_classes(found, course)?;
+        let skeleton = Skeleton::clean_room(course)?;
+        let package = package_of(found, &skeleton).map(str::to_string);
+        let folder = package::folder(package.as_deref());
+        let main = package::qualified(package.as_deref(), skeleton.main);
+        let mut student = Vec::new();
+        for name in archive::submitted(course) {
+            let Some(path) = found.file(name) else {
+                return Ok(None);
+            };
+            let bytes = std::fs::read(path).map_err(|e| Error::io(path, "cannot read", e))?;
+            let bytes = bytes
+                .strip_prefix(b"\xEF\xBB\xBF")
+                .unwrap_or(&bytes)
+                .to_vec();
+            student.push((format!("{folder}{name}"), bytes));
+        }
+        Ok(Some(OnYear {
+            course,
+            classes,
+            student,
+            folder,
+            main,
+            java,
+        }))
+    }
+
+    /// The build with the project's copy of `swapped` (if any) among the year's classes; or
+    /// javac's errors.
+    pub fn build(&self, swapped: Option<&str>) -> Result<std::result::Result<Build, String>> {
+        let mut sources: Vec<(String, Vec<u8>)> = self
+            .classes
+            .iter()
+            .map(|class| {
+                // The student's own BumpySphere always: it is theirs (`members_differ`).
+                let theirs = archive::OPTIONAL.contains(&class.name.as_str());
+                let bytes = match (swapped == Some(class.name.as_str()) || theirs, &class.own) {
+                    (true, Some(own)) => own.clone(),
+                    _ => class.year.clone(),
+                };
+                (format!("{}{}", self.folder, class.name), bytes)
+            })
+            .collect();
+        // Tick1Tests is not rendered, but the student's files may be written against it.
+        sources.extend(self.student.iter().cloned());
+        javac::sources(&sources, self.main.clone())
+    }
+
+    /// The line when the student's files do not compile among the year's classes: `errors`,
+    /// javac's.
+    pub fn not_compiling(&self, errors: &str) -> String {
+        let course = self.course;
+        let first = errors.lines().next().unwrap_or("");
+        format!(
+            "your {} do not compile beside {course}'s own classes, as the course's tester \
+             compiles them: they lean on a change to the course's classes ({first})",
+            self.submitted()
+        )
+    }
+
+    /// The course classes whose project copy is not the year's code, in the order they are
+    /// tried: `suspects` (those whose members differ) first, then [`LIKELY`]'s.
+    pub fn edited<'a>(&'a self, suspects: &'a [String]) -> Vec<&'a str> {
+        let mut order: Vec<&str> = suspects.iter().map(String::as_str).collect();
+        order.extend(LIKELY.iter().filter(|n| !suspects.iter().any(|s| s == *n)));
+        order
+            .into_iter()
+            .filter(|name| {
+                self.classes.iter().any(|c| {
+                    c.name == *name && c.own.as_ref().is_some_and(|own| !same_code(&c.year, own))
+                })
+            })
+            .collect()
+    }
+
+    /// "Sphere.java, Plane.java and Renderer.java": the student's files in the builds, in
+    /// words, with their own BumpySphere where it is not the year's stub (Tick 1*'s option 1).
+    pub fn submitted(&self) -> String {
+        let mut names: Vec<&str> = match archive::submitted(self.course) {
+            [a, b, c] => vec![c, a, b],
+            other => other.to_vec(),
+        };
+        names.extend(
+            self.classes
+                .iter()
+                .filter(|c| archive::OPTIONAL.contains(&c.name.as_str()))
+                .filter(|c| c.own.as_ref().is_some_and(|own| !same_code(&c.year, own)))
+                .map(|c| c.name.as_str()),
+        );
+        match names.split_last() {
+            Some((last, rest)) if !rest.is_empty() => format!("{} and {last}", rest.join(", ")),
+            _ => names.join(", "),
+        }
+    }
+}
+
 /// The case run on the student's own files and `course`'s classes, against `theirs` (what the
 /// whole project rendered); where they differ, the course classes of the project's that make
 /// the difference, found one at a time (`suspects` first). Lines for the report.
@@ -206,83 +319,32 @@ pub fn renders_differ(
     suspects: &[String],
     timeout: u64,
 ) -> Result<Vec<String>> {
-    let java = javac::jdk_tool("java")?;
-    let classes = course_classes(found, course)?;
-    let skeleton = Skeleton::clean_room(course)?;
-    let package = package_of(found, &skeleton).map(str::to_string);
-    let folder = package::folder(package.as_deref());
-    let main = package::qualified(package.as_deref(), skeleton.main);
-    let mut student = Vec::new();
-    for name in archive::submitted(course) {
-        let Some(path) = found.file(name) else {
-            return Ok(Vec::new());
-        };
-        let bytes = std::fs::read(path).map_err(|e| Error::io(path, "cannot read", e))?;
-        let bytes = bytes
-            .strip_prefix(b"\xEF\xBB\xBF")
-            .unwrap_or(&bytes)
-            .to_vec();
-        student.push((format!("{folder}{name}"), bytes));
-    }
-    let build = |swapped: Option<&str>| {
-        let mut sources: Vec<(String, Vec<u8>)> = classes
-            .iter()
-            .map(|class| {
-                // The student's own BumpySphere always: it is theirs (`members_differ`).
-                let theirs = archive::OPTIONAL.contains(&class.name.as_str());
-                let bytes = match (swapped == Some(class.name.as_str()) || theirs, &class.own) {
-                    (true, Some(own)) => own.clone(),
-                    _ => class.year.clone(),
-                };
-                (format!("{folder}{}", class.name), bytes)
-            })
-            .collect();
-        // Tick1Tests is not rendered, but the student's files may be written against it.
-        sources.extend(student.iter().cloned());
-        javac::sources(&sources, main.clone())
+    let Some(on) = OnYear::new(found, course)? else {
+        return Ok(Vec::new());
     };
+    let java = &on.java;
     let case_name = case.name();
-    let year_build = match build(None)? {
+    let year_build = match on.build(None)? {
         Ok(b) => b,
-        Err(errors) => {
-            let first = errors.lines().next().unwrap_or("").to_string();
-            return Ok(vec![format!(
-                "your {} do not compile beside {course}'s own classes, as the course's tester \
-                 compiles them: they lean on a change to the course's classes ({first})",
-                submitted_names(course)
-            )]);
-        }
+        Err(errors) => return Ok(vec![on.not_compiling(&errors)]),
     };
-    let on_year = render(&year_build, &java, case, timeout)?;
+    let on_year = render(&year_build, java, case, timeout)?;
     if on_year == *theirs {
         return Ok(Vec::new());
     }
-    let mut order: Vec<&str> = suspects.iter().map(String::as_str).collect();
-    order.extend(LIKELY.iter().filter(|n| !suspects.iter().any(|s| s == *n)));
     let mut lines = Vec::new();
-    for name in order {
-        let Some(CourseClass {
-            year,
-            own: Some(own),
-            ..
-        }) = classes.iter().find(|c| c.name == name)
-        else {
+    for name in on.edited(suspects) {
+        let Ok(swapped) = on.build(Some(name))? else {
             continue;
         };
-        if same_code(year, own) {
-            continue;
-        }
-        let Ok(swapped) = build(Some(name))? else {
-            continue;
-        };
-        let with_theirs = render(&swapped, &java, case, timeout)?;
+        let with_theirs = render(&swapped, java, case, timeout)?;
         if with_theirs != on_year {
             lines.push(format!(
                 "{name} is not {course}'s: with your {name} among {course}'s own classes, your \
                  {} render {case_name} otherwise than with {course}'s ({}); the course's tester \
                  uses its own {name}, so that difference is not a mistake of yours to find \
                  below: undo the change to {name}",
-                submitted_names(course),
+                on.submitted(),
                 with_theirs.against(&on_year)
             ));
             if with_theirs == *theirs {
@@ -294,20 +356,11 @@ pub fn renders_differ(
         lines.push(format!(
             "your project renders {case_name} otherwise than your {} do on {course}'s own \
              classes ({}), but no one of its course classes alone makes the difference",
-            submitted_names(course),
+            on.submitted(),
             theirs.against(&on_year)
         ));
     }
     Ok(lines)
-}
-
-/// "Sphere.java, Plane.java and Renderer.java" for the year.
-fn submitted_names(course: Course) -> String {
-    match archive::submitted(course) {
-        [a, b] => format!("{a} and {b}"),
-        [a, b, c] => format!("{c}, {a} and {b}"),
-        other => other.join(", "),
-    }
 }
 
 /// Whether two sources are the same code: comments and spacing aside.
@@ -328,4 +381,64 @@ pub fn render(build: &Build, java: &Path, case: &SuiteCase, timeout: u64) -> Res
         Some(image) => Rendered::Image(image),
         None => Rendered::Nothing,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A clean project of `course` with the student's files (read, never compiled here).
+    fn with_student_files(course: Course) -> (tempfile::TempDir, Found) {
+        let (dir, found) = super::super::clean_project(course);
+        for name in archive::submitted(course) {
+            let class = name.trim_end_matches(".java");
+            std::fs::write(found.folder.join(name), format!("class {class} {{}}\n"))
+                .expect("write");
+        }
+        let found = super::super::find::find(dir.path(), None).expect("found");
+        (dir, found)
+    }
+
+    #[test]
+    fn only_classes_not_the_year_s_code_are_tried_and_a_bumpy_sphere_is_the_student_s() {
+        let (_dir, found) = with_student_files(Course::Y2023);
+        let on = OnYear::new(&found, Course::Y2023)
+            .expect("read")
+            .expect("the student's files");
+        assert!(on.edited(&[]).is_empty());
+        // The year's stub is not said: it is no work of the student's.
+        assert_eq!(on.submitted(), "Sphere.java, Plane.java and Renderer.java");
+        let edit = |name: &str, how: &dyn Fn(&str) -> String| {
+            let path = found.file(name).expect("a course class");
+            let text = std::fs::read_to_string(path).expect("read");
+            let edited = how(&text);
+            assert_ne!(edited, text, "{name}");
+            std::fs::write(path, edited).expect("write");
+        };
+        edit("SceneLoader.java", &|t| {
+            t.replacen("number(e, \"kS\", 1.2)", "0", 1)
+        });
+        edit("BumpySphere.java", &|t| {
+            t.replacen("return new Vector3(0);", "return position;", 1)
+        });
+        // A comment and blank lines are no edit.
+        edit("Camera.java", &|t| format!("// mine\n\n{t}\n\n"));
+        let on = OnYear::new(&found, Course::Y2023)
+            .expect("read")
+            .expect("the student's files");
+        assert_eq!(
+            on.submitted(),
+            "Sphere.java, Plane.java, Renderer.java and BumpySphere.java"
+        );
+        // A suspect whose code is the year's is not tried; the edited one is, after it.
+        assert_eq!(
+            on.edited(&["Scene.java".to_string()]),
+            vec!["SceneLoader.java"]
+        );
+        let (_dir, found) = with_student_files(Course::Y2021);
+        let on = OnYear::new(&found, Course::Y2021)
+            .expect("read")
+            .expect("the student's files");
+        assert_eq!(on.submitted(), "Sphere.java, Plane.java and Renderer.java");
+    }
 }

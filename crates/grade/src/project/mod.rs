@@ -10,6 +10,7 @@ mod find;
 mod javac;
 mod keep;
 mod members;
+mod star_verdicts;
 mod year;
 
 use std::path::{Path, PathBuf};
@@ -161,37 +162,52 @@ impl Project {
 
     /// When a case failed: its render on the student's own files and the year's classes,
     /// against the project's, naming the class the project changed where they differ. Lines
-    /// for the report (none when the project's classes render as the year's).
-    pub fn explain_failure(&self, run: &SuiteRun, timeout: u64) -> Result<Vec<String>> {
-        let Some(failing) = run.cases.iter().find(|c| !c.passed()) else {
+    /// for the report (none when the project's classes render as the year's). A Tick 1*
+    /// case's image is random, so its verdict is compared instead (`star_verdicts.rs`); `say`
+    /// hears what is rendered again and why before it starts, since that takes as long as
+    /// the project's own render.
+    pub fn explain_failure(
+        &self,
+        run: &SuiteRun,
+        timeout: u64,
+        say: &dyn Fn(&str),
+    ) -> Result<Vec<String>> {
+        let star = run.findings.tick1_star.is_some();
+        // In a Tick 1* run, only an image judged can be judged again: a case out of time
+        // would only run out of time again.
+        let failing = run
+            .cases
+            .iter()
+            .find(|c| !c.passed() && (!star || matches!(c.status, RunStatus::Star(_))));
+        let Some(failing) = failing else {
             return Ok(Vec::new());
-        };
-        // A Tick 1* option's image is random (two runs of one build differ) and its bump
-        // sphere is the student's class, which the year's Tick 1 classes lack: a second
-        // render would differ whatever the course classes are, and blame none rightly. The
-        // members' notes above still name an edited class.
-        if matches!(failing.status, RunStatus::Star(_)) {
-            return Ok(Vec::new());
-        }
-        let theirs = match &failing.status {
-            RunStatus::Ok(report) => compare::Rendered::Image(report.student.clone()),
-            _ => compare::Rendered::Nothing,
         };
         let suspects: Vec<String> = self.members.iter().map(|(name, _)| name.clone()).collect();
-        let lines = match compare::renders_differ(
-            &self.found,
-            self.year.course,
-            &failing.case,
-            &theirs,
-            &suspects,
-            timeout,
-        ) {
+        let (course, case) = (self.year.course, &failing.case);
+        let compared = match &failing.status {
+            RunStatus::Star(image) => star_verdicts::verdicts_differ(
+                &self.found,
+                course,
+                case,
+                &image.verdict,
+                &suspects,
+                timeout,
+                say,
+            ),
+            status => {
+                let theirs = match status {
+                    RunStatus::Ok(report) => compare::Rendered::Image(report.student.clone()),
+                    _ => compare::Rendered::Nothing,
+                };
+                compare::renders_differ(&self.found, course, case, &theirs, &suspects, timeout)
+            }
+        };
+        let lines = match compared {
             Ok(lines) => lines,
             Err(e @ whitted_core::Error::Interrupted { .. }) => return Err(e),
             // The suite's report stands without the comparison; say why it is missing.
             Err(e) => vec![format!(
-                "the project's classes could not be compared with {}'s: {e}",
-                self.year.course
+                "the project's classes could not be compared with {course}'s: {e}"
             )],
         };
         Ok(lines.into_iter().map(|l| format!("note: {l}")).collect())
