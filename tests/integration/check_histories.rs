@@ -1,10 +1,9 @@
 //! `whitted check --course YEAR --program` on Tick 1 work in progress, commit by commit, as a
-//! student writes it: the three files as the course's zip ships them
-//! (`tests/java/tick1-shipped`), then written one stage after another
-//! (`tests/java/tick1-submission`, its stages left unwritten and its mistakes baked in by the
-//! fixture's own flags), on whitted's clean-room skeleton of the year, sometimes edited as
-//! students edit it (the loader's plane materials, 2023-24's BumpySphere that does not compile)
-//! and a Tick 1* program. Each commit states the truth: every stage's state, the entries that
+//! student writes it: the three files as the course's zip ships them, then written one stage
+//! after another (whitted's finished Tick 1 with the edits of `tests/java/tick1-mistakes.txt`:
+//! the zip's stubs of the stages left unwritten, the mistakes made; tick1_fixture.rs), on
+//! whitted's clean-room skeleton of the year, sometimes edited as students edit it (the
+//! loader's plane materials, 2023-24's BumpySphere that does not compile) and a Tick 1* program. Each commit states the truth: every stage's state, the entries that
 //! must be named, the ones the rest of the program makes impossible, and what the summary says.
 
 use std::path::{Path, PathBuf};
@@ -12,7 +11,7 @@ use std::path::{Path, PathBuf};
 use serde_json::Value;
 
 use crate::common::*;
-use crate::grade_skeletons::fixture_file;
+use crate::tick1_fixture::{fixture_file, shipped_file};
 use whitted_core::course::Course;
 
 /// The student's crsid in these histories.
@@ -170,21 +169,9 @@ fn student_file(name: &str, src: Src, year: &str, commit: &Commit) -> String {
             if commit.edit == Edit::StarUnnamed {
                 flags.extend(["star-soft-shadows", "star-depth-of-field"]);
             }
-            // A stage written while Renderer is still the zip's: its flags read as literals.
-            let mut text = fixture_file(name, year, "crsid", &flags);
-            while let Some(at) = text.find("Renderer.bug(\"") {
-                let end = at + text[at..].find(')').expect("call ends") + 1;
-                let id = &text[at + "Renderer.bug(\"".len()..end - 2];
-                let literal = flags.contains(&id).to_string();
-                text.replace_range(at..end, &literal);
-            }
-            text
+            fixture_file(name, year, "crsid", &flags)
         }
-        Shipped => {
-            let path = root().join("tests/java/tick1-shipped").join(name);
-            let text = std::fs::read_to_string(path).expect("shipped file");
-            whitted_grade::for_year(&text, course(year)).expect("template")
-        }
+        Shipped => shipped_file(name, year, "crsid"),
     };
     text.replace(
         "package uk.ac.cam.cl.gfxintro.crsid.tick1;",

@@ -1,15 +1,15 @@
 //! `whitted check DIR`: project folders built the way students have them (IntelliJ's `src/`
 //! with `.idea/` and `out/`, Maven's `src/main/java/`, a plain folder), each from whitted's
 //! clean-room skeleton of a year (`whitted grade --write-skeleton`) with `crsid` renamed as
-//! every student renames it, and the student's three files from `tests/java/tick1-submission`
-//! (2016-17: the Tick 2 skeleton and `tests/java/submission`). Each asserts the year found and
-//! why, the exit status, and what is said up front about the project.
+//! every student renames it, and the student's three files (whitted's finished Tick 1, edited:
+//! tick1_fixture.rs; 2016-17: the Tick 2 skeleton and `tests/java/submission`). Each asserts
+//! the year found and why, the exit status, and what is said up front about the project.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use crate::common::*;
-use crate::grade_skeletons::fixture;
+use crate::tick1_fixture::fixture;
 
 /// How a project's folder is laid out.
 #[derive(Clone, Copy)]

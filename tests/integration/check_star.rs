@@ -1,6 +1,6 @@
 //! `whitted check` on Tick 1* (docs/check.md, "Tick 1*"), against our own Java Tick 1*
 //! (`tests/java/tick1star`: whitted's clean-room 2023-24 skeleton copied into the package
-//! `tick1star`, the Tick 1 fixture's Sphere and Plane, and a Renderer and BumpySphere written
+//! `tick1star`, the finished Tick 1's Sphere and Plane, and a Renderer and BumpySphere written
 //! from the handout's method; `-Dseed=N` draws from a seeded generator, `-Dsoft=`, `-Ddof=` and
 //! `-Dbump=` choose how it is written). `--program` runs the handout's two scenes once each at
 //! 160x120 with 2023-24's `--resolution`; `--star distributed` says whether an image is a draw
@@ -16,6 +16,7 @@ use std::sync::OnceLock;
 use serde_json::Value;
 
 use crate::common::*;
+use crate::tick1_fixture::fixture_file;
 
 const PACKAGE: &str = "uk.ac.cam.cl.gfxintro.ab123.tick1star";
 const YEAR: &str = "2023-24";
@@ -39,16 +40,21 @@ pub(crate) fn classes() -> &'static Path {
             paths.push(path);
         }
         // The student's own files, over the skeleton's (its BumpySphere is a stub).
-        let theirs = [
-            ("tick1-submission", "Sphere.java"),
-            ("tick1-submission", "Plane.java"),
-            ("tick1star", "Renderer.java"),
-            ("tick1star", "BumpySphere.java"),
-        ];
-        for (dir, name) in theirs {
-            let text = std::fs::read_to_string(root().join("tests/java").join(dir).join(name))
+        let star = |name: &str| {
+            let text = std::fs::read_to_string(root().join("tests/java/tick1star").join(name))
                 .expect("fixture");
-            let text = whitted_grade::for_year(&text, course).expect("template");
+            whitted_grade::for_year(&text, course).expect("template")
+        };
+        let theirs = [
+            (
+                "Sphere.java",
+                fixture_file("Sphere.java", YEAR, "crsid", &[]),
+            ),
+            ("Plane.java", fixture_file("Plane.java", YEAR, "crsid", &[])),
+            ("Renderer.java", star("Renderer.java")),
+            ("BumpySphere.java", star("BumpySphere.java")),
+        ];
+        for (name, text) in theirs {
             let text = text
                 .replace(
                     "package uk.ac.cam.cl.gfxintro.crsid.tick1star;",

@@ -2,8 +2,9 @@
 //! "The Tick 1 skeleton's API"): classes of every API group, each student in the package of
 //! their own user id (`uk.ac.cam.cl.gfxintro.<crsid>.tick1`), handing in Plane, Renderer and
 //! Sphere, as real submissions arrive (a whole IDE project with the course's classes and an
-//! edited Tick1.java, a Maven tree in a zip, a Tick 1* project). The submissions are our Java
-//! Tick 1 (`tests/java/tick1-submission`), selected for each year's API.
+//! edited Tick1.java, a Maven tree in a zip, a Tick 1* project). The submissions are whitted's
+//! finished Tick 1 with a student's mistakes edited in (tick1_fixture.rs), selected for each
+//! year's API.
 
 use std::path::Path;
 
@@ -11,7 +12,7 @@ use serde_json::Value;
 
 use crate::common::*;
 use crate::grade::{grade, records};
-use crate::grade_skeletons::fixture;
+use crate::tick1_fixture::fixture;
 
 /// The submission's three files for 2021-22 in package `crsid`, with `bugs` baked in.
 fn submission(crsid: &str, bugs: &[&str]) -> Vec<(&'static str, String)> {

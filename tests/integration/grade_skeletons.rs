@@ -1,9 +1,9 @@
 //! whitted's clean-room Tick 1 skeletons (`skeleton/tick1`: T1 2017-18, T2 2018-19, T3 2019-20
 //! to 2022-23, T4 2023-24), held against the course's own images and against what
-//! docs/grade.md says the course's classes do. The student's side is our Java Tick 1 in
-//! `tests/java/tick1-submission`, written in the handout's shape as students write it (the plane's
-//! stored normal trusted, `reflectIn`, the tone map from `power`/`add`/`inv`), selected for each
-//! year's API with the skeleton's own template markers; and small submissions written the ways
+//! docs/grade.md says the course's classes do. The student's side is whitted's finished Tick 1
+//! (`skeleton/tick1/finished`, through tick1_fixture.rs), written in the handout's shape as
+//! students write it (the plane's stored normal trusted, `reflectIn`, the tone map from
+//! `power`/`add`/`inv`), selected for each year's API with the skeleton's own template markers; and small submissions written the ways
 //! real ones lean on the course's classes (a miss's null location, unfiltered hits, the loader's
 //! defaults). These compile with javac directly, without grade's sandbox: grade's own tests
 //! (grade_courses.rs) run classes through it.
@@ -12,6 +12,7 @@ use std::path::{Path, PathBuf};
 use std::process::Output;
 
 use crate::common::*;
+use crate::tick1_fixture::fixture;
 use whitted_core::course::Course;
 
 /// The package our students' files are in here.
@@ -19,33 +20,6 @@ const PACKAGE: &str = "uk.ac.cam.cl.gfxintro.ab123.tick1";
 
 fn course(name: &str) -> Course {
     Course::from_name(name).expect("course")
-}
-
-/// One of the fixture's three files as `year`'s student has it, with `bugs` baked in.
-pub fn fixture_file(name: &str, year: &str, crsid: &str, bugs: &[&str]) -> String {
-    let path = root().join("tests/java/tick1-submission").join(name);
-    let text = std::fs::read_to_string(path).expect("fixture");
-    let text = whitted_grade::for_year(&text, course(year)).expect("template");
-    text.replace(
-        "package uk.ac.cam.cl.gfxintro.crsid.tick1;",
-        &format!("package uk.ac.cam.cl.gfxintro.{crsid}.tick1;"),
-    )
-    .replace(
-        "System.getProperty(\"year\", \"2021-22\")",
-        &format!("\"{year}\""),
-    )
-    .replace(
-        "System.getProperty(\"bug\", \"\")",
-        &format!("\"{}\"", bugs.join(",")),
-    )
-}
-
-/// The fixture's three files for `year`, `bugs` baked in.
-pub fn fixture(year: &str, crsid: &str, bugs: &[&str]) -> Vec<(&'static str, String)> {
-    ["Plane.java", "Renderer.java", "Sphere.java"]
-        .into_iter()
-        .map(|name| (name, fixture_file(name, year, crsid, bugs)))
-        .collect()
 }
 
 /// `year`'s clean-room skeleton and `files` (in [`PACKAGE`]) compiled into `d/tag/classes`:
@@ -223,8 +197,9 @@ fn submissions_that_lean_on_the_course_s_classes_behave_as_the_course_s_classes_
     // A miss's location is null: a shadow test that reads it and catches the exception is
     // right; had the empty hit held a zero vector, |0 - P| < d would shadow every lit point.
     let null_location = fixture_with(
-        "inShadow = blocker.getObjectHit() != null && (bug(\"shadow-any-hit\") || blocker.getDistance() < distanceToLight);",
-        "try { inShadow = blocker.getLocation().subtract(shadowOrigin).magnitude() < distanceToLight; } \
+        "boolean inShadow = blocker.getObjectHit() != null && blocker.getDistance() < distanceToLight;",
+        "boolean inShadow; \
+         try { inShadow = blocker.getLocation().subtract(shadowOrigin).magnitude() < distanceToLight; } \
          catch (NullPointerException miss) { inShadow = false; }",
     );
     let classes = compile(d, "null", year, &null_location).expect("compiles");
@@ -235,8 +210,8 @@ fn submissions_that_lean_on_the_course_s_classes_behave_as_the_course_s_classes_
     // Without the catch, the first shadow ray that meets nothing throws, and the program dies
     // without an image (status 1), as on the course's classes.
     let unguarded = fixture_with(
-        "inShadow = blocker.getObjectHit() != null && (bug(\"shadow-any-hit\") || blocker.getDistance() < distanceToLight);",
-        "inShadow = blocker.getLocation().subtract(shadowOrigin).magnitude() < distanceToLight;",
+        "boolean inShadow = blocker.getObjectHit() != null && blocker.getDistance() < distanceToLight;",
+        "boolean inShadow = blocker.getLocation().subtract(shadowOrigin).magnitude() < distanceToLight;",
     );
     let classes = compile(d, "unguarded", year, &unguarded).expect("compiles");
     let out = d.join("unguarded.png");

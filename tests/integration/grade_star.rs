@@ -10,7 +10,7 @@ use serde_json::Value;
 
 use crate::common::*;
 use crate::grade::{grade, records};
-use crate::grade_skeletons::fixture;
+use crate::tick1_fixture::fixture;
 
 /// The hand-in's BumpySphere.java in `package`, with `edit` applied to its text.
 fn bumpy_sphere(package: &str, edit: &dyn Fn(String) -> String) -> String {

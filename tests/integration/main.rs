@@ -42,6 +42,7 @@ mod serve_crash;
 mod serve_hostile;
 mod star_programs;
 mod star_suite;
+mod tick1_fixture;
 mod tick1star;
 mod tonemap;
 mod view;

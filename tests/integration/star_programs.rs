@@ -13,7 +13,7 @@ use serde_json::Value;
 
 use crate::common::*;
 use crate::grade::{grade, records};
-use crate::grade_skeletons::fixture_file;
+use crate::tick1_fixture::fixture_file;
 
 pub(crate) const YEAR: &str = "2023-24";
 

@@ -293,6 +293,12 @@ pub fn for_year(text: &str, course: Course) -> std::result::Result<String, Strin
     skeleton::select(text, course)
 }
 
+/// `text`, whitted's finished Tick 1 (`skeleton/tick1/finished/`) or an edit of it, as
+/// `course`'s student has it: how the tests write a student's files from the finished ones.
+pub fn finished_for_year(text: &str, course: Course) -> std::result::Result<String, String> {
+    finished::for_year(text, course)
+}
+
 /// `--calibrate`: over the class graded into `outdir`, how many students each pair (channel
 /// tolerance, pixel allowance) passes and what it lets through, from the results alone (no
 /// program runs); `extra` adds an allowance to those shown.

@@ -3,6 +3,7 @@ package uk.ac.cam.cl.gfxintro.crsid.tick1;
 /**
  * whitted's finished Tick 1 Plane (the normal used as stored, as the loader normalises it), in the
  * skeleton template's markers: it completes a Tick 1* hand-in of one file (grade's finished.rs).
+ * The tests' students are this Tick 1 edited (tests/java/tick1-mistakes.txt).
  */
 public class Plane extends SceneObject {
     private final double PLANE_KD = 0.9; //@T1

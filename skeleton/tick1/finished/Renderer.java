@@ -8,7 +8,8 @@ import java.util.List;
  * never from the course's code), in the skeleton template's markers; ${YEAR} is the course's year,
  * whose rules it follows (the N.L gate from 2018-19, the shadow ray moved along N from 2020-21).
  * It completes a Tick 1* hand-in of BumpySphere.java alone (grade's finished.rs): the bump map
- * is then judged on a correct Tick 1, as the ticker sees it on the student's own.
+ * is then judged on a correct Tick 1, as the ticker sees it on the student's own. The tests'
+ * students are this Tick 1 edited (tests/java/tick1-mistakes.txt).
  */
 public class Renderer {
     private static final String YEAR = "${YEAR}";

@@ -4,7 +4,8 @@ package uk.ac.cam.cl.gfxintro.crsid.tick1;
  * whitted's finished Tick 1 Sphere (written from the handout's method and docs/rendering.md, never
  * from the course's code), in the skeleton template's markers. It completes a Tick 1* hand-in of
  * BumpySphere.java or Renderer.java alone, as the handout asks students to submit: the option's
- * file is then judged on a correct Tick 1 (grade's finished.rs).
+ * file is then judged on a correct Tick 1 (grade's finished.rs). The tests' students are this
+ * Tick 1 edited (tests/java/tick1-mistakes.txt).
  */
 public class Sphere extends SceneObject {
     private final double SPHERE_KD = 0.8;
