@@ -4,17 +4,14 @@
 //! image is from each random process tried, and where it differs most. A verdict that rests
 //! on no number (the option not done, not judged) adds nothing.
 
-use std::sync::Arc;
-
 use crate::check::bump::{render_bump, FOLLOWS};
 use crate::check::star_option::StarOption;
-use crate::check::star_run::{handout_map, StarImage, StarVerdict};
+use crate::check::star_run::{handout_scene, StarImage, StarVerdict};
 use crate::check::student_png::Rgb8;
 use whitted_core::course::Course;
 use whitted_core::error::Result;
-use whitted_core::scene;
 use whitted_core::star::bump::Parametrisation;
-use whitted_core::star::{BumpMethod, BumpedSphere, Star};
+use whitted_core::star::BumpMethod;
 
 /// The render an option 1 image was compared with: the handout's method under the
 /// parametrisation its judge found, at the image's size (what `bump::check_bump` scores
@@ -33,19 +30,7 @@ pub fn reference(
     let Some(parametrisation) = Parametrisation::named(finding.parametrisation) else {
         return Ok(None);
     };
-    let (scene, _, bumps) =
-        scene::input::parse_with_bumps(option.file(), option.xml().as_bytes(), course)?;
-    let map = Arc::new(handout_map(option)?);
-    let star = Star {
-        bumps: bumps
-            .iter()
-            .map(|b| BumpedSphere {
-                object: b.object,
-                map: Arc::clone(&map),
-            })
-            .collect(),
-        ..Star::default()
-    };
+    let (scene, star) = handout_scene(option, course)?;
     let method = BumpMethod {
         parametrisation,
         mistake: None,

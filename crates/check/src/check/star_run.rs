@@ -20,7 +20,7 @@ use crate::check::tick1_star::{StarSeen, Tick1Star};
 use crate::check::Findings;
 use whitted_core::course::Course;
 use whitted_core::error::{Error, Result};
-use whitted_core::scene;
+use whitted_core::scene::{self, Scene};
 use whitted_core::star::{BumpMap, BumpedSphere, Star};
 
 /// A Tick 1* option's image and what its judge said of it.
@@ -137,25 +137,13 @@ pub fn judge(
     bounces: u32,
     course: Course,
 ) -> Result<StarVerdict> {
-    let (scene, _, bumps) =
-        scene::input::parse_with_bumps(option.file(), option.xml().as_bytes(), course)?;
+    let (scene, star) = handout_scene(option, course)?;
     let not_done = StarVerdict::NotDone {
         option,
         neither: false,
     };
     Ok(match option {
         StarOption::Bump => {
-            let map = Arc::new(handout_map(option)?);
-            let star = Star {
-                bumps: bumps
-                    .iter()
-                    .map(|b| BumpedSphere {
-                        object: b.object,
-                        map: Arc::clone(&map),
-                    })
-                    .collect(),
-                ..Star::default()
-            };
             match bump_judge::judge(&scene, &star, image, bounces, course)?.verdict {
                 BumpVerdict::NotDone => not_done,
                 BumpVerdict::Rendered(finding) => StarVerdict::Bump(finding),
@@ -180,6 +168,32 @@ pub fn judge_case(case: &SuiteCase, image: &Rgb8) -> Result<Option<StarVerdict>>
         Some(option) => judge(option, image, case.bounces, case.course).map(Some),
         None => Ok(None),
     }
+}
+
+/// The option's handout scene as `course` reads it, and a star holding its bumped spheres,
+/// each with the handout's map (none for option 2's scene): what the judge and `--verbose`
+/// render.
+pub(crate) fn handout_scene(option: StarOption, course: Course) -> Result<(Scene, Star)> {
+    let (scene, _, bumps) =
+        scene::input::parse_with_bumps(option.file(), option.xml().as_bytes(), course)?;
+    let bumps = match bumps.is_empty() {
+        true => Vec::new(),
+        false => {
+            let map = Arc::new(handout_map(option)?);
+            bumps
+                .iter()
+                .map(|b| BumpedSphere {
+                    object: b.object,
+                    map: Arc::clone(&map),
+                })
+                .collect()
+        }
+    };
+    let star = Star {
+        bumps,
+        ..Star::default()
+    };
+    Ok((scene, star))
 }
 
 /// The handout's bump map, shipped with its scene, read as the course reads it.

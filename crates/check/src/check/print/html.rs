@@ -113,15 +113,7 @@ pub fn case_block(name: &str, case: &CaseReport, references: &dyn Embed) -> Stri
     if let Some(region) = worst_region(&case.student, &case.reference) {
         let side = region.shown_side();
         let zoom = |rgb: &[u8], alt: &str| image(side, side, region.enlarged(rgb, w), alt);
-        out += &format!(
-            "<p>Where they differ most: x {}..{}, y {}..{}, each pixel shown {}x{}:</p>\n",
-            region.x,
-            region.x + region.size - 1,
-            region.y,
-            region.y + region.size - 1,
-            region.scale(),
-            region.scale()
-        );
+        out += &format!("<p>Where they differ most: {}:</p>\n", region.described());
         out += &trio(&[
             (
                 zoom(&case.student.bytes, "your image, enlarged"),

@@ -51,7 +51,7 @@ pub fn star_block(name: &str, star: &StarImage) -> String {
             if let Some(region) = worst_region(shown, reference) {
                 let side = region.shown_side();
                 let zoom = |rgb: &[u8], alt: &str| image(side, side, region.enlarged(rgb, w), alt);
-                out += &format!("<p>Where they differ most: {}:</p>\n", place(&region));
+                out += &format!("<p>Where they differ most: {}:</p>\n", region.described());
                 out += &trio(&[
                     (zoom(&shown.bytes, "your image, enlarged"), "your image"),
                     (
@@ -86,22 +86,9 @@ pub fn star_block(name: &str, star: &StarImage) -> String {
                     "where the course's process fits worst",
                 ),
             ]);
-            out += &format!("<p>The enlarged tile: {}.</p>\n", place(&region));
+            out += &format!("<p>The enlarged tile: {}.</p>\n", region.described());
         }
         _ => out += &trio(&[(yours, "your image")]),
     }
     out + "</section>\n"
-}
-
-/// The square's place and enlargement, in words.
-fn place(region: &Region) -> String {
-    format!(
-        "x {}..{}, y {}..{}, each pixel shown {}x{}",
-        region.x,
-        region.x + region.size - 1,
-        region.y,
-        region.y + region.size - 1,
-        region.scale(),
-        region.scale()
-    )
 }

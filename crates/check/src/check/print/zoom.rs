@@ -19,6 +19,19 @@ pub struct Region {
 }
 
 impl Region {
+    /// Its place and enlargement, in words: "x 10..25, y 40..55, each pixel shown 12x12".
+    pub fn described(&self) -> String {
+        format!(
+            "x {}..{}, y {}..{}, each pixel shown {}x{}",
+            self.x,
+            self.x + self.size - 1,
+            self.y,
+            self.y + self.size - 1,
+            self.scale(),
+            self.scale()
+        )
+    }
+
     /// How many times each pixel is enlarged to be shown about `SHOWN` wide.
     pub fn scale(&self) -> u32 {
         (SHOWN / self.size.max(1)).max(1)
